@@ -1,0 +1,48 @@
+# Glint: a thin wrapper over CMake. `make demo` and `make test` work on a fresh Debian 12 machine.
+#
+#   make deps    install the Debian packages the build needs (apt-get; root or sudo)
+#   make build   configure and build (Release); the binary is build/glint
+#   make demo    deps + build + render the built-in scene to glint.png
+#   make test    deps + build + run every test (ctest)
+#   make clean   remove the build directory
+
+BUILD_DIR   ?= build
+BUILD_TYPE  ?= Release
+GLINT_WERROR ?= OFF
+JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
+
+# Debian packages: compiler and build tools, then libraries (see docs/dependencies in README).
+DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libgtest-dev libgmock-dev
+
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: deps build demo test clean
+
+deps:
+	@missing=""; \
+	for p in $(DEPS); do dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'ok installed' || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "glint: installing missing Debian packages:$$missing"; \
+	  export DEBIAN_FRONTEND=noninteractive; \
+	  $(SUDO) apt-get install -y -q --no-install-recommends $$missing || \
+	  { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q --no-install-recommends $$missing; }; \
+	fi
+
+$(BUILD_DIR)/CMakeCache.txt:
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DGLINT_WERROR=$(GLINT_WERROR)
+
+build: $(BUILD_DIR)/CMakeCache.txt
+	cmake -S . -B $(BUILD_DIR) -DGLINT_WERROR=$(GLINT_WERROR) >/dev/null
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+demo: deps
+	@$(MAKE) --no-print-directory build
+	./$(BUILD_DIR)/glint -o glint.png
+	@echo "glint: demo render written to $(CURDIR)/glint.png"
+
+test: deps
+	@$(MAKE) --no-print-directory build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD_DIR)

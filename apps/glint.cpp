@@ -1,0 +1,212 @@
+// glint: the command-line renderer. Usage errors exit 2, scene and render errors exit 1.
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "demo_scene.h"
+#include "glint/core/error.h"
+#include "glint/io/hw3_loader.h"
+#include "glint/io/image_io.h"
+#include "glint/render/progress.h"
+#include "glint/render/renderer.h"
+
+namespace {
+
+constexpr int kExitSceneError = 1;
+constexpr int kExitUsage = 2;
+
+struct Options {
+    std::string scene;
+    std::string output;
+    int threads = 0;
+    std::string size;
+    int maxDepth = -1;
+    bool check = false;
+    bool stats = false;
+    bool quiet = false;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Parses "WxH" within the scene limits.
+bool parseSize(const std::string& s, int& w, int& h) {
+    long long a = 0, b = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(s.c_str(), "%lld%c%lld%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X'))
+        return false;
+    if (a < 1 || b < 1 || a > glint::kMaxImageSide || b > glint::kMaxImageSide ||
+        a * b > glint::kMaxImagePixels)
+        return false;
+    w = static_cast<int>(a);
+    h = static_cast<int>(b);
+    return true;
+}
+
+int usageError(const std::string& message) {
+    std::fprintf(stderr, "glint: error: %s\nRun 'glint --help' for usage.\n", message.c_str());
+    return kExitUsage;
+}
+
+void printStats(const glint::Scene& scene, double parse, double build, const glint::RenderResult& r,
+                double write) {
+    const auto& bvh = scene.bvh().stats();
+    double mrays = r.seconds > 0 ? static_cast<double>(r.rays.total()) / r.seconds / 1e6 : 0;
+    std::printf("Scene       %u triangles, %u spheres, %zu lights, %zu materials\n",
+                scene.primitives.triangleCount(), scene.primitives.sphereCount(),
+                scene.lights.size(), scene.materials.size());
+    std::printf("BVH         %u nodes, %u leaves, depth %u, %.2f MB\n", bvh.nodes, bvh.leaves,
+                bvh.maxDepth, static_cast<double>(bvh.bytes) / 1e6);
+    std::printf("Time        parse %.3f s, build %.3f s, render %.3f s, write %.3f s\n", parse,
+                build, r.seconds, write);
+    std::printf("Rays        %llu camera, %llu shadow, %llu reflection, %llu total\n",
+                static_cast<unsigned long long>(r.rays.camera),
+                static_cast<unsigned long long>(r.rays.shadow),
+                static_cast<unsigned long long>(r.rays.reflection),
+                static_cast<unsigned long long>(r.rays.total()));
+    std::printf("Throughput  %.2f Mrays/s\n", mrays);
+}
+
+int run(const Options& opt) {
+    using Clock = std::chrono::steady_clock;
+    const bool demo = opt.scene.empty();
+    int width = 0, height = 0;
+    if (!opt.size.empty() && !parseSize(opt.size, width, height))
+        return usageError("--size expects WIDTHxHEIGHT (e.g. 640x480) with at most " +
+                          std::to_string(glint::kMaxImagePixels) + " pixels, got '" + opt.size +
+                          "'");
+    if (!opt.output.empty() && !glint::imageFormatFor(opt.output))
+        return usageError("cannot write '" + opt.output +
+                          "': unknown image format (use .png, .ppm or .pfm)");
+
+    // Parse.
+    auto t0 = Clock::now();
+    std::vector<glint::Diagnostic> warnings;
+    std::unique_ptr<glint::Scene> scene;
+    try {
+        scene = demo ? glint::parseHw3Scene(glint::kDemoScene, "demo.test", warnings)
+                     : glint::loadHw3Scene(opt.scene, warnings);
+    } catch (const glint::SceneError& e) {
+        for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
+        std::fprintf(stderr, "%s\n", e.what());
+        return kExitSceneError;
+    }
+    double parseSeconds = secondsSince(t0);
+    for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
+    if (width > 0) {
+        scene->width = width;
+        scene->height = height;
+    }
+    if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
+
+    // Where the image goes: -o, else the scene's output line, else <scene-stem>.png.
+    std::string output = opt.output;
+    if (output.empty()) output = scene->output;
+    if (output.empty()) output = std::filesystem::path(opt.scene).stem().string() + ".png";
+    if (demo && opt.output.empty()) output = "glint.png";
+
+    if (opt.check) {
+        std::printf("%s: ok: %dx%d, %u triangles, %u spheres, %zu lights, maxdepth %d, output %s\n",
+                    demo ? "demo.test" : opt.scene.c_str(), scene->width, scene->height,
+                    scene->primitives.triangleCount(), scene->primitives.sphereCount(),
+                    scene->lights.size(), scene->maxDepth, output.c_str());
+        return 0;
+    }
+    if (!glint::imageFormatFor(output)) {
+        std::fprintf(stderr,
+                     "glint: error: cannot write '%s': unknown image format (use .png, .ppm or "
+                     ".pfm, or choose a file with -o)\n",
+                     output.c_str());
+        return kExitSceneError;
+    }
+
+    // Build.
+    auto t1 = Clock::now();
+    scene->prepare();
+    double buildSeconds = secondsSince(t1);
+
+    // Render.
+    glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
+    glint::RenderOptions ro;
+    ro.threads = opt.threads;
+    if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
+    glint::RenderResult result = glint::render(*scene, ro);
+    if (!opt.quiet) progress.finish({0, 0, result.seconds}, result.complete);
+
+    // Write.
+    auto t2 = Clock::now();
+    try {
+        glint::writeImage(output, result.film);
+    } catch (const glint::RenderError& e) {
+        std::fprintf(stderr, "glint: error: %s\n", e.what());
+        return kExitSceneError;
+    }
+    double writeSeconds = secondsSince(t2);
+    if (!opt.quiet)
+        std::fprintf(stderr, "glint: wrote %s (%dx%d)\n", output.c_str(), scene->width,
+                     scene->height);
+    if (opt.stats) printStats(*scene, parseSeconds, buildSeconds, result, writeSeconds);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
+        "\nWithout SCENE it renders a built-in demo scene to glint.png.",
+        "glint"};
+    app.get_formatter()->column_width(30);
+    Options opt;
+    app.add_option("SCENE", opt.scene, "Scene file to render (CSE167x .test format)");
+
+    const char* out = "Output";
+    app.add_option("-o,--output", opt.output,
+                   "Image file to write; .png, .ppm or .pfm (float). Default: the scene's "
+                   "'output' line, else <scene-stem>.png")
+        ->group(out)
+        ->type_name("FILE");
+
+    const char* render = "Rendering";
+    app.add_option("-t,--threads", opt.threads, "Worker threads (default: all hardware threads)")
+        ->group(render)
+        ->check(CLI::Range(1, 4096))
+        ->type_name("N");
+    app.add_option("--size", opt.size, "Image size, overriding the scene's 'size'")
+        ->group(render)
+        ->type_name("WxH");
+    app.add_option("--maxdepth", opt.maxDepth, "Maximum reflection depth, overriding the scene's")
+        ->group(render)
+        ->check(CLI::Range(0, glint::kMaxDepthLimit))
+        ->type_name("N");
+
+    const char* info = "Information";
+    app.add_flag("--check", opt.check,
+                 "Parse and validate the scene, print a summary, render nothing")
+        ->group(info);
+    app.add_flag("--stats", opt.stats, "Print times per phase, rays traced and Mrays/s")
+        ->group(info);
+    app.add_flag("-q,--quiet", opt.quiet, "No progress or messages; warnings and errors only")
+        ->group(info);
+    app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION)->group(info);
+    app.set_help_flag("-h,--help", "Print this help and exit")->group(info);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : kExitUsage;
+    }
+    try {
+        return run(opt);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "glint: error: %s\n", e.what());
+        return kExitSceneError;
+    }
+}

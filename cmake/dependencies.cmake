@@ -1,0 +1,14 @@
+# Third-party libraries, all from Debian 12 packages (see `make deps`).
+find_package(Threads REQUIRED)
+find_package(PkgConfig REQUIRED)
+
+# CLI11 (libcli11-dev): command-line parsing for apps/.
+find_package(CLI11 CONFIG REQUIRED)
+
+# stb (libstb-dev): PNG/JPEG decoding and PNG encoding in io/.
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+
+if(GLINT_BUILD_TESTS)
+    # GoogleTest (libgtest-dev, libgmock-dev).
+    find_package(GTest REQUIRED)
+endif()

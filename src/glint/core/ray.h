@@ -1,0 +1,43 @@
+#pragma once
+/// Rays p(t) = origin + t * dir, valid for t in (tMin, tMax), and what traversal returns.
+
+#include <cstdint>
+#include <limits>
+
+#include "glint/math/vec3.h"
+
+namespace glint {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+/// A ray in double precision, as the camera and the integrator make them.
+struct Ray {
+    Vec3 origin;
+    Vec3 dir;  ///< Unit length for every ray Glint traces.
+    double tMin = 0;
+    double tMax = kInfinity;
+
+    constexpr Vec3 at(double t) const { return origin + dir * t; }
+};
+
+/// The same ray in float for traversal, with what box tests need precomputed.
+struct TraversalRay {
+    Vec3f origin, dir, invDir;
+    float tMin, tMax;
+
+    explicit TraversalRay(const Ray& r)
+        : origin(r.origin),
+          dir(r.dir),
+          invDir(1 / dir.x, 1 / dir.y, 1 / dir.z),
+          tMin(static_cast<float>(r.tMin)),
+          tMax(static_cast<float>(r.tMax)) {}
+};
+
+/// The closest hit found by traversal, in float. The shading data is recomputed in double for
+/// the winner only (Primitives::interaction).
+struct Hit {
+    float t = std::numeric_limits<float>::infinity();
+    uint32_t primId = 0;  ///< Index into the scene's primitives.
+};
+
+}  // namespace glint

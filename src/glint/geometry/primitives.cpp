@@ -1,0 +1,57 @@
+#include "glint/geometry/primitives.h"
+
+namespace glint {
+
+void Primitives::addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
+                             uint32_t material) {
+    triangles_.push_back(Triangle::fromVertices(a, b, c));
+    triangleMaterial_.push_back(material);
+    if (normals) {
+        triangleNormals_.push_back(static_cast<uint32_t>(vertexNormals_.size()));
+        vertexNormals_.push_back({normals[0], normals[1], normals[2]});
+    } else {
+        triangleNormals_.push_back(kFlat);
+    }
+}
+
+void Primitives::addSphere(const Sphere& sphere, uint32_t material) {
+    spheres_.push_back(sphere);
+    sphereSearch_.push_back(SphereSearch::from(sphere));
+    sphereMaterial_.push_back(material);
+}
+
+Bounds3f Primitives::bounds() const {
+    Bounds3f b;
+    for (uint32_t i = 0; i < size(); ++i) b.extend(bounds(i));
+    return b;
+}
+
+SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const {
+    SurfaceInteraction si;
+    if (hit.primId < triangleCount()) {
+        const Triangle& tri = triangles_[hit.primId];
+        TriangleHit th = refineTriangleHit(tri, ray, hit.t);
+        si.p = ray.at(th.t);
+        si.ng = normalize(tri.normalDirection());
+        si.n = si.ng;
+        si.material = triangleMaterial_[hit.primId];
+        if (uint32_t ni = triangleNormals_[hit.primId]; ni != kFlat) {
+            const auto& vn = vertexNormals_[ni];
+            Vec3 n = vn[0] * (1 - th.b1 - th.b2) + vn[1] * th.b1 + vn[2] * th.b2;
+            double len = length(n);
+            // Opposed or zero vertex normals can cancel: keep the geometric normal then.
+            if (len > 0 && std::isfinite(len)) si.n = n / len;
+        }
+    } else {
+        const Sphere& s = spheres_[hit.primId - triangleCount()];
+        Vec3 local;
+        double t = refineSphereHit(s, ray, hit.t, local);
+        si.p = ray.at(t);
+        si.ng = normalize(s.worldFromObject.normal(local));
+        si.n = si.ng;
+        si.material = sphereMaterial_[hit.primId - triangleCount()];
+    }
+    return si;
+}
+
+}  // namespace glint

@@ -1,0 +1,67 @@
+#pragma once
+/// The scene's geometry as one indexed set of primitives that accelerators are built over.
+///
+/// Primitive ids run over triangles first, then spheres: id < triangleCount() is a triangle.
+/// Each primitive carries a material id; triangles may carry per-vertex shading normals.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "glint/geometry/sphere.h"
+#include "glint/geometry/triangle.h"
+
+namespace glint {
+
+/// Shading data for the closest hit, computed in double once per shaded hit.
+struct SurfaceInteraction {
+    Vec3 p;   ///< World-space hit point.
+    Vec3 n;   ///< Unit shading normal (interpolated for triangles with vertex normals).
+    Vec3 ng;  ///< Unit geometric normal.
+    uint32_t material = 0;
+};
+
+class Primitives {
+  public:
+    /// Adds a triangle with world-space vertices; `normals` (world space, unit or zero) may be
+    /// null for a flat triangle.
+    void addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
+                     uint32_t material);
+    void addSphere(const Sphere& sphere, uint32_t material);
+
+    uint32_t size() const { return static_cast<uint32_t>(triangles_.size() + spheres_.size()); }
+    uint32_t triangleCount() const { return static_cast<uint32_t>(triangles_.size()); }
+    uint32_t sphereCount() const { return static_cast<uint32_t>(spheres_.size()); }
+
+    Bounds3f bounds(uint32_t id) const {
+        return id < triangleCount() ? triangles_[id].bounds()
+                                    : spheres_[id - triangleCount()].bounds();
+    }
+    /// Bounds of everything.
+    Bounds3f bounds() const;
+
+    /// Tests primitive `id` in float; on a closer hit, fills `hit` including primId.
+    bool intersect(uint32_t id, const TraversalRay& ray, Hit& hit) const {
+        bool found = id < triangleCount()
+                         ? intersectTriangle(triangles_[id], ray, hit)
+                         : intersectSphere(sphereSearch_[id - triangleCount()], ray, hit);
+        if (found) hit.primId = id;
+        return found;
+    }
+
+    /// Shading data for a hit that traversal returned for `ray`, refined in double.
+    SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
+
+  private:
+    static constexpr uint32_t kFlat = UINT32_MAX;
+
+    std::vector<Triangle> triangles_;
+    std::vector<uint32_t> triangleMaterial_;
+    std::vector<uint32_t> triangleNormals_;  ///< Index into vertexNormals_, or kFlat.
+    std::vector<std::array<Vec3, 3>> vertexNormals_;
+    std::vector<Sphere> spheres_;
+    std::vector<SphereSearch> sphereSearch_;
+    std::vector<uint32_t> sphereMaterial_;
+};
+
+}  // namespace glint

@@ -1,0 +1,519 @@
+#include "glint/io/hw3_loader.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "glint/io/image_io.h"
+
+namespace glint {
+namespace {
+
+struct Token {
+    std::string_view text;
+    int column = 0;
+};
+
+class Parser;
+using Handler = void (Parser::*)();
+
+struct Command {
+    std::string_view name;
+    int minArgs, maxArgs;
+    std::string_view usage;  ///< Argument names for messages.
+    Handler handler;
+};
+
+/// Lines hold at most this many tokens; more is always an argument-count error.
+constexpr int kMaxTokens = 12;
+/// A `maxverts` bound is only a hint: never reserve more than this many vertices from it.
+constexpr long long kMaxVertexReserve = 1 << 20;
+
+class Parser {
+  public:
+    Parser(std::string_view text, const std::string& file, std::vector<Diagnostic>& warnings)
+        : text_(text), file_(file), warnings_(warnings), scene_(std::make_unique<Scene>()) {}
+
+    std::unique_ptr<Scene> run();
+    static const std::vector<Command>& commands();
+
+  private:
+    // Lexing and diagnostics.
+    void tokenize(std::string_view line);
+    FileLoc loc(int column) const { return {file_, line_, column}; }
+    [[noreturn]] void fail(int token, const std::string& message) const {
+        throw SceneError(loc(tok_[token].column), message);
+    }
+    void warn(int token, const std::string& message) {
+        warnings_.push_back({loc(tok_[token].column), message});
+    }
+    std::string quoted(int token) const {
+        std::string q(1, '\'');  // built by appending: GCC 12 warns falsely on "'" + string
+        q.append(tok_[token].text).push_back('\'');
+        return q;
+    }
+
+    // Arguments.
+    double number(int i) const;
+    double real(int i) const;
+    long long integer(int i, long long lo, long long hi) const;
+    Vec3 vec3(int i) const { return {real(i), real(i + 1), real(i + 2)}; }
+    Vec3 colour(int i) const { return vec3(i); }
+    const Transform& transform();
+    uint32_t material() { return scene_->addMaterial(material_); }
+    uint32_t vertexIndex(int i, size_t count, const char* pile) const;
+
+    // Commands.
+    void cmdSize();
+    void cmdMaxDepth();
+    void cmdOutput();
+    void cmdCamera();
+    void cmdSphere();
+    void cmdMaxVerts();
+    void cmdMaxVertNorms();
+    void cmdVertex();
+    void cmdVertexNormal();
+    void cmdTri();
+    void cmdTriNormal();
+    void cmdTranslate();
+    void cmdRotate();
+    void cmdScale();
+    void cmdPushTransform();
+    void cmdPopTransform();
+    void cmdDirectional();
+    void cmdPoint();
+    void cmdAttenuation();
+    void cmdAmbient() { material_.ambient = colour(1); }
+    void cmdDiffuse() { material_.diffuse = colour(1); }
+    void cmdSpecular() { material_.specular = colour(1); }
+    void cmdEmission() { material_.emission = colour(1); }
+    void cmdShininess();
+    void cmdBackground();
+
+    void applyTransform(const Mat4& m) {
+        stack_.back() = stack_.back() * m;
+        transformValid_ = false;
+    }
+    void unknownCommand();
+
+    std::string_view text_;
+    const std::string& file_;
+    std::vector<Diagnostic>& warnings_;
+    std::unique_ptr<Scene> scene_;
+
+    int line_ = 0;
+    std::array<Token, kMaxTokens> tok_;
+    int ntok_ = 0;  ///< Tokens on the line, possibly more than kMaxTokens (only those are kept).
+
+    std::vector<Mat4> stack_{Mat4::identity()};
+    std::optional<Transform> transform_;  ///< stack_.back() baked; empty if singular.
+    bool transformValid_ = false;
+    Material material_;
+    Vec3 attenuation_{1, 0, 0};
+    std::vector<Vec3> vertices_;
+    std::vector<std::array<Vec3, 2>> normalVertices_;  ///< Position and unit normal (or zero).
+    long long maxVerts_ = -1, maxVertNorms_ = -1;
+    int cameraLine_ = 0;
+};
+
+const std::vector<Command>& Parser::commands() {
+    // The most frequent commands first: lookup is a linear scan.
+    static const std::vector<Command> table = {
+        {"vertex", 3, 3, "x y z", &Parser::cmdVertex},
+        {"tri", 3, 3, "v1 v2 v3", &Parser::cmdTri},
+        {"sphere", 4, 4, "x y z radius", &Parser::cmdSphere},
+        {"pushTransform", 0, 0, "", &Parser::cmdPushTransform},
+        {"popTransform", 0, 0, "", &Parser::cmdPopTransform},
+        {"translate", 3, 3, "x y z", &Parser::cmdTranslate},
+        {"rotate", 4, 4, "x y z degrees", &Parser::cmdRotate},
+        {"scale", 3, 3, "x y z", &Parser::cmdScale},
+        {"vertexnormal", 6, 6, "x y z nx ny nz", &Parser::cmdVertexNormal},
+        {"trinormal", 3, 3, "v1 v2 v3", &Parser::cmdTriNormal},
+        {"ambient", 3, 3, "r g b", &Parser::cmdAmbient},
+        {"diffuse", 3, 3, "r g b", &Parser::cmdDiffuse},
+        {"specular", 3, 3, "r g b", &Parser::cmdSpecular},
+        {"emission", 3, 3, "r g b", &Parser::cmdEmission},
+        {"shininess", 1, 1, "s", &Parser::cmdShininess},
+        {"size", 2, 2, "width height", &Parser::cmdSize},
+        {"maxdepth", 1, 1, "depth", &Parser::cmdMaxDepth},
+        {"output", 1, 1, "filename", &Parser::cmdOutput},
+        {"camera", 10, 10, "fromx fromy fromz atx aty atz upx upy upz fovy", &Parser::cmdCamera},
+        {"maxverts", 1, 1, "count", &Parser::cmdMaxVerts},
+        {"maxvertnorms", 1, 1, "count", &Parser::cmdMaxVertNorms},
+        {"directional", 6, 6, "x y z r g b", &Parser::cmdDirectional},
+        {"point", 6, 6, "x y z r g b", &Parser::cmdPoint},
+        {"attenuation", 3, 3, "constant linear quadratic", &Parser::cmdAttenuation},
+        {"background", 3, 6, "r g b [r2 g2 b2]", &Parser::cmdBackground},
+    };
+    return table;
+}
+
+std::unique_ptr<Scene> Parser::run() {
+    size_t pos = 0;
+    while (pos < text_.size()) {
+        size_t end = text_.find('\n', pos);
+        if (end == std::string_view::npos) end = text_.size();
+        ++line_;
+        tokenize(text_.substr(pos, end - pos));
+        pos = end + 1;
+        if (ntok_ == 0) continue;
+
+        const Command* cmd = nullptr;
+        for (const Command& c : commands())
+            if (c.name == tok_[0].text) {
+                cmd = &c;
+                break;
+            }
+        if (!cmd) unknownCommand();
+        int args = ntok_ - 1;
+        if (args < cmd->minArgs || args > cmd->maxArgs) {
+            std::string expect =
+                cmd->minArgs == cmd->maxArgs
+                    ? std::to_string(cmd->minArgs)
+                    : std::to_string(cmd->minArgs) + " or " + std::to_string(cmd->maxArgs);
+            std::string msg = std::string(cmd->name) + " expects " + expect +
+                              (cmd->maxArgs == 1 ? " argument" : " arguments");
+            if (!cmd->usage.empty()) msg += " (" + std::string(cmd->usage) + ")";
+            msg += ", got " + std::to_string(args);
+            // Too many: point at the first extra argument; too few: at the command.
+            fail(args > cmd->maxArgs ? std::min(cmd->maxArgs + 1, kMaxTokens - 1) : 0, msg);
+        }
+        if (cmd->name == "background" && args != 3 && args != 6)
+            fail(0, "background expects 3 or 6 arguments (r g b [r2 g2 b2]), got " +
+                        std::to_string(args));
+        (this->*cmd->handler)();
+    }
+    if (!scene_->camera) {
+        // Point just past the last line, where the missing command would go.
+        throw SceneError({file_, line_ + 1, 1},
+                         "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
+                         "upx upy upz fovy')");
+    }
+    return std::move(scene_);
+}
+
+void Parser::tokenize(std::string_view line) {
+    ntok_ = 0;
+    auto isSpace = [](char c) {
+        return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+    };
+    size_t i = 0, n = line.size();
+    while (i < n) {
+        while (i < n && isSpace(line[i])) ++i;
+        if (i >= n || line[i] == '#') break;  // end of line or a comment to the end
+        size_t start = i;
+        while (i < n && !isSpace(line[i])) ++i;
+        if (ntok_ < kMaxTokens)
+            tok_[ntok_] = {line.substr(start, i - start), static_cast<int>(start) + 1};
+        ++ntok_;
+    }
+}
+
+double Parser::number(int i) const {
+    std::string_view s = tok_[i].text;
+    const char* b = s.data();
+    const char* e = b + s.size();
+    if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;  // "+1"
+    double v = 0;
+    auto [p, ec] = std::from_chars(b, e, v);
+    if (ec == std::errc::result_out_of_range) fail(i, "number " + quoted(i) + " is out of range");
+    if (ec != std::errc() || p != e) fail(i, "expected a number, got " + quoted(i));
+    if (!std::isfinite(v)) fail(i, "expected a finite number, got " + quoted(i));
+    return v;
+}
+
+double Parser::real(int i) const {
+    // Geometry is stored in float: larger magnitudes would become infinite there.
+    double v = number(i);
+    if (std::abs(v) > static_cast<double>(std::numeric_limits<float>::max()))
+        fail(i, "number " + quoted(i) + " is too large");
+    return v;
+}
+
+long long Parser::integer(int i, long long lo, long long hi) const {
+    std::string_view s = tok_[i].text;
+    const char* b = s.data();
+    const char* e = b + s.size();
+    if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;
+    long long v = 0;
+    auto [p, ec] = std::from_chars(b, e, v);
+    if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == e && (v < lo || v > hi)))
+        fail(i, "integer " + quoted(i) + " is out of range (" + std::to_string(lo) + " to " +
+                    std::to_string(hi) + ")");
+    if (ec != std::errc() || p != e) fail(i, "expected an integer, got " + quoted(i));
+    return v;
+}
+
+const Transform& Parser::transform() {
+    if (!transformValid_) {
+        transform_ = Transform::fromMatrix(stack_.back());
+        transformValid_ = true;
+    }
+    if (!transform_) fail(0, "the current transform is singular or not finite");
+    return *transform_;
+}
+
+uint32_t Parser::vertexIndex(int i, size_t count, const char* pile) const {
+    long long limit = std::numeric_limits<uint32_t>::max();
+    long long v = integer(i, 0, limit);
+    if (static_cast<size_t>(v) >= count) {
+        if (count == 0)
+            fail(i, std::string("vertex index ") + quoted(i) + " is out of range: no " + pile +
+                        " has been defined yet");
+        fail(i, "vertex index " + quoted(i) + " is out of range: " + std::to_string(count) + " " +
+                    pile + (count == 1 ? " is" : "s are") + " defined (0 to " +
+                    std::to_string(count - 1) + ")");
+    }
+    return static_cast<uint32_t>(v);
+}
+
+void Parser::unknownCommand() {
+    auto lower = [](std::string_view s) {
+        std::string r(s);
+        for (char& c : r) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return r;
+    };
+    // Edit distance, ignoring case, to the closest known command.
+    auto distance = [](const std::string& a, const std::string& b) {
+        std::vector<size_t> row(b.size() + 1);
+        for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+        for (size_t i = 1; i <= a.size(); ++i) {
+            size_t diag = row[0];
+            row[0] = i;
+            for (size_t j = 1; j <= b.size(); ++j) {
+                size_t next = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+                diag = row[j];
+                row[j] = next;
+            }
+        }
+        return row[b.size()];
+    };
+    std::string word = lower(tok_[0].text);
+    std::string_view best;
+    size_t bestDistance = 3;  // suggest only near misses
+    for (const Command& c : commands()) {
+        size_t d = distance(word, lower(c.name));
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = c.name;
+        }
+    }
+    std::string msg = "unknown command " + quoted(0);
+    if (!best.empty()) msg += "; did you mean '" + std::string(best) + "'?";
+    fail(0, msg);
+}
+
+void Parser::cmdSize() {
+    long long w = integer(1, 1, kMaxImageSide);
+    long long h = integer(2, 1, kMaxImageSide);
+    if (w * h > kMaxImagePixels)
+        fail(2, "image of " + std::to_string(w) + " x " + std::to_string(h) +
+                    " pixels is too large (at most " + std::to_string(kMaxImagePixels) +
+                    " pixels)");
+    scene_->width = static_cast<int>(w);
+    scene_->height = static_cast<int>(h);
+}
+
+void Parser::cmdMaxDepth() {
+    long long d = integer(1, 0, std::numeric_limits<int>::max());
+    if (d > kMaxDepthLimit) {
+        warn(1, "maxdepth " + std::to_string(d) + " is more than Glint traces; using " +
+                    std::to_string(kMaxDepthLimit));
+        d = kMaxDepthLimit;
+    }
+    scene_->maxDepth = static_cast<int>(d);
+}
+
+void Parser::cmdOutput() {
+    scene_->output = std::string(tok_[1].text);
+    if (!imageFormatFor(scene_->output))
+        warn(1, "Glint cannot write " + quoted(1) +
+                    ": use a .png, .ppm or .pfm name here or choose one with -o");
+}
+
+void Parser::cmdCamera() {
+    CameraSpec c{vec3(1), vec3(4), vec3(7), real(10)};
+    if (c.eye == c.center) fail(4, "the camera looks at its own position (from equals at)");
+    if (!(length(c.eye - c.center) > 0) || !std::isfinite(length(c.eye - c.center)))
+        fail(4, "the camera's viewing direction cannot be normalised");
+    if (!(length(cross(c.up, normalize(c.eye - c.center))) > 0))
+        fail(7, "the camera's up vector is zero or parallel to the viewing direction");
+    if (!(c.fovyDegrees > 0 && c.fovyDegrees < 180))
+        fail(10, "fovy must be between 0 and 180 degrees, got " + quoted(10));
+    if (scene_->camera)
+        warn(0, "a second camera replaces the one on line " + std::to_string(cameraLine_));
+    scene_->camera = c;
+    cameraLine_ = line_;
+}
+
+void Parser::cmdSphere() {
+    Sphere s{vec3(1), real(4), {}};
+    if (s.radius < 0) fail(4, "sphere radius must not be negative, got " + quoted(4));
+    s.worldFromObject = transform();
+    if (s.radius == 0) {
+        warn(4, "sphere of radius 0 is invisible and is skipped");
+        return;
+    }
+    scene_->primitives.addSphere(s, material());
+}
+
+void Parser::cmdMaxVerts() {
+    maxVerts_ = integer(1, 0, std::numeric_limits<long long>::max());
+    vertices_.reserve(static_cast<size_t>(std::min(maxVerts_, kMaxVertexReserve)));
+}
+
+void Parser::cmdMaxVertNorms() {
+    maxVertNorms_ = integer(1, 0, std::numeric_limits<long long>::max());
+    normalVertices_.reserve(static_cast<size_t>(std::min(maxVertNorms_, kMaxVertexReserve)));
+}
+
+void Parser::cmdVertex() {
+    vertices_.push_back(vec3(1));
+    if (maxVerts_ >= 0 && static_cast<long long>(vertices_.size()) == maxVerts_ + 1)
+        warn(0, "more vertices than 'maxverts " + std::to_string(maxVerts_) + "' announced");
+}
+
+void Parser::cmdVertexNormal() {
+    Vec3 p = vec3(1), n = vec3(4);
+    double len = length(n);
+    if (!(len > 0) || !std::isfinite(len)) {
+        warn(4, "vertex normal has zero length; triangles using it fall back to the face normal");
+        n = Vec3(0);
+    } else {
+        n = n / len;
+    }
+    normalVertices_.push_back({p, n});
+    if (maxVertNorms_ >= 0 && static_cast<long long>(normalVertices_.size()) == maxVertNorms_ + 1)
+        warn(0, "more vertices with normals than 'maxvertnorms " + std::to_string(maxVertNorms_) +
+                    "' announced");
+}
+
+void Parser::cmdTri() {
+    uint32_t i[3];
+    for (int k = 0; k < 3; ++k) i[k] = vertexIndex(k + 1, vertices_.size(), "vertex");
+    const Transform& t = transform();
+    scene_->primitives.addTriangle(t.point(vertices_[i[0]]), t.point(vertices_[i[1]]),
+                                   t.point(vertices_[i[2]]), nullptr, material());
+}
+
+void Parser::cmdTriNormal() {
+    uint32_t i[3];
+    for (int k = 0; k < 3; ++k) i[k] = vertexIndex(k + 1, normalVertices_.size(), "vertexnormal");
+    const Transform& t = transform();
+    Vec3 p[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+        p[k] = t.point(normalVertices_[i[k]][0]);
+        n[k] = t.normal(normalVertices_[i[k]][1]);
+        double len = length(n[k]);
+        n[k] = len > 0 && std::isfinite(len) ? n[k] / len : Vec3(0);
+    }
+    scene_->primitives.addTriangle(p[0], p[1], p[2], n, material());
+}
+
+void Parser::cmdTranslate() {
+    Vec3 v = vec3(1);
+    applyTransform(Mat4::translate(v.x, v.y, v.z));
+}
+
+void Parser::cmdRotate() {
+    Vec3 axis = vec3(1);
+    double degrees = number(4);
+    if (axis == Vec3(0)) fail(1, "rotation axis must not be zero");
+    applyTransform(Mat4::rotate(axis.x, axis.y, axis.z, degrees));
+}
+
+void Parser::cmdScale() {
+    Vec3 s = vec3(1);
+    for (int k = 0; k < 3; ++k)
+        if (s[k] == 0) fail(k + 1, "scale by zero would make the transform singular");
+    applyTransform(Mat4::scale(s.x, s.y, s.z));
+}
+
+void Parser::cmdPushTransform() { stack_.push_back(stack_.back()); }
+
+void Parser::cmdPopTransform() {
+    if (stack_.size() == 1) fail(0, "popTransform without a matching pushTransform");
+    stack_.pop_back();
+    transformValid_ = false;
+}
+
+void Parser::cmdDirectional() {
+    Light l;
+    l.kind = Light::Kind::Directional;
+    Vec3 d = transform().vector(vec3(1));
+    double len = length(d);
+    if (!(len > 0) || !std::isfinite(len)) fail(1, "light direction must not be zero");
+    l.direction = d / len;
+    l.color = colour(4);
+    scene_->lights.push_back(l);
+}
+
+void Parser::cmdPoint() {
+    Light l;
+    l.kind = Light::Kind::Point;
+    l.position = transform().point(vec3(1));
+    l.color = colour(4);
+    l.attenuation = attenuation_;
+    scene_->lights.push_back(l);
+}
+
+void Parser::cmdAttenuation() {
+    Vec3 a = vec3(1);
+    for (int k = 0; k < 3; ++k)
+        if (a[k] < 0) fail(k + 1, "attenuation coefficients must not be negative");
+    if (a == Vec3(0)) fail(1, "attenuation coefficients must not all be zero");
+    attenuation_ = a;
+}
+
+void Parser::cmdShininess() {
+    double s = real(1);
+    if (s < 0) fail(1, "shininess must not be negative, got " + quoted(1));
+    material_.shininess = s;
+}
+
+void Parser::cmdBackground() {
+    scene_->background.down = colour(1);
+    scene_->background.up = ntok_ == 7 ? colour(4) : scene_->background.down;
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> parseHw3Scene(std::string_view text, const std::string& fileName,
+                                     std::vector<Diagnostic>& warnings) {
+    return Parser(text, fileName, warnings).run();
+}
+
+std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings) {
+    auto cannot = [&](const std::string& why) {
+        throw SceneError({path, 0, 0}, "cannot read scene: " + why);
+    };
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) cannot(std::strerror(errno));
+    if (S_ISDIR(st.st_mode)) cannot("it is a directory");
+    if (!S_ISREG(st.st_mode)) cannot("not a regular file");
+    if (st.st_size > kMaxSceneFileBytes)
+        cannot("the file has " + std::to_string(st.st_size) + " bytes, more than the limit of " +
+               std::to_string(kMaxSceneFileBytes));
+    std::ifstream in(path, std::ios::binary);
+    if (!in) cannot(std::strerror(errno));
+    std::string text(static_cast<size_t>(st.st_size), '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (in.gcount() != static_cast<std::streamsize>(text.size())) cannot("read failed");
+    return parseHw3Scene(text, path, warnings);
+}
+
+std::vector<std::string_view> hw3CommandNames() {
+    std::vector<std::string_view> names;
+    for (const Command& c : Parser::commands()) names.push_back(c.name);
+    return names;
+}
+
+}  // namespace glint

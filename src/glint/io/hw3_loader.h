@@ -1,0 +1,29 @@
+#pragma once
+/// Loader for the CSE167x homework 3 scene format and Glint's extensions to it
+/// (docs/scene-format.md has every command, its defaults and the errors it reports).
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "glint/core/error.h"
+#include "glint/scene/scene.h"
+
+namespace glint {
+
+/// Largest scene file Glint reads (bytes); bigger files are refused before reading.
+constexpr long long kMaxSceneFileBytes = 1LL << 30;
+
+/// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error;
+/// appends warnings to `warnings`. The scene is not yet prepared (see Scene::prepare).
+std::unique_ptr<Scene> parseHw3Scene(std::string_view text, const std::string& fileName,
+                                     std::vector<Diagnostic>& warnings);
+
+/// Reads and parses the file at `path`. Throws SceneError if it cannot be read or is malformed.
+std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings);
+
+/// Every command name the loader accepts.
+std::vector<std::string_view> hw3CommandNames();
+
+}  // namespace glint

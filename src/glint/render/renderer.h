@@ -1,0 +1,41 @@
+#pragma once
+/// Renders a prepared scene in parallel tiles. The image does not depend on the thread count:
+/// every pixel is computed independently of which thread renders it.
+
+#include <atomic>
+#include <functional>
+
+#include "glint/render/film.h"
+#include "glint/render/whitted.h"
+
+namespace glint {
+
+struct RenderProgress {
+    int tilesDone = 0, tilesTotal = 0;
+    double seconds = 0;  ///< Since the render started.
+    double fraction() const { return tilesTotal ? double(tilesDone) / tilesTotal : 1.0; }
+};
+
+struct RenderOptions {
+    int threads = 0;    ///< Worker threads; 0 means all hardware threads.
+    int tileSize = 16;  ///< Tile side in pixels.
+    /// Called on the calling thread about ten times a second, and once at the end.
+    std::function<void(const RenderProgress&)> onProgress;
+    /// When set and it becomes true, workers stop after their current tile.
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+struct RenderResult {
+    Film film;
+    RayCounts rays;
+    double seconds = 0;
+    bool complete = true;  ///< False if cancelled before every tile was rendered.
+};
+
+/// Renders `scene` (prepared, with a camera) at its width and height.
+RenderResult render(const Scene& scene, const RenderOptions& options);
+
+/// The number of threads `threads` = 0 stands for.
+int hardwareThreads();
+
+}  // namespace glint

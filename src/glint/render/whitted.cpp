@@ -1,0 +1,43 @@
+#include "glint/render/whitted.h"
+
+#include <cmath>
+
+#include "glint/core/spawn.h"
+
+namespace glint {
+
+Vec3 WhittedIntegrator::li(const Ray& ray, int depth, RayCounts& counts) const {
+    (depth == 0 ? counts.camera : counts.reflection)++;
+    Hit hit;
+    if (!scene_.bvh().intersect(ray, hit)) return scene_.background.eval(ray.dir);
+
+    SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
+    const Material& m = scene_.materials[si.material];
+    Vec3 color = localShading(si, -ray.dir, m, counts);
+
+    if (depth < scene_.maxDepth && !(m.specular == Vec3(0))) {
+        Vec3 r = normalize(reflect(ray.dir, si.n));
+        color += m.specular * li(spawnRay(si.p, r, scene_.spawnOffset()), depth + 1, counts);
+    }
+    return color;
+}
+
+Vec3 WhittedIntegrator::localShading(const SurfaceInteraction& si, const Vec3& wo,
+                                     const Material& m, RayCounts& counts) const {
+    Vec3 color = m.ambient + m.emission;
+    for (const Light& light : scene_.lights) {
+        LightSample ls = light.sample(si.p);
+        double nDotL = dot(si.n, ls.wi);
+        // A light behind the surface contributes nothing, specular included.
+        if (!(nDotL > 0)) continue;
+        counts.shadow++;
+        if (scene_.bvh().occluded(spawnRay(si.p, ls.wi, scene_.spawnOffset(), ls.distance)))
+            continue;
+        Vec3 h = normalize(ls.wi + wo);
+        double nDotH = std::max(dot(si.n, h), 0.0);
+        color += ls.radiance * (m.diffuse * nDotL + m.specular * std::pow(nDotH, m.shininess));
+    }
+    return color;
+}
+
+}  // namespace glint

@@ -1,0 +1,25 @@
+#include "glint/scene/camera.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace glint {
+
+Camera::Camera(const CameraSpec& spec, int width, int height) : eye_(spec.eye) {
+    // The orthonormal frame of gluLookAt: w points back from the view direction.
+    w_ = normalize(spec.eye - spec.center);
+    u_ = normalize(cross(spec.up, w_));
+    v_ = cross(w_, u_);
+    halfWidth_ = static_cast<double>(width) / 2;
+    halfHeight_ = static_cast<double>(height) / 2;
+    tanHalfY_ = std::tan(spec.fovyDegrees * std::numbers::pi / 360);
+    tanHalfX_ = tanHalfY_ * static_cast<double>(width) / static_cast<double>(height);
+}
+
+Ray Camera::generateRay(double x, double y) const {
+    double alpha = tanHalfX_ * (x - halfWidth_) / halfWidth_;
+    double beta = tanHalfY_ * (halfHeight_ - y) / halfHeight_;
+    return Ray{eye_, normalize(u_ * alpha + v_ * beta - w_), 0, kInfinity};
+}
+
+}  // namespace glint

@@ -1,0 +1,66 @@
+#pragma once
+/// Everything needed to render: settings, camera, lights, materials and geometry.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "glint/accel/bvh.h"
+#include "glint/geometry/primitives.h"
+#include "glint/scene/camera.h"
+#include "glint/scene/light.h"
+#include "glint/scene/material.h"
+
+namespace glint {
+
+/// Colour of rays that hit nothing: constant, or a vertical gradient from `down` (looking
+/// straight down) to `up` (looking straight up), linear in the direction's y component.
+struct Background {
+    Vec3 down, up;
+
+    Vec3 eval(const Vec3& dir) const {
+        double t = (dir.y + 1) * 0.5;
+        return down * (1 - t) + up * t;
+    }
+};
+
+/// Limits on what a scene may ask for, checked by loaders before anything is allocated.
+constexpr int kMaxImageSide = 32768;
+constexpr long long kMaxImagePixels = 1LL << 27;
+constexpr int kMaxDepthLimit = 64;
+
+/// A scene is built in place (geometry is referenced by its BVH), so it is neither copied
+/// nor moved: loaders hand it out in a unique_ptr.
+class Scene {
+  public:
+    Scene() = default;
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    int width = 640, height = 480;
+    int maxDepth = 5;    ///< Primary rays are depth 0; reflect while depth < maxDepth.
+    std::string output;  ///< Output file the scene asks for; may be empty.
+    std::optional<CameraSpec> camera;
+    Background background;  ///< Black by default, as the course expects.
+    std::vector<Light> lights;
+    std::vector<Material> materials;
+    Primitives primitives;
+
+    /// Id of `m`, reusing the last material when it is equal (materials change rarely).
+    uint32_t addMaterial(const Material& m);
+
+    /// Builds the acceleration structure and derived settings. Call once geometry is final.
+    void prepare();
+    bool prepared() const { return prepared_; }
+
+    const Bvh& bvh() const { return bvh_; }
+    /// Absolute part of the secondary-ray offset for this scene (see core/spawn.h).
+    double spawnOffset() const { return spawnOffset_; }
+
+  private:
+    Bvh bvh_;
+    double spawnOffset_ = 0;
+    bool prepared_ = false;
+};
+
+}  // namespace glint
