@@ -1,5 +1,7 @@
 #include "glint/render/image_diff.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -37,6 +39,32 @@ int maxChannelDifference(const Image8& a, const Image8& b, const Image8* mask) {
     int worst = 0;
     forEachUnmasked(a, b, mask, [&](int d) { worst = std::max(worst, d); });
     return worst;
+}
+
+long long countHotBlocks(const Image8& a, const Image8& b, int block, double threshold) {
+    checkComparable(a, b, nullptr);
+    if (block < 1 || a.width % block || a.height % block)
+        throw std::invalid_argument("image size is not a multiple of the block size");
+    long long hot = 0;
+    for (int by = 0; by < a.height; by += block)
+        for (int bx = 0; bx < a.width; bx += block) {
+            double worst = 0;
+            for (int c = 0; c < 3; ++c) {
+                long sum = 0;
+                for (int y = by; y < by + block; ++y)
+                    for (int x = bx; x < bx + block; ++x) sum += a.at(x, y, c) - b.at(x, y, c);
+                worst = std::max(worst, std::abs(static_cast<double>(sum)) / (block * block));
+            }
+            hot += worst > threshold;
+        }
+    return hot;
+}
+
+double meanAbsDifference(const Image8& a, const Image8& b) {
+    checkComparable(a, b, nullptr);
+    double sum = 0;
+    for (size_t i = 0; i < a.data.size(); ++i) sum += std::abs(a.data[i] - b.data[i]);
+    return a.data.empty() ? 0 : sum / static_cast<double>(a.data.size());
 }
 
 }  // namespace glint

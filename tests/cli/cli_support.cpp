@@ -1,0 +1,53 @@
+#include "cli/cli_support.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace glint::test {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string readAll(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+}  // namespace
+
+CommandResult runGlint(const std::string& args, const std::string& workDir) {
+    fs::create_directories(workDir);
+    fs::path out = fs::path(workDir) / ".stdout", err = fs::path(workDir) / ".stderr";
+    std::string cmd = "cd '" + workDir + "' && '" + std::string(GLINT_BINARY) + "' " + args +
+                      " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
+    int status = std::system(cmd.c_str());
+    CommandResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = readAll(out);
+    r.err = readAll(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+    fs::create_directories(fs::path(path).parent_path());
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+std::string freshDir(const std::string& name) {
+    fs::path dir =
+        fs::temp_directory_path() / ("glint-cli-" + std::to_string(::getpid()) + "-" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+}  // namespace glint::test

@@ -1,0 +1,24 @@
+#pragma once
+// Runs the glint binary as a user would and captures what it prints.
+
+#include <string>
+
+namespace glint::test {
+
+struct CommandResult {
+    int exitCode = -1;
+    std::string out;  ///< stdout
+    std::string err;  ///< stderr
+};
+
+/// Runs `glint <args>` through the shell in `workDir` (created if missing). `args` is shell
+/// text: quote paths with spaces yourself.
+CommandResult runGlint(const std::string& args, const std::string& workDir);
+
+/// Writes `text` to `path`, creating directories as needed.
+void writeFile(const std::string& path, const std::string& text);
+
+/// A fresh, empty directory under the system's temporary directory, unique to this test.
+std::string freshDir(const std::string& name);
+
+}  // namespace glint::test
