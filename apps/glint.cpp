@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -35,18 +36,32 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-/// Parses "WxH" within the scene limits.
-bool parseSize(const std::string& s, int& w, int& h) {
+/// Parses "WxH" within the scene limits; returns what is wrong, or nothing.
+std::string parseSize(const std::string& s, int& w, int& h) {
+    const std::string form = "--size expects WIDTHxHEIGHT, e.g. 640x480, got '" + s + "'";
+    auto x = s.find_first_of("xX");
+    if (x == std::string::npos) return form;
     long long a = 0, b = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(s.c_str(), "%lld%c%lld%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X'))
-        return false;
-    if (a < 1 || b < 1 || a > glint::kMaxImageSide || b > glint::kMaxImageSide ||
-        a * b > glint::kMaxImagePixels)
-        return false;
+    auto whole = [](const char* first, const char* last, long long& v) {
+        auto [p, ec] = std::from_chars(first, last, v);
+        return first != last && ec == std::errc() && p == last;
+    };
+    if (!whole(s.data(), s.data() + x, a) || !whole(s.data() + x + 1, s.data() + s.size(), b))
+        return form;
+    if (a < 1 || b < 1 || a > glint::kMaxImageSide || b > glint::kMaxImageSide)
+        return "--size: each side must be 1 to " + std::to_string(glint::kMaxImageSide) +
+               " pixels, got '" + s + "'";
+    if (a * b > glint::kMaxImagePixels)
+        return "--size: at most " + std::to_string(glint::kMaxImagePixels) + " pixels, got '" + s +
+               "'";
     w = static_cast<int>(a);
     h = static_cast<int>(b);
-    return true;
+    return {};
+}
+
+/// "1 light", "2 lights".
+std::string count(unsigned long long n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
 int usageError(const std::string& message) {
@@ -58,9 +73,11 @@ void printStats(const glint::Scene& scene, double parse, double build, const gli
                 double write) {
     const auto& bvh = scene.bvh().stats();
     double mrays = r.seconds > 0 ? static_cast<double>(r.rays.total()) / r.seconds / 1e6 : 0;
-    std::printf("Scene       %u triangles, %u spheres, %zu lights, %zu materials\n",
-                scene.primitives.triangleCount(), scene.primitives.sphereCount(),
-                scene.lights.size(), scene.materials.size());
+    std::printf("Scene       %s, %s, %s, %s\n",
+                count(scene.primitives.triangleCount(), "triangle", "triangles").c_str(),
+                count(scene.primitives.sphereCount(), "sphere", "spheres").c_str(),
+                count(scene.lights.size(), "light", "lights").c_str(),
+                count(scene.materials.size(), "material", "materials").c_str());
     std::printf("BVH         %u nodes, %u leaves, depth %u, %.2f MB\n", bvh.nodes, bvh.leaves,
                 bvh.maxDepth, static_cast<double>(bvh.bytes) / 1e6);
     std::printf("Time        parse %.3f s, build %.3f s, render %.3f s, write %.3f s\n", parse,
@@ -77,10 +94,10 @@ int run(const Options& opt) {
     using Clock = std::chrono::steady_clock;
     const bool demo = opt.scene.empty();
     int width = 0, height = 0;
-    if (!opt.size.empty() && !parseSize(opt.size, width, height))
-        return usageError("--size expects WIDTHxHEIGHT (e.g. 640x480) with at most " +
-                          std::to_string(glint::kMaxImagePixels) + " pixels, got '" + opt.size +
-                          "'");
+    if (!opt.size.empty()) {
+        if (std::string problem = parseSize(opt.size, width, height); !problem.empty())
+            return usageError(problem);
+    }
     if (!opt.output.empty() && !glint::imageFormatFor(opt.output))
         return usageError("cannot write '" + opt.output +
                           "': unknown image format (use .png, .ppm or .pfm)");
@@ -111,19 +128,22 @@ int run(const Options& opt) {
     if (output.empty()) output = std::filesystem::path(opt.scene).stem().string() + ".png";
     if (demo && opt.output.empty()) output = "glint.png";
 
-    if (opt.check) {
-        std::printf("%s: ok: %dx%d, %u triangles, %u spheres, %zu lights, maxdepth %d, output %s\n",
-                    demo ? "demo.test" : opt.scene.c_str(), scene->width, scene->height,
-                    scene->primitives.triangleCount(), scene->primitives.sphereCount(),
-                    scene->lights.size(), scene->maxDepth, output.c_str());
-        return 0;
-    }
     if (!glint::imageFormatFor(output)) {
         std::fprintf(stderr,
                      "glint: error: cannot write '%s': unknown image format (use .png, .ppm or "
                      ".pfm, or choose a file with -o)\n",
                      output.c_str());
         return kExitSceneError;
+    }
+    if (opt.check) {
+        const auto& prims = scene->primitives;
+        std::printf("%s: ok: %dx%d, %s, %s, %s, maxdepth %d, output %s\n",
+                    demo ? "demo.test" : opt.scene.c_str(), scene->width, scene->height,
+                    count(prims.triangleCount(), "triangle", "triangles").c_str(),
+                    count(prims.sphereCount(), "sphere", "spheres").c_str(),
+                    count(scene->lights.size(), "light", "lights").c_str(), scene->maxDepth,
+                    output.c_str());
+        return 0;
     }
 
     // Build.
@@ -163,6 +183,10 @@ int main(int argc, char** argv) {
         "\nWithout SCENE it renders a built-in demo scene to glint.png.",
         "glint"};
     app.get_formatter()->column_width(30);
+    // One style for every usage error, whether CLI11 or Glint finds it.
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("glint: error: ") + e.what() + "\nRun 'glint --help' for usage.\n";
+    });
     Options opt;
     app.add_option("SCENE", opt.scene, "Scene file to render (CSE167x .test format)");
 
@@ -176,6 +200,7 @@ int main(int argc, char** argv) {
     const char* render = "Rendering";
     app.add_option("-t,--threads", opt.threads, "Worker threads (default: all hardware threads)")
         ->group(render)
+        ->check(CLI::Number)
         ->check(CLI::Range(1, 4096))
         ->type_name("N");
     app.add_option("--size", opt.size, "Image size, overriding the scene's 'size'")
@@ -183,6 +208,7 @@ int main(int argc, char** argv) {
         ->type_name("WxH");
     app.add_option("--maxdepth", opt.maxDepth, "Maximum reflection depth, overriding the scene's")
         ->group(render)
+        ->check(CLI::Number)
         ->check(CLI::Range(0, glint::kMaxDepthLimit))
         ->type_name("N");
 

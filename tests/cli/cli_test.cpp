@@ -1,39 +1,462 @@
-// The CLI as users meet it: exit codes (0 ok, 1 scene or render error, 2 usage error) and
-// messages in the file:line:col form.
+// The CLI as users meet it: exit codes (0 ok, 1 scene or render error, 2 usage error), where
+// the image goes and in which format, the options that change the render, and what is printed.
+// Scene diagnostics (file:line:col errors and warnings) are in scene_errors_test.cpp.
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <vector>
 
 #include "cli/cli_support.h"
+#include "glint/io/image_io.h"
 
 namespace glint::test {
 namespace {
 
 namespace fs = std::filesystem;
 
+/// A small, valid scene: 2 triangles, 2 spheres (one a mirror), 2 lights, no output line.
+const char* const kScene =
+    "size 64 48\n"
+    "camera 0 1 6 0 0 0 0 1 0 45\n"
+    "maxdepth 3\n"
+    "point 3 4 5 0.8 0.8 0.8\n"
+    "directional 0 1 1 0.3 0.3 0.3\n"
+    "ambient 0.1 0.1 0.1\n"
+    "diffuse 0.5 0.5 0.5\n"
+    "specular 0.3 0.3 0.3\n"
+    "shininess 20\n"
+    "vertex -3 -1 -3\n"
+    "vertex 3 -1 -3\n"
+    "vertex 3 -1 3\n"
+    "vertex -3 -1 3\n"
+    "tri 0 2 1\n"
+    "tri 0 3 2\n"
+    "sphere -1 0 0 1\n"
+    "specular 0.9 0.9 0.9\n"
+    "sphere 1.2 0 -0.5 0.8\n";
+
+std::string readBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+/// Regular files in `dir` other than the harness's own, sorted.
+std::vector<std::string> filesIn(const std::string& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir))
+        if (e.is_regular_file()) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+    return haystack.find(needle) != std::string::npos;
+}
+
+/// A directory holding kScene as scene.test.
+std::string sceneDir(const std::string& name) {
+    std::string dir = freshDir(name);
+    writeFile(dir + "/scene.test", kScene);
+    return dir;
+}
+
+// ---- The built-in demo and output formats ----
+
 TEST(Cli, BuiltInDemoSceneRendersToGlintPng) {
     std::string dir = freshDir("demo");
     CommandResult r = runGlint("-q --size 160x90", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"glint.png"});
+    Image8 img = readImage8(dir + "/glint.png", 3);
+    EXPECT_EQ(img.width, 160);
+    EXPECT_EQ(img.height, 90);
+    // The top row is the demo's sky: bluer than it is red.
+    EXPECT_GT(img.at(0, 0, 2), img.at(0, 0, 0));
+}
+
+TEST(Cli, OutputWithPngExtensionWritesAPng) {
+    std::string dir = sceneDir("png");
+    CommandResult r = runGlint("-q scene.test -o out.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readBytes(dir + "/out.png").substr(0, 8), "\x89PNG\r\n\x1a\n");
+    Image8 img = readImage8(dir + "/out.png", 3);
+    EXPECT_EQ(img.width, 64);
+    EXPECT_EQ(img.height, 48);
+}
+
+TEST(Cli, OutputWithPpmExtensionWritesBinaryP6) {
+    std::string dir = sceneDir("ppm");
+    CommandResult r = runGlint("-q scene.test -o out.ppm", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::string bytes = readBytes(dir + "/out.ppm");
+    const std::string header = "P6\n64 48\n255\n";
+    EXPECT_EQ(bytes.substr(0, header.size()), header);
+    EXPECT_EQ(bytes.size(), header.size() + 64 * 48 * 3);
+}
+
+TEST(Cli, OutputWithPfmExtensionWritesFloatPf) {
+    std::string dir = sceneDir("pfm");
+    CommandResult r = runGlint("-q scene.test -o out.pfm", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::string bytes = readBytes(dir + "/out.pfm");
+    const std::string header = "PF\n64 48\n-1.0\n";
+    EXPECT_EQ(bytes.substr(0, header.size()), header);
+    EXPECT_EQ(bytes.size(), header.size() + 64 * 48 * 12);
+}
+
+TEST(Cli, OutputExtensionIsCaseInsensitive) {
+    std::string dir = sceneDir("upper");
+    CommandResult r = runGlint("-q scene.test -o OUT.PPM", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readBytes(dir + "/OUT.PPM").substr(0, 3), "P6\n");
+}
+
+TEST(Cli, UnknownOutputExtensionIsAUsageErrorAndWritesNothing) {
+    std::string dir = sceneDir("badext");
+    for (const char* out : {"out.jpg", "out", "out.png.bak"}) {
+        SCOPED_TRACE(out);
+        CommandResult r = runGlint(std::string("scene.test -o ") + out, dir);
+        EXPECT_EQ(r.exitCode, 2);
+        EXPECT_TRUE(contains(r.err, std::string("glint: error: cannot write '") + out +
+                                        "': unknown image format (use .png, .ppm or .pfm)"))
+            << r.err;
+    }
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"scene.test"});
+}
+
+// ---- Where the image goes by default ----
+
+TEST(Cli, DefaultOutputIsTheScenesOutputLineInTheCurrentDirectory) {
+    std::string dir = freshDir("outline");
+    writeFile(dir + "/scenes/lined.test", std::string(kScene) + "output result.ppm\n");
+    CommandResult r = runGlint("-q scenes/lined.test", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readBytes(dir + "/result.ppm").substr(0, 3), "P6\n");
+    EXPECT_FALSE(fs::exists(dir + "/scenes/result.ppm"));
+    EXPECT_FALSE(fs::exists(dir + "/lined.png"));
+}
+
+TEST(Cli, DefaultOutputWithoutOutputLineIsSceneStemPngInTheCurrentDirectory) {
+    std::string dir = freshDir("stem");
+    writeFile(dir + "/scenes/ball.test", kScene);
+    CommandResult r = runGlint("-q scenes/ball.test", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"ball.png"});
+    EXPECT_FALSE(fs::exists(dir + "/scenes/ball.png"));
+    EXPECT_EQ(readImage8(dir + "/ball.png").width, 64);
+}
+
+TEST(Cli, OutputOptionOverridesTheScenesOutputLine) {
+    std::string dir = freshDir("override");
+    writeFile(dir + "/s.test", std::string(kScene) + "output fromscene.png\n");
+    CommandResult r = runGlint("-q s.test -o fromcli.pfm", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir + "/fromcli.pfm"));
+    EXPECT_FALSE(fs::exists(dir + "/fromscene.png"));
+}
+
+TEST(Cli, OutputLineWithUnknownExtensionWarnsThenFailsUnlessOverridden) {
+    std::string dir = freshDir("linejpg");
+    writeFile(dir + "/s.test", std::string(kScene) + "output picture.jpg\n");
+    const std::string warning =
+        "s.test:19:8: warning: Glint cannot write 'picture.jpg': use a .png, .ppm or .pfm name "
+        "here or choose one with -o";
+
+    CommandResult r = runGlint("-q s.test", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, warning)) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: error: cannot write 'picture.jpg'")) << r.err;
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"s.test"});
+
+    r = runGlint("-q s.test -o picture.png", dir);
     EXPECT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(fs::exists(fs::path(dir) / "glint.png"));
-    EXPECT_GT(fs::file_size(fs::path(dir) / "glint.png"), 1000u);
+    EXPECT_TRUE(fs::exists(dir + "/picture.png"));
+}
+
+// ---- Options that change the render ----
+
+TEST(Cli, SizeOptionSetsTheImageDimensions) {
+    std::string dir = sceneDir("size");
+    CommandResult r = runGlint("-q scene.test --size 37x21 -o out.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    Image8 img = readImage8(dir + "/out.png", 3);
+    EXPECT_EQ(img.width, 37);
+    EXPECT_EQ(img.height, 21);
+}
+
+TEST(Cli, SizeOptionRejectsMalformedOrHugeValues) {
+    std::string dir = sceneDir("badsize");
+    struct Case {
+        const char* size;
+        const char* message;
+    };
+    const char* form = "--size expects WIDTHxHEIGHT";
+    const char* side = "each side must be 1 to 32768";
+    for (Case c : {Case{"abc", form},
+                   {"10x", form},
+                   {"x10", form},
+                   {"64x48x", form},
+                   {"64*48", form},
+                   {" 64x48", form},
+                   {"64x 48", form},
+                   {"99999999999999999999x1", form},
+                   {"0x10", side},
+                   {"10x0", side},
+                   {"-5x5", side},
+                   {"20000x20000", "at most 134217728 pixels"}}) {
+        SCOPED_TRACE(c.size);
+        CommandResult r = runGlint(std::string("scene.test --size '") + c.size + "'", dir);
+        EXPECT_EQ(r.exitCode, 2);
+        EXPECT_TRUE(contains(r.err, c.message)) << r.err;
+    }
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"scene.test"});
+}
+
+TEST(Cli, SizeOptionErrorStatesTheSideLimitWhenASideIsTooLong) {
+    // 40000x10 is only 400,000 pixels: the message must name the limit it breaks, the
+    // largest side (32768, as the loader's `size` error does), not only the pixel budget.
+    std::string dir = sceneDir("sidelimit");
+    CommandResult r = runGlint("scene.test --size 40000x10", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "32768")) << r.err;
+}
+
+TEST(Cli, MaxDepthOptionOverridesTheScene) {
+    std::string dir = freshDir("maxdepth");
+    CommandResult check = runGlint("--check --maxdepth 0", dir);
+    EXPECT_EQ(check.exitCode, 0) << check.err;
+    EXPECT_TRUE(contains(check.out, "maxdepth 0,")) << check.out;
+
+    // The demo has a mirror sphere: without reflections no reflection ray is traced and the
+    // image changes.
+    CommandResult r0 = runGlint("-q --stats --size 64x48 --maxdepth 0 -o d0.ppm", dir);
+    CommandResult r5 = runGlint("-q --stats --size 64x48 -o d5.ppm", dir);
+    ASSERT_EQ(r0.exitCode, 0) << r0.err;
+    ASSERT_EQ(r5.exitCode, 0) << r5.err;
+    EXPECT_TRUE(contains(r0.out, " 0 reflection,")) << r0.out;
+    EXPECT_FALSE(contains(r5.out, " 0 reflection,")) << r5.out;
+    EXPECT_NE(readBytes(dir + "/d0.ppm"), readBytes(dir + "/d5.ppm"));
+
+    check = runGlint("--check --maxdepth 64", dir);
+    EXPECT_EQ(check.exitCode, 0) << check.err;
+    EXPECT_TRUE(contains(check.out, "maxdepth 64,")) << check.out;
+}
+
+TEST(Cli, MaxDepthOptionRejectsOutOfRangeOrNonIntegerValues) {
+    std::string dir = freshDir("badmaxdepth");
+    for (const char* depth : {"-1", "65", "abc", "1.5", "''"}) {
+        SCOPED_TRACE(depth);
+        CommandResult r = runGlint(std::string("--check --maxdepth ") + depth, dir);
+        EXPECT_EQ(r.exitCode, 2);
+        EXPECT_TRUE(contains(r.err, "--maxdepth")) << r.err;
+        EXPECT_TRUE(r.out.empty()) << r.out;
+    }
+}
+
+TEST(Cli, OneAndTwoThreadsGiveByteIdenticalImages) {
+    std::string dir = sceneDir("threads");
+    for (const char* ext : {".png", ".pfm"}) {
+        SCOPED_TRACE(ext);
+        std::string one = std::string("t1") + ext, two = std::string("t2") + ext;
+        ASSERT_EQ(runGlint("-q scene.test -t 1 -o " + one, dir).exitCode, 0);
+        ASSERT_EQ(runGlint("-q scene.test --threads 2 -o " + two, dir).exitCode, 0);
+        std::string a = readBytes(dir + "/" + one), b = readBytes(dir + "/" + two);
+        EXPECT_GT(a.size(), 100u);
+        EXPECT_TRUE(a == b) << "images differ between -t 1 and -t 2";
+    }
+}
+
+TEST(Cli, ZeroOrNonNumericThreadCountIsAUsageError) {
+    std::string dir = sceneDir("badthreads");
+    for (const char* t : {"0", "-1", "abc"}) {
+        SCOPED_TRACE(t);
+        CommandResult r = runGlint(std::string("scene.test -t ") + t, dir);
+        EXPECT_EQ(r.exitCode, 2);
+        EXPECT_TRUE(contains(r.err, "--threads")) << r.err;
+    }
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"scene.test"});
+}
+
+// ---- --check, --stats, -q ----
+
+TEST(Cli, CheckPrintsAOneLineSummaryAndWritesNoImage) {
+    std::string dir = sceneDir("check");
+    CommandResult r = runGlint("--check scene.test", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out,
+              "scene.test: ok: 64x48, 2 triangles, 2 spheres, 2 lights, maxdepth 3, output "
+              "scene.png\n");
+    EXPECT_EQ(r.err, "");
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"scene.test"});
+
+    // Overrides show in the summary.
+    r = runGlint("--check scene.test --size 32x24 -o x.pfm", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, ": ok: 32x24,")) << r.out;
+    EXPECT_TRUE(contains(r.out, "output x.pfm\n")) << r.out;
+}
+
+TEST(Cli, CheckExitsOneOnABadScene) {
+    std::string dir = freshDir("checkbad");
+    writeFile(dir + "/bad.test", "size 64 48\ncamera 0 0 5 0 0 0 0 1 0 45\nsphere 0 0 0\n");
+    CommandResult r = runGlint("--check bad.test", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(contains(r.err, "bad.test:3:1: error:")) << r.err;
+}
+
+TEST(Cli, StatsPrintsPhaseTimesRaysAndThroughput) {
+    std::string dir = sceneDir("stats");
+    CommandResult r = runGlint("-q --stats scene.test", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string num = "[0-9]+\\.[0-9]+";
+    EXPECT_TRUE(
+        std::regex_search(r.out, std::regex("Time +parse " + num + " s, build " + num +
+                                            " s, render " + num + " s, write " + num + " s")))
+        << r.out;
+    // One camera ray per pixel: 64 x 48.
+    EXPECT_TRUE(std::regex_search(
+        r.out, std::regex("Rays +3072 camera, [0-9]+ shadow, [0-9]+ reflection, [0-9]+ total")))
+        << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("Throughput +" + num + " Mrays/s"))) << r.out;
+    EXPECT_TRUE(contains(r.out, "Scene       2 triangles, 2 spheres, 2 lights")) << r.out;
+}
+
+TEST(Cli, QuietPrintsNothingOnStderrOnSuccess) {
+    std::string dir = sceneDir("quiet");
+    CommandResult loud = runGlint("scene.test", dir);
+    ASSERT_EQ(loud.exitCode, 0);
+    EXPECT_TRUE(contains(loud.err, "glint: wrote scene.png (64x48)")) << loud.err;
+
+    fs::remove(dir + "/scene.png");
+    CommandResult quiet = runGlint("-q scene.test", dir);
+    EXPECT_EQ(quiet.exitCode, 0);
+    EXPECT_EQ(quiet.err, "");
+    EXPECT_EQ(quiet.out, "");
+    EXPECT_TRUE(fs::exists(dir + "/scene.png"));
+}
+
+TEST(Cli, QuietStillPrintsWarnings) {
+    std::string dir = freshDir("quietwarn");
+    writeFile(dir + "/w.test", std::string(kScene) + "maxdepth 99\n");
+    CommandResult r = runGlint("--quiet w.test", dir);
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_EQ(r.err, "w.test:19:10: warning: maxdepth 99 is more than Glint traces; using 64\n");
+}
+
+TEST(Cli, ProgressOnANonTerminalIsPlainLinesEndingWithRendered) {
+    std::string dir = sceneDir("progress");
+    CommandResult r = runGlint("scene.test", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(contains(r.err, "\r")) << "carriage return on a non-terminal";
+    EXPECT_FALSE(contains(r.err, "\x1b")) << "escape sequence on a non-terminal";
+    std::vector<std::string> l = lines(r.err);
+    ASSERT_GE(l.size(), 2u) << r.err;
+    EXPECT_TRUE(std::regex_match(l[l.size() - 2], std::regex("glint: rendered in [0-9.]+ s")))
+        << r.err;
+    EXPECT_EQ(l.back(), "glint: wrote scene.png (64x48)");
+    for (size_t i = 0; i + 2 < l.size(); ++i)
+        EXPECT_TRUE(l[i].rfind("glint: rendering ", 0) == 0) << l[i];
+}
+
+// ---- Information and usage errors ----
+
+TEST(Cli, VersionPrintsTheVersionAndExitsZero) {
+    CommandResult r = runGlint("--version", freshDir("version"));
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_TRUE(std::regex_match(r.out, std::regex("glint [0-9]+\\.[0-9]+\\.[0-9]+\n"))) << r.out;
+}
+
+TEST(Cli, HelpShowsOptionGroupsAndExitsZero) {
+    std::string dir = freshDir("help");
+    for (const char* flag : {"--help", "-h"}) {
+        SCOPED_TRACE(flag);
+        CommandResult r = runGlint(flag, dir);
+        EXPECT_EQ(r.exitCode, 0);
+        for (const char* text : {"Usage: glint [OPTIONS] [SCENE]", "Output:", "Rendering:",
+                                 "Information:", "-o,--output", "-t,--threads", "--size",
+                                 "--maxdepth", "--check", "--stats", "-q,--quiet", "--version"})
+            EXPECT_TRUE(contains(r.out, text)) << text << " missing from:\n" << r.out;
+    }
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{});
 }
 
 TEST(Cli, UnknownFlagIsAUsageError) {
     CommandResult r = runGlint("--no-such-flag", freshDir("badflag"));
     EXPECT_EQ(r.exitCode, 2);
-    EXPECT_NE(r.err.find("no-such-flag"), std::string::npos) << r.err;
+    EXPECT_TRUE(contains(r.err, "no-such-flag")) << r.err;
 }
 
-TEST(Cli, MalformedSceneReportsFileLineColumn) {
-    std::string dir = freshDir("malformed");
-    writeFile(dir + "/bad.test", "size 64 48\ncamera 0 0 5 0 0 0 0 1 0 45\nsphere 0 0 0\n");
-    CommandResult r = runGlint("bad.test", dir);
+TEST(Cli, SecondSceneArgumentIsAUsageError) {
+    std::string dir = sceneDir("twoscenes");
+    CommandResult r = runGlint("scene.test scene.test", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{"scene.test"});
+}
+
+TEST(Cli, MissingSceneFileExitsOneWithCannotRead) {
+    std::string dir = freshDir("missing");
+    CommandResult r = runGlint("nowhere/none.test", dir);
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.err.find("bad.test:3:1: error: sphere expects 4 arguments"), std::string::npos)
-        << r.err;
-    EXPECT_FALSE(fs::exists(fs::path(dir) / "bad.png"));
+    EXPECT_EQ(r.err, "nowhere/none.test: error: cannot read scene: No such file or directory\n");
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{});
+
+    fs::create_directories(dir + "/adir");
+    r = runGlint("adir", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.err, "adir: error: cannot read scene: it is a directory\n");
+}
+
+// ---- Writing the image ----
+
+TEST(Cli, OutputInAMissingDirectoryExitsOneWithAClearMessage) {
+    std::string dir = sceneDir("nodir");
+    CommandResult r = runGlint("-q scene.test -o missing/out.png", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "glint: error: cannot write 'missing/out.png'")) << r.err;
+    EXPECT_TRUE(contains(r.err, "No such file or directory")) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/missing"));
+}
+
+TEST(Cli, ExistingOutputIsUnchangedWhenTheSceneFailsToParse) {
+    std::string dir = freshDir("keepparse");
+    writeFile(dir + "/bad.test", std::string(kScene) + "sphere 0 0 0\n");
+    writeFile(dir + "/bad.png", "precious bytes");
+    CommandResult r = runGlint("-q bad.test", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(readBytes(dir + "/bad.png"), "precious bytes");
+}
+
+TEST(Cli, ExistingOutputIsUnchangedWhenWritingFails) {
+    // A file-size limit of one block makes the write fail part way (EFBIG, with SIGXFSZ
+    // ignored); the old image must survive and no temporary file may be left behind.
+    std::string dir = sceneDir("keepwrite");
+    writeFile(dir + "/out.ppm", "precious bytes");
+    std::string cmd = "cd '" + dir + "' && trap '' XFSZ && ulimit -f 1 && exec '" +
+                      std::string(GLINT_BINARY) +
+                      "' -q scene.test -o out.ppm >/dev/null 2>err.txt </dev/null";
+    int status = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
+    std::string err = readBytes(dir + "/err.txt");
+    EXPECT_TRUE(contains(err, "glint: error: cannot write 'out.ppm'")) << err;
+    EXPECT_EQ(readBytes(dir + "/out.ppm"), "precious bytes");
+    EXPECT_EQ(filesIn(dir), (std::vector<std::string>{"err.txt", "out.ppm", "scene.test"}));
 }
 
 }  // namespace

@@ -139,10 +139,13 @@ class Builder {
 };
 
 /// Slab test against [tMin, tMax]. NaN slabs (origin on a slab plane of an axis-parallel ray)
-/// are ignored, which is conservative. The far distance is widened by a few ulps so that
+/// are ignored, which is conservative. Far distances are widened by a few ulps so that
 /// rounding never culls a box that the ray touches (flat boxes around axis-aligned triangles).
 inline bool hitsBox(const Bounds3f& b, const Vec3f& o, const Vec3f& invDir, float tMin,
                     float tMax) {
+    // Also widen the limit: a box entry rounded up past the best hit so far must not hide a
+    // primitive whose own (strict) test would find it nearer.
+    tMax *= 1 + 4 * std::numeric_limits<float>::epsilon();
     for (int a = 0; a < 3; ++a) {
         float t0 = (b.lo[a] - o[a]) * invDir[a];
         float t1 = (b.hi[a] - o[a]) * invDir[a];

@@ -2,9 +2,11 @@
 
 namespace glint {
 
-void Primitives::addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
+bool Primitives::addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
                              uint32_t material) {
-    triangles_.push_back(Triangle::fromVertices(a, b, c));
+    Triangle tri = Triangle::fromVertices(a, b, c);
+    if (tri.degenerate()) return false;
+    triangles_.push_back(tri);
     triangleMaterial_.push_back(material);
     if (normals) {
         triangleNormals_.push_back(static_cast<uint32_t>(vertexNormals_.size()));
@@ -12,6 +14,7 @@ void Primitives::addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const 
     } else {
         triangleNormals_.push_back(kFlat);
     }
+    return true;
 }
 
 void Primitives::addSphere(const Sphere& sphere, uint32_t material) {

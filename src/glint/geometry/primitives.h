@@ -24,8 +24,9 @@ struct SurfaceInteraction {
 class Primitives {
   public:
     /// Adds a triangle with world-space vertices; `normals` (world space, unit or zero) may be
-    /// null for a flat triangle.
-    void addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
+    /// null for a flat triangle. A triangle of zero area as stored is dropped (it could never
+    /// be seen, and the float test cannot reject it reliably): returns false then.
+    bool addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
                      uint32_t material);
     void addSphere(const Sphere& sphere, uint32_t material);
 

@@ -16,8 +16,11 @@ struct Triangle {
         return {Vec3f(a), Vec3f(b - a), Vec3f(c - a)};
     }
     /// Unnormalised geometric normal (B - A) x (C - A): counter-clockwise faces point at the
-    /// viewer. Never flipped, as in the course's renderer.
+    /// viewer. Never flipped, as in the course's renderer. Computed in double from the stored
+    /// float edges, where each product is exact: it is zero exactly when the edges are parallel.
     Vec3 normalDirection() const { return cross(Vec3(e1), Vec3(e2)); }
+    /// Zero area (collinear or repeated vertices) as stored. Primitives never keeps these.
+    bool degenerate() const { return normalDirection() == Vec3(0); }
     Bounds3f bounds() const {
         Vec3 a(p0), b = a + Vec3(e1), c = a + Vec3(e2);
         return Bounds3f::enclosing(min(a, min(b, c)), max(a, max(b, c)));
@@ -25,8 +28,9 @@ struct Triangle {
 };
 
 /// Moller-Trumbore test in float. On a hit with tMin < t < min(ray.tMax, hit.t) sets hit.t
-/// and returns true. Edges count as inside; degenerate (zero-area) triangles and rays in the
-/// triangle's plane never hit.
+/// and returns true. Edges count as inside; rays in the triangle's plane never hit. The
+/// triangle must not be degenerate: for collinear vertices the float determinant can round to
+/// a tiny non-zero value and report a meaningless hit (Primitives drops such triangles).
 inline bool intersectTriangle(const Triangle& tri, const TraversalRay& ray, Hit& hit) {
     Vec3f pvec = cross(ray.dir, tri.e2);
     float det = dot(tri.e1, pvec);

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -69,7 +70,19 @@ class Parser {
     Vec3 colour(int i) const { return vec3(i); }
     const Transform& transform();
     uint32_t material() { return scene_->addMaterial(material_); }
-    uint32_t vertexIndex(int i, size_t count, const char* pile) const;
+    /// Argument `i` as an index into a pile of `count` entries, named `one` / `many`.
+    uint32_t vertexIndex(int i, size_t count, const char* one, const char* many) const;
+    static bool inRange(const Vec3& p) {
+        return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+               std::abs(p.z) <= kMaxCoordinate;
+    }
+    /// `p`, a transformed vertex named by argument `i`, if it is within the coordinate range.
+    Vec3 checkedVertex(const Vec3& p, int i) const {
+        if (!inRange(p))
+            fail(i, "vertex " + quoted(i) +
+                        " lies beyond the supported coordinate range (1e18) after the transform");
+        return p;
+    }
 
     // Commands.
     void cmdSize();
@@ -98,6 +111,13 @@ class Parser {
     void cmdShininess();
     void cmdBackground();
 
+    void addTriangle(const Vec3 (&p)[3], const Vec3* normals) {
+        if (!scene_->primitives.addTriangle(p[0], p[1], p[2], normals, material()) &&
+            !warnedDegenerate_) {
+            warn(0, "triangle has zero area and is skipped (later ones are skipped silently)");
+            warnedDegenerate_ = true;
+        }
+    }
     void applyTransform(const Mat4& m) {
         stack_.back() = stack_.back() * m;
         transformValid_ = false;
@@ -121,6 +141,7 @@ class Parser {
     std::vector<Vec3> vertices_;
     std::vector<std::array<Vec3, 2>> normalVertices_;  ///< Position and unit normal (or zero).
     long long maxVerts_ = -1, maxVertNorms_ = -1;
+    bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
 };
 
@@ -157,7 +178,7 @@ const std::vector<Command>& Parser::commands() {
 }
 
 std::unique_ptr<Scene> Parser::run() {
-    size_t pos = 0;
+    size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
     while (pos < text_.size()) {
         size_t end = text_.find('\n', pos);
         if (end == std::string_view::npos) end = text_.size();
@@ -187,7 +208,7 @@ std::unique_ptr<Scene> Parser::run() {
             fail(args > cmd->maxArgs ? std::min(cmd->maxArgs + 1, kMaxTokens - 1) : 0, msg);
         }
         if (cmd->name == "background" && args != 3 && args != 6)
-            fail(0, "background expects 3 or 6 arguments (r g b [r2 g2 b2]), got " +
+            fail(4, "background expects 3 or 6 arguments (r g b [r2 g2 b2]), got " +
                         std::to_string(args));
         (this->*cmd->handler)();
     }
@@ -224,7 +245,12 @@ double Parser::number(int i) const {
     if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;  // "+1"
     double v = 0;
     auto [p, ec] = std::from_chars(b, e, v);
-    if (ec == std::errc::result_out_of_range) fail(i, "number " + quoted(i) + " is out of range");
+    if (ec == std::errc::result_out_of_range && p == e) {
+        // Overflow is an error; underflow (1e-400) reads as the nearest double, zero or tiny.
+        v = std::strtod(std::string(b, e).c_str(), nullptr);
+        if (std::isinf(v)) fail(i, "number " + quoted(i) + " is out of range");
+        return v;
+    }
     if (ec != std::errc() || p != e) fail(i, "expected a number, got " + quoted(i));
     if (!std::isfinite(v)) fail(i, "expected a finite number, got " + quoted(i));
     return v;
@@ -261,16 +287,15 @@ const Transform& Parser::transform() {
     return *transform_;
 }
 
-uint32_t Parser::vertexIndex(int i, size_t count, const char* pile) const {
-    long long limit = std::numeric_limits<uint32_t>::max();
-    long long v = integer(i, 0, limit);
+uint32_t Parser::vertexIndex(int i, size_t count, const char* one, const char* many) const {
+    long long v = integer(i, 0, std::numeric_limits<uint32_t>::max());
     if (static_cast<size_t>(v) >= count) {
         if (count == 0)
-            fail(i, std::string("vertex index ") + quoted(i) + " is out of range: no " + pile +
+            fail(i, "vertex index " + quoted(i) + " is out of range: no " + one +
                         " has been defined yet");
         fail(i, "vertex index " + quoted(i) + " is out of range: " + std::to_string(count) + " " +
-                    pile + (count == 1 ? " is" : "s are") + " defined (0 to " +
-                    std::to_string(count - 1) + ")");
+                    (count == 1 ? std::string(one) + " is" : std::string(many) + " are") +
+                    " defined (0 to " + std::to_string(count - 1) + ")");
     }
     return static_cast<uint32_t>(v);
 }
@@ -323,7 +348,7 @@ void Parser::cmdSize() {
 }
 
 void Parser::cmdMaxDepth() {
-    long long d = integer(1, 0, std::numeric_limits<int>::max());
+    long long d = integer(1, 0, std::numeric_limits<long long>::max());
     if (d > kMaxDepthLimit) {
         warn(1, "maxdepth " + std::to_string(d) + " is more than Glint traces; using " +
                     std::to_string(kMaxDepthLimit));
@@ -362,6 +387,14 @@ void Parser::cmdSphere() {
         warn(4, "sphere of radius 0 is invisible and is skipped");
         return;
     }
+    Bounds3f b = s.bounds();
+    if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
+        fail(0, "the sphere reaches beyond the supported coordinate range (1e18)");
+    SphereSearch search = SphereSearch::from(s);
+    for (const auto& row : search.m)
+        for (float v : row)
+            if (!(std::abs(v) <= kMaxCoordinate))
+                fail(0, "the sphere is too thin: a semi-axis is below 1e-18 after the transform");
     scene_->primitives.addSphere(s, material());
 }
 
@@ -377,45 +410,54 @@ void Parser::cmdMaxVertNorms() {
 
 void Parser::cmdVertex() {
     vertices_.push_back(vec3(1));
-    if (maxVerts_ >= 0 && static_cast<long long>(vertices_.size()) == maxVerts_ + 1)
+    if (maxVerts_ >= 0 && static_cast<long long>(vertices_.size()) > maxVerts_ && !warnedVerts_) {
         warn(0, "more vertices than 'maxverts " + std::to_string(maxVerts_) + "' announced");
+        warnedVerts_ = true;
+    }
 }
 
 void Parser::cmdVertexNormal() {
     Vec3 p = vec3(1), n = vec3(4);
     double len = length(n);
     if (!(len > 0) || !std::isfinite(len)) {
-        warn(4, "vertex normal has zero length; triangles using it fall back to the face normal");
+        warn(4,
+             "vertex normal has zero length: it adds nothing to interpolated normals (where "
+             "nothing remains, the face normal is used)");
         n = Vec3(0);
     } else {
         n = n / len;
     }
     normalVertices_.push_back({p, n});
-    if (maxVertNorms_ >= 0 && static_cast<long long>(normalVertices_.size()) == maxVertNorms_ + 1)
+    if (maxVertNorms_ >= 0 && static_cast<long long>(normalVertices_.size()) > maxVertNorms_ &&
+        !warnedVertNorms_) {
         warn(0, "more vertices with normals than 'maxvertnorms " + std::to_string(maxVertNorms_) +
                     "' announced");
+        warnedVertNorms_ = true;
+    }
 }
 
 void Parser::cmdTri() {
     uint32_t i[3];
-    for (int k = 0; k < 3; ++k) i[k] = vertexIndex(k + 1, vertices_.size(), "vertex");
+    for (int k = 0; k < 3; ++k) i[k] = vertexIndex(k + 1, vertices_.size(), "vertex", "vertices");
     const Transform& t = transform();
-    scene_->primitives.addTriangle(t.point(vertices_[i[0]]), t.point(vertices_[i[1]]),
-                                   t.point(vertices_[i[2]]), nullptr, material());
+    Vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = checkedVertex(t.point(vertices_[i[k]]), k + 1);
+    addTriangle(p, nullptr);
 }
 
 void Parser::cmdTriNormal() {
     uint32_t i[3];
-    for (int k = 0; k < 3; ++k) i[k] = vertexIndex(k + 1, normalVertices_.size(), "vertexnormal");
+    for (int k = 0; k < 3; ++k)
+        i[k] = vertexIndex(k + 1, normalVertices_.size(), "vertexnormal", "vertexnormals");
     const Transform& t = transform();
     Vec3 p[3], n[3];
     for (int k = 0; k < 3; ++k) {
-        p[k] = t.point(normalVertices_[i[k]][0]);
+        p[k] = checkedVertex(t.point(normalVertices_[i[k]][0]), k + 1);
         n[k] = t.normal(normalVertices_[i[k]][1]);
         double len = length(n[k]);
         n[k] = len > 0 && std::isfinite(len) ? n[k] / len : Vec3(0);
     }
-    scene_->primitives.addTriangle(p[0], p[1], p[2], n, material());
+    addTriangle(p, n);
 }
 
 void Parser::cmdTranslate() {

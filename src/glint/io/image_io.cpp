@@ -107,6 +107,14 @@ Film readPfm(const std::string& path) {
     int channels = magic == "PF" ? 3 : (magic == "Pf" ? 1 : 0);
     if (!in || channels == 0 || w <= 0 || h <= 0 || scale == 0 || w > (1 << 16) || h > (1 << 16))
         throw RenderError("cannot read image '" + path + "': not a PFM file");
+    // Check the data is there before allocating for it: the header is not to be trusted.
+    auto start = in.tellg();
+    in.seekg(0, std::ios::end);
+    auto available = in.tellg() - start;
+    in.seekg(start);
+    size_t bytes = static_cast<size_t>(w) * h * channels * 4;
+    if (start < 0 || available < 0 || static_cast<size_t>(available) < bytes)
+        throw RenderError("cannot read image '" + path + "': file is truncated");
     std::vector<float> data(static_cast<size_t>(w) * h * channels);
     in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size() * 4));
     if (!in) throw RenderError("cannot read image '" + path + "': file is truncated");

@@ -1,5 +1,6 @@
 #include "glint/math/mat4.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -23,6 +24,11 @@ Mat4 Mat4::scale(double x, double y, double z) {
 }
 
 Mat4 Mat4::rotate(double x, double y, double z, double degrees) {
+    // Scale by the largest component first: x*x would underflow for an axis like (1e-200, 0, 0).
+    double big = std::max({std::abs(x), std::abs(y), std::abs(z)});
+    x /= big;
+    y /= big;
+    z /= big;
     double len = std::sqrt(x * x + y * y + z * z);
     x /= len;
     y /= len;

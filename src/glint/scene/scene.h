@@ -28,6 +28,9 @@ struct Background {
 constexpr int kMaxImageSide = 32768;
 constexpr long long kMaxImagePixels = 1LL << 27;
 constexpr int kMaxDepthLimit = 64;
+/// Geometry is searched in float: world coordinates beyond this, or spheres whose smallest
+/// semi-axis is below its inverse, would overflow the intersection arithmetic.
+constexpr double kMaxCoordinate = 1e18;
 
 /// A scene is built in place (geometry is referenced by its BVH), so it is neither copied
 /// nor moved: loaders hand it out in a unique_ptr.

@@ -1,0 +1,152 @@
+#include "glint/render/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <vector>
+
+#include "glint/math/mat4.h"
+
+namespace glint {
+namespace {
+
+Material makeMaterial(const Vec3& ambient, const Vec3& diffuse, const Vec3& specular,
+                      double shininess) {
+    Material m;
+    m.ambient = ambient;
+    m.diffuse = diffuse;
+    m.specular = specular;
+    m.shininess = shininess;
+    return m;
+}
+
+/// A mirror floor, a sphere and an ellipsoid, a point and a directional light: shadows and
+/// reflections on a small image whose sides are no multiple of the tile sizes used.
+void buildScene(Scene& scene) {
+    scene.width = 37;
+    scene.height = 23;
+    scene.maxDepth = 3;
+    scene.camera = CameraSpec{{0, 3, 8}, {0, 0.5, 0}, {0, 1, 0}, 45};
+    uint32_t floor =
+        scene.addMaterial(makeMaterial({0.05, 0.05, 0.05}, {0.5, 0.5, 0.5}, {0.3, 0.3, 0.3}, 20));
+    scene.primitives.addTriangle({-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, nullptr, floor);
+    scene.primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, floor);
+    uint32_t red =
+        scene.addMaterial(makeMaterial({0.1, 0, 0}, {0.8, 0.1, 0.1}, {0.5, 0.5, 0.5}, 50));
+    scene.primitives.addSphere(Sphere{{0, 1, 0}, 1, {}}, red);
+    uint32_t blue = scene.addMaterial(makeMaterial({0, 0, 0.1}, {0.1, 0.2, 0.8}, {}, 1));
+    Mat4 m = Mat4::translate(2, 0.5, 1) * Mat4::rotate(0, 1, 0, 30) * Mat4::scale(1, 0.5, 0.5);
+    scene.primitives.addSphere(Sphere{{0, 0, 0}, 1, *Transform::fromMatrix(m)}, blue);
+    Light point;
+    point.position = {3, 5, 3};
+    point.color = {1, 1, 1};
+    point.attenuation = {1, 0.1, 0.05};
+    scene.lights.push_back(point);
+    Light sun;
+    sun.kind = Light::Kind::Directional;
+    sun.direction = normalize(Vec3{1, 1, -1});
+    sun.color = {0.2, 0.2, 0.2};
+    scene.lights.push_back(sun);
+    scene.prepare();
+}
+
+bool sameFilm(const Film& a, const Film& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            if (!(a.at(x, y) == b.at(x, y))) return false;
+    return true;
+}
+
+RenderOptions withThreads(int threads, int tileSize) {
+    RenderOptions o;
+    o.threads = threads;
+    o.tileSize = tileSize;
+    return o;
+}
+
+TEST(Renderer, EachPixelIsTheIntegratorAtThePixelCentre) {
+    Scene scene;
+    buildScene(scene);
+    RenderResult r = render(scene, withThreads(1, 16));
+    ASSERT_TRUE(r.complete);
+    Camera camera(*scene.camera, scene.width, scene.height);
+    WhittedIntegrator integrator(scene);
+    RayCounts counts;
+    int differing = 0;
+    for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x) {
+            Vec3 expected = integrator.li(camera.generateRay(x + 0.5, y + 0.5), 0, counts);
+            differing += !(r.film.at(x, y) == expected);
+        }
+    EXPECT_EQ(differing, 0);
+    // The scene really exercises shadows and reflections.
+    EXPECT_EQ(r.rays.camera, 37u * 23u);
+    EXPECT_GT(r.rays.shadow, 0u);
+    EXPECT_GT(r.rays.reflection, 0u);
+    EXPECT_EQ(r.rays.total(), counts.total());
+}
+
+TEST(Renderer, FilmDoesNotDependOnThreadsOrTileSize) {
+    Scene scene;
+    buildScene(scene);
+    RenderResult reference = render(scene, withThreads(1, 16));
+    ASSERT_TRUE(reference.complete);
+    for (int threads : {1, 2, 3})
+        for (int tile : {1, 5, 16, 64}) {
+            SCOPED_TRACE(testing::Message() << threads << " threads, tile " << tile);
+            RenderResult r = render(scene, withThreads(threads, tile));
+            EXPECT_TRUE(r.complete);
+            EXPECT_TRUE(sameFilm(r.film, reference.film));
+            EXPECT_EQ(r.rays.total(), reference.rays.total());
+        }
+}
+
+TEST(Renderer, ProgressEndsWithEveryTileDone) {
+    Scene scene;
+    buildScene(scene);
+    std::vector<RenderProgress> calls;
+    RenderOptions o = withThreads(2, 8);
+    o.onProgress = [&](const RenderProgress& p) { calls.push_back(p); };
+    RenderResult r = render(scene, o);
+    EXPECT_TRUE(r.complete);
+    ASSERT_FALSE(calls.empty());
+    const int tiles = 5 * 3;  // ceil(37 / 8) x ceil(23 / 8)
+    EXPECT_EQ(calls.back().tilesTotal, tiles);
+    EXPECT_EQ(calls.back().tilesDone, tiles);
+    EXPECT_DOUBLE_EQ(calls.back().fraction(), 1.0);
+    for (size_t i = 1; i < calls.size(); ++i) {
+        EXPECT_GE(calls[i].tilesDone, calls[i - 1].tilesDone);
+        EXPECT_EQ(calls[i].tilesTotal, tiles);
+    }
+}
+
+TEST(Renderer, CancelledBeforeStartingIsIncomplete) {
+    Scene scene;
+    buildScene(scene);
+    std::atomic<bool> cancel{true};
+    RenderOptions o = withThreads(2, 8);
+    o.cancel = &cancel;
+    RenderProgress last;
+    o.onProgress = [&](const RenderProgress& p) { last = p; };
+    RenderResult r = render(scene, o);
+    EXPECT_FALSE(r.complete);
+    EXPECT_LT(last.tilesDone, last.tilesTotal);
+    EXPECT_EQ(r.rays.camera, 0u);
+}
+
+TEST(Renderer, OnePixelImageSeesWhatIsAtTheImageCentre) {
+    // A sphere of angular radius ~0.6 degrees at the centre of a 90 degree view: the ray
+    // through the pixel centre hits it, one through a pixel corner would miss by far.
+    Scene scene;
+    scene.width = scene.height = 1;
+    scene.camera = CameraSpec{{0, 0, 0}, {0, 0, -10}, {0, 1, 0}, 90};
+    scene.primitives.addSphere(Sphere{{0, 0, -10}, 0.1, {}},
+                               scene.addMaterial(makeMaterial({0.25, 0.5, 0.75}, {}, {}, 1)));
+    scene.prepare();
+    RenderResult r = render(scene, withThreads(1, 16));
+    EXPECT_TRUE(r.film.at(0, 0) == Vec3(0.25, 0.5, 0.75));
+}
+
+}  // namespace
+}  // namespace glint
