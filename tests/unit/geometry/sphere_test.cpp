@@ -8,15 +8,12 @@
 #include "glint/geometry/primitives.h"
 #include "glint/math/mat4.h"
 #include "glint/math/rng.h"
+#include "unit/test_support.h"
 
 namespace glint {
 namespace {
 
-void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-12) {
-    EXPECT_NEAR(a.x, b.x, eps);
-    EXPECT_NEAR(a.y, b.y, eps);
-    EXPECT_NEAR(a.z, b.z, eps);
-}
+using test::expectNear;
 
 Sphere makeSphere(const Vec3& center, double radius, const Mat4& worldFromObject = Mat4{}) {
     auto t = Transform::fromMatrix(worldFromObject);

@@ -10,8 +10,12 @@
 #include <fstream>
 #include <optional>
 
+#include "unit/test_support.h"
+
 namespace glint {
 namespace {
+
+using test::expectNear;
 
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -64,12 +68,6 @@ Diagnostic warningOf(const std::string& body, std::unique_ptr<Scene>* sceneOut =
     EXPECT_EQ(warnings.size(), 1u) << body;
     if (sceneOut) *sceneOut = std::move(scene);
     return warnings.empty() ? Diagnostic{} : warnings.front();
-}
-
-void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-9) {
-    EXPECT_NEAR(a.x, b.x, eps);
-    EXPECT_NEAR(a.y, b.y, eps);
-    EXPECT_NEAR(a.z, b.z, eps);
 }
 
 void expectBounds(const Bounds3f& b, const Vec3& lo, const Vec3& hi, double eps = 1e-5) {

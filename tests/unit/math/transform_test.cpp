@@ -2,14 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include "unit/test_support.h"
+
 namespace glint {
 namespace {
 
-void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-12) {
-    EXPECT_NEAR(a.x, b.x, eps);
-    EXPECT_NEAR(a.y, b.y, eps);
-    EXPECT_NEAR(a.z, b.z, eps);
-}
+using test::expectNear;
 
 TEST(Transform, RightMultiplicationAppliesTheLastCommandFirst) {
     // translate then scale (as written in a scene file) scales the object first.

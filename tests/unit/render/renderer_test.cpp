@@ -6,19 +6,12 @@
 #include <vector>
 
 #include "glint/math/mat4.h"
+#include "unit/test_support.h"
 
 namespace glint {
 namespace {
 
-Material makeMaterial(const Vec3& ambient, const Vec3& diffuse, const Vec3& specular,
-                      double shininess) {
-    Material m;
-    m.ambient = ambient;
-    m.diffuse = diffuse;
-    m.specular = specular;
-    m.shininess = shininess;
-    return m;
-}
+using test::makeMaterial;
 
 /// A mirror floor, a sphere and an ellipsoid, a point and a directional light: shadows and
 /// reflections on a small image whose sides are no multiple of the tile sizes used.

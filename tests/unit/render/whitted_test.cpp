@@ -4,27 +4,16 @@
 
 #include <cmath>
 
+#include "unit/test_support.h"
+
 namespace glint {
 namespace {
 
-void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-12) {
-    EXPECT_NEAR(a.x, b.x, eps);
-    EXPECT_NEAR(a.y, b.y, eps);
-    EXPECT_NEAR(a.z, b.z, eps);
-}
+using test::expectNear;
+using test::makeMaterial;
 
 Ray makeRay(const Vec3& origin, const Vec3& dir) {
     return Ray{origin, normalize(dir), 0, kInfinity};
-}
-
-Material matte(const Vec3& ambient, const Vec3& diffuse = {}, const Vec3& specular = {},
-               double shininess = 1) {
-    Material m;
-    m.ambient = ambient;
-    m.diffuse = diffuse;
-    m.specular = specular;
-    m.shininess = shininess;
-    return m;
 }
 
 /// A large triangle in the plane z = `z` containing (0, 0, z), facing +z or -z.
@@ -39,7 +28,7 @@ void addPlane(Scene& scene, double z, const Material& m, bool facingUp = true) {
 
 /// A small blocker: a triangle in the plane z = `z` around the z axis.
 void addBlocker(Scene& scene, double z) {
-    uint32_t id = scene.addMaterial(matte({1, 1, 1}));
+    uint32_t id = scene.addMaterial(makeMaterial({1, 1, 1}));
     scene.primitives.addTriangle({-0.5, -0.5, z}, {0.5, -0.5, z}, {0, 0.5, z}, nullptr, id);
 }
 
@@ -75,7 +64,7 @@ const Ray kOblique = makeRay({0, -3, 4}, {0, 3, -4});
 
 TEST(Whitted, AmbientAndEmissionAddWithoutLights) {
     Scene scene;
-    Material m = matte({0.1, 0.2, 0.3}, {0.9, 0.9, 0.9});
+    Material m = makeMaterial({0.1, 0.2, 0.3}, {0.9, 0.9, 0.9});
     m.emission = {0.05, 0, 0.4};
     addPlane(scene, 0, m);
     RayCounts counts;
@@ -87,7 +76,7 @@ TEST(Whitted, AmbientAndEmissionAddWithoutLights) {
 
 TEST(Whitted, DiffuseIsScaledByNDotL) {
     Scene scene;
-    addPlane(scene, 0, matte({0.1, 0.1, 0.1}, {0.5, 0.25, 1}));
+    addPlane(scene, 0, makeMaterial({0.1, 0.1, 0.1}, {0.5, 0.25, 1}));
     scene.lights.push_back(directionalLight({0, 1, 1}, {1, 0.5, 0.25}));  // N.L = 1/sqrt(2)
     double nl = 1 / std::sqrt(2.0);
     Vec3 expected = Vec3{0.1, 0.1, 0.1} + Vec3{0.5 * 1, 0.25 * 0.5, 1 * 0.25} * nl;
@@ -98,7 +87,7 @@ TEST(Whitted, DiffuseIsScaledByNDotL) {
 
 TEST(Whitted, SpecularIsBlinnPhongWithTheHalfVector) {
     Scene scene;
-    addPlane(scene, 0, matte({0, 0, 0}, {0, 0, 0}, {0.5, 0.5, 0.5}, 10));
+    addPlane(scene, 0, makeMaterial({0, 0, 0}, {0, 0, 0}, {0.5, 0.5, 0.5}, 10));
     scene.maxDepth = 0;
     scene.lights.push_back(pointLight({3, 0, 4}, {1, 1, 1}));  // L = (0.6, 0, 0.8), d = 5
     // From above: V = (0,0,1), H = (0.6, 0, 1.8) / sqrt(3.6), (N.H)^2 = 3.24 / 3.6 = 0.9.
@@ -111,7 +100,7 @@ TEST(Whitted, SpecularIsBlinnPhongWithTheHalfVector) {
 
 TEST(Whitted, DiffuseAndSpecularAdd) {
     Scene scene;
-    addPlane(scene, 0, matte({0.1, 0.2, 0.3}, {0.4, 0.2, 0.1}, {0.25, 0.5, 1}, 10));
+    addPlane(scene, 0, makeMaterial({0.1, 0.2, 0.3}, {0.4, 0.2, 0.1}, {0.25, 0.5, 1}, 10));
     scene.maxDepth = 0;
     scene.lights.push_back(pointLight({3, 0, 4}, {1, 0.5, 2}));
     Vec3 light{1, 0.5, 2};
@@ -122,7 +111,7 @@ TEST(Whitted, DiffuseAndSpecularAdd) {
 
 TEST(Whitted, PointLightsAreAttenuatedByDistance) {
     Scene scene;
-    addPlane(scene, 0, matte({0, 0, 0}, {1, 1, 1}));
+    addPlane(scene, 0, makeMaterial({0, 0, 0}, {1, 1, 1}));
     // d = 2: 1 + 0.5 * 2 + 0.25 * 4 = 3.
     scene.lights.push_back(pointLight({0, 0, 2}, {0.9, 0.6, 0.3}, {1, 0.5, 0.25}));
     expectNear(shade(scene, kFromAbove), {0.3, 0.2, 0.1});
@@ -130,7 +119,7 @@ TEST(Whitted, PointLightsAreAttenuatedByDistance) {
 
 TEST(Whitted, DirectionalLightsAreNeverAttenuated) {
     Scene scene;
-    addPlane(scene, 0, matte({0, 0, 0}, {1, 1, 1}));
+    addPlane(scene, 0, makeMaterial({0, 0, 0}, {1, 1, 1}));
     Light l = directionalLight({0, 0, 1}, {0.9, 0.6, 0.3});
     l.attenuation = {1, 0.5, 0.25};
     scene.lights.push_back(l);
@@ -139,7 +128,7 @@ TEST(Whitted, DirectionalLightsAreNeverAttenuated) {
 
 TEST(Whitted, LightBehindTheSurfaceContributesNothingNotEvenSpecular) {
     Scene scene;
-    addPlane(scene, 0, matte({0.1, 0.1, 0.1}, {1, 1, 1}, {1, 1, 1}, 1));
+    addPlane(scene, 0, makeMaterial({0.1, 0.1, 0.1}, {1, 1, 1}, {1, 1, 1}, 1));
     scene.maxDepth = 0;
     // Below the floor and to the side: N.L < 0, but N.H > 0 for a viewer above.
     scene.lights.push_back(pointLight({3, 0, -1}, {1, 1, 1}));
@@ -150,7 +139,7 @@ TEST(Whitted, LightBehindTheSurfaceContributesNothingNotEvenSpecular) {
 
 TEST(Whitted, BlockerBetweenPointAndLightCastsAShadow) {
     Scene scene;
-    Material floor = matte({0.1, 0.2, 0.3}, {1, 1, 1});
+    Material floor = makeMaterial({0.1, 0.2, 0.3}, {1, 1, 1});
     floor.emission = {0.01, 0.02, 0.03};
     addPlane(scene, 0, floor);
     addBlocker(scene, 2);  // between the origin and the light; the view ray passes beside it
@@ -164,7 +153,7 @@ TEST(Whitted, BlockerBetweenPointAndLightCastsAShadow) {
 
 TEST(Whitted, BlockerBeyondThePointLightCastsNoShadow) {
     Scene scene;
-    addPlane(scene, 0, matte({0.1, 0.2, 0.3}, {0.5, 0.5, 0.5}));
+    addPlane(scene, 0, makeMaterial({0.1, 0.2, 0.3}, {0.5, 0.5, 0.5}));
     addBlocker(scene, 6);  // above the light at height 4
     scene.lights.push_back(pointLight({0, 0, 4}, {1, 1, 1}));
     expectNear(shade(scene, makeRay({3, 0, 4}, {-3, 0, -4})), {0.6, 0.7, 0.8});
@@ -175,8 +164,8 @@ TEST(Whitted, BlockerBeyondThePointLightCastsNoShadow) {
 
 TEST(Whitted, MirrorReflectionIsWeightedBySpecular) {
     Scene scene;
-    addPlane(scene, 0, matte({0.1, 0.1, 0.1}, {}, {0.5, 0.25, 1}));
-    addPlane(scene, 10, matte({0.2, 0.4, 0.8}), false);  // a coloured ceiling, no mirror
+    addPlane(scene, 0, makeMaterial({0.1, 0.1, 0.1}, {}, {0.5, 0.25, 1}));
+    addPlane(scene, 10, makeMaterial({0.2, 0.4, 0.8}), false);  // a coloured ceiling, no mirror
     RayCounts counts;
     expectNear(shade(scene, kOblique, &counts), Vec3{0.1 + 0.5 * 0.2, 0.1 + 0.25 * 0.4, 0.9});
     EXPECT_EQ(counts.camera, 1u);
@@ -185,8 +174,8 @@ TEST(Whitted, MirrorReflectionIsWeightedBySpecular) {
 
 TEST(Whitted, MaxDepthZeroTracesNoReflection) {
     Scene scene;
-    addPlane(scene, 0, matte({0.1, 0.1, 0.1}, {}, {0.5, 0.5, 0.5}));
-    addPlane(scene, 10, matte({0.2, 0.4, 0.8}), false);
+    addPlane(scene, 0, makeMaterial({0.1, 0.1, 0.1}, {}, {0.5, 0.5, 0.5}));
+    addPlane(scene, 10, makeMaterial({0.2, 0.4, 0.8}), false);
     scene.maxDepth = 0;
     RayCounts counts;
     expectNear(shade(scene, kOblique, &counts), {0.1, 0.1, 0.1});
@@ -200,8 +189,8 @@ TEST(Whitted, ReflectionsBetweenParallelMirrorsStopAtMaxDepth) {
         SCOPED_TRACE(maxDepth);
         Scene scene;
         scene.maxDepth = maxDepth;
-        addPlane(scene, 0, matte(af, {}, {0.5, 0.5, 0.5}));
-        addPlane(scene, 10, matte(ac, {}, {0.5, 0.5, 0.5}), false);
+        addPlane(scene, 0, makeMaterial(af, {}, {0.5, 0.5, 0.5}));
+        addPlane(scene, 10, makeMaterial(ac, {}, {0.5, 0.5, 0.5}), false);
         Vec3 expected{};
         double weight = 1;
         for (int depth = 0; depth <= maxDepth; ++depth, weight *= 0.5)
@@ -224,7 +213,7 @@ TEST(Whitted, MissesReturnAConstantBackground) {
 TEST(Whitted, MissesIntoAGradientBlendDownToUp) {
     Scene scene;
     scene.background = {{1, 0, 0.5}, {0, 1, 0.25}};
-    addPlane(scene, -5, matte({0.5, 0.5, 0.5}));  // geometry elsewhere does not matter
+    addPlane(scene, -5, makeMaterial({0.5, 0.5, 0.5}));  // geometry elsewhere does not matter
     expectNear(shade(scene, makeRay({0, 0, 0}, {0, -1, 0})), {1, 0, 0.5});
     expectNear(shade(scene, makeRay({0, 0, 0}, {0, 1, 0})), {0, 1, 0.25});
     expectNear(shade(scene, makeRay({0, 0, 0}, {1, 0, 0})), {0.5, 0.5, 0.375});
@@ -235,7 +224,7 @@ TEST(Whitted, MissesIntoAGradientBlendDownToUp) {
 TEST(Whitted, ReflectionsThatMissSeeTheBackground) {
     Scene scene;
     scene.background = {{0, 0, 0}, {1, 1, 1}};
-    addPlane(scene, 0, matte({0.1, 0.1, 0.1}, {}, {0.5, 0.5, 0.5}));
+    addPlane(scene, 0, makeMaterial({0.1, 0.1, 0.1}, {}, {0.5, 0.5, 0.5}));
     // The reflected ray (0, 0.6, 0.8) has y = 0.6: the background there is 0.8.
     expectNear(shade(scene, kOblique), Vec3(0.1 + 0.5 * 0.8));
 }

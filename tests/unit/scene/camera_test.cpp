@@ -5,14 +5,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "unit/test_support.h"
+
 namespace glint {
 namespace {
 
-void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-12) {
-    EXPECT_NEAR(a.x, b.x, eps);
-    EXPECT_NEAR(a.y, b.y, eps);
-    EXPECT_NEAR(a.z, b.z, eps);
-}
+using test::expectNear;
 
 double radians(double degrees) { return degrees * std::numbers::pi / 180; }
 
