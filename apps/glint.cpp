@@ -27,6 +27,8 @@ struct Options {
     int threads = 0;
     std::string size;
     int maxDepth = -1;
+    int spp = 1;
+    uint64_t seed = 0;
     bool check = false;
     bool stats = false;
     bool quiet = false;
@@ -155,6 +157,8 @@ int run(const Options& opt) {
     glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
     glint::RenderOptions ro;
     ro.threads = opt.threads;
+    ro.spp = opt.spp;
+    ro.seed = opt.seed;
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
     glint::RenderResult result = glint::render(*scene, ro);
     if (!opt.quiet) progress.finish({0, 0, result.seconds}, result.complete);
@@ -210,6 +214,17 @@ int main(int argc, char** argv) {
         ->group(render)
         ->check(CLI::Number)
         ->check(CLI::Range(0, glint::kMaxDepthLimit))
+        ->type_name("N");
+
+    app.add_option("--spp", opt.spp,
+                   "Camera rays per pixel: stratified, jittered, averaged (default 1, the "
+                   "pixel centre)")
+        ->group(render)
+        ->check(CLI::Number)
+        ->check(CLI::Range(1, 65536))
+        ->type_name("N");
+    app.add_option("--seed", opt.seed, "Seed of the sub-pixel jitter (default 0)")
+        ->group(render)
         ->type_name("N");
 
     const char* info = "Information";

@@ -6,6 +6,8 @@
 #include <thread>
 #include <vector>
 
+#include "glint/render/sampler.h"
+
 namespace glint {
 
 int hardwareThreads() {
@@ -22,6 +24,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     result.film = Film(scene.width, scene.height);
     const Camera camera(*scene.camera, scene.width, scene.height);
     const WhittedIntegrator integrator(scene);
+    const PixelSampler sampler(options.spp, options.seed);
+    const double weight = 1.0 / sampler.samplesPerPixel();
 
     const int tile = std::max(1, options.tileSize);
     const int tilesX = (scene.width + tile - 1) / tile;
@@ -42,8 +46,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             int x1 = std::min(x0 + tile, scene.width), y1 = std::min(y0 + tile, scene.height);
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
-                    Ray ray = camera.generateRay(x + 0.5, y + 0.5);
-                    result.film.at(x, y) = integrator.li(ray, 0, counts);
+                    Vec3 sum;
+                    sampler.forEachSample(x, y, [&](double px, double py) {
+                        sum += integrator.li(camera.generateRay(px, py), 0, counts);
+                    });
+                    result.film.at(x, y) = sampler.samplesPerPixel() == 1 ? sum : sum * weight;
                 }
             tilesDone.fetch_add(1, std::memory_order_relaxed);
         }

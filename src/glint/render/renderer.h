@@ -3,6 +3,7 @@
 /// every pixel is computed independently of which thread renders it.
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 
 #include "glint/render/film.h"
@@ -19,6 +20,8 @@ struct RenderProgress {
 struct RenderOptions {
     int threads = 0;    ///< Worker threads; 0 means all hardware threads.
     int tileSize = 16;  ///< Tile side in pixels.
+    int spp = 1;        ///< Camera rays per pixel (stratified, jittered; box filter).
+    uint64_t seed = 0;  ///< Seed of the sub-pixel jitter.
     /// Called on the calling thread about ten times a second, and once at the end.
     std::function<void(const RenderProgress&)> onProgress;
     /// When set and it becomes true, workers stop after their current tile.
