@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <limits>
 
 namespace glint {
@@ -160,7 +161,8 @@ inline bool hitsBox(const Bounds3f& b, const Vec3f& o, const Vec3f& invDir, floa
 
 }  // namespace
 
-void Bvh::build(const Primitives& prims) {
+void Bvh::build(const Primitives& prims, const BvhBuildOptions&) {
+    auto start = std::chrono::steady_clock::now();
     prims_ = &prims;
     nodes_.clear();
     primIndex_.clear();
@@ -181,6 +183,8 @@ void Bvh::build(const Primitives& prims) {
     for (uint32_t i = 0; i < n; ++i) primIndex_[i] = refs[i].id;
     stats_.nodes = static_cast<uint32_t>(nodes_.size());
     stats_.bytes = nodes_.size() * sizeof(BvhNode) + primIndex_.size() * sizeof(uint32_t);
+    stats_.buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 template <bool AnyHit>
@@ -215,13 +219,25 @@ bool Bvh::traverse(const TraversalRay& ray, Hit& hit) const {
     return found;
 }
 
-bool Bvh::intersect(const Ray& ray, Hit& hit) const {
-    return traverse<false>(TraversalRay(ray), hit);
+bool Bvh::intersect(const TraversalRay& ray, Hit& hit) const { return traverse<false>(ray, hit); }
+
+bool Bvh::occluded(const TraversalRay& ray) const {
+    Hit hit;
+    return traverse<true>(ray, hit);
 }
 
-bool Bvh::occluded(const Ray& ray) const {
-    Hit hit;
-    return traverse<true>(TraversalRay(ray), hit);
+void Bvh::intersect8(const RayPacket8& rays, HitPacket8& hits) const {
+    for (int i = 0; i < 8; ++i) {
+        if (!(rays.active >> i & 1)) continue;
+        Ray r{{rays.ox[i], rays.oy[i], rays.oz[i]},
+              {rays.dx[i], rays.dy[i], rays.dz[i]},
+              rays.tMin[i],
+              rays.tMax[i]};
+        Hit h;
+        if (intersect(TraversalRay(r), h)) hits.t[i] = h.t, hits.primId[i] = h.primId;
+    }
 }
+
+const char* Bvh::isa() { return "portable"; }
 
 }  // namespace glint

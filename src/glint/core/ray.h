@@ -40,4 +40,29 @@ struct Hit {
     uint32_t primId = 0;  ///< Index into the scene's primitives.
 };
 
+/// Up to eight rays traced together (coherent camera rays), in float, one lane per ray.
+struct alignas(32) RayPacket8 {
+    float ox[8], oy[8], oz[8];
+    float dx[8], dy[8], dz[8];
+    float tMin[8], tMax[8];
+    uint8_t active = 0xff;  ///< Bit i set: lane i holds a ray.
+
+    void set(int lane, const TraversalRay& r) {
+        ox[lane] = r.origin.x, oy[lane] = r.origin.y, oz[lane] = r.origin.z;
+        dx[lane] = r.dir.x, dy[lane] = r.dir.y, dz[lane] = r.dir.z;
+        tMin[lane] = r.tMin, tMax[lane] = r.tMax;
+    }
+};
+
+/// The closest hits of a packet's rays; lanes without a hit keep t = infinity.
+struct alignas(32) HitPacket8 {
+    float t[8];
+    uint32_t primId[8];
+
+    HitPacket8() {
+        for (int i = 0; i < 8; ++i) t[i] = std::numeric_limits<float>::infinity(), primId[i] = 0;
+    }
+    Hit operator[](int lane) const { return {t[lane], primId[lane]}; }
+};
+
 }  // namespace glint
