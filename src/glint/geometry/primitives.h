@@ -38,6 +38,11 @@ class Primitives {
         return id < triangleCount() ? triangles_[id].bounds()
                                     : spheres_[id - triangleCount()].bounds();
     }
+    /// The stored (float) vertices A, B, C of triangle `id`, world space.
+    std::array<Vec3f, 3> triangleVertices(uint32_t id) const {
+        const Triangle& t = triangles_[id];
+        return {t.p0, t.p0 + t.e1, t.p0 + t.e2};
+    }
     /// Bounds of everything.
     Bounds3f bounds() const;
 
