@@ -1,6 +1,7 @@
 #pragma once
 /// Rays p(t) = origin + t * dir, valid for t in (tMin, tMax), and what traversal returns.
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -20,17 +21,35 @@ struct Ray {
     constexpr Vec3 at(double t) const { return origin + dir * t; }
 };
 
-/// The same ray in float for traversal, with what box tests need precomputed.
+/// The same ray in float for traversal, with what box and triangle tests need precomputed.
 struct TraversalRay {
-    Vec3f origin, dir, invDir;
+    Vec3f origin, dir;
+    /// 1/dir, with components of magnitude below 1e-18 replaced by +-1e18 so that slab
+    /// distances are never 0 * infinity.
+    Vec3f invDir;
     float tMin, tMax;
+    /// The watertight triangle test's frame: kz is the axis of largest |dir|, and the shear
+    /// (sx, sy, sz) maps dir to (0, 0, 1) in axes (kx, ky, kz).
+    int kx, ky, kz;
+    float sx, sy, sz;
 
     explicit TraversalRay(const Ray& r)
         : origin(r.origin),
           dir(r.dir),
-          invDir(1 / dir.x, 1 / dir.y, 1 / dir.z),
           tMin(static_cast<float>(r.tMin)),
-          tMax(static_cast<float>(r.tMax)) {}
+          tMax(static_cast<float>(r.tMax)) {
+        for (int a = 0; a < 3; ++a) {
+            float d = dir[a];
+            invDir[a] = std::abs(d) < 1e-18f ? (d < 0 ? -1e18f : 1e18f) : 1 / d;
+        }
+        Vec3f ad(std::abs(dir.x), std::abs(dir.y), std::abs(dir.z));
+        kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
+        kx = (kz + 1) % 3;
+        ky = (kx + 1) % 3;
+        sx = dir[kx] / dir[kz];
+        sy = dir[ky] / dir[kz];
+        sz = 1 / dir[kz];
+    }
 };
 
 /// The closest hit found by traversal, in float. The shading data is recomputed in double for
@@ -39,6 +58,12 @@ struct Hit {
     float t = std::numeric_limits<float>::infinity();
     uint32_t primId = 0;  ///< Index into the scene's primitives.
 };
+
+/// Whether a candidate hit (t, id) beats `best`: nearer, or as near with a lower id. The tie
+/// rule makes the closest hit independent of the order primitives are tested in.
+inline bool closerHit(float t, uint32_t id, const Hit& best) {
+    return t < best.t || (t == best.t && id < best.primId);
+}
 
 /// Up to eight rays traced together (coherent camera rays), in float, one lane per ray.
 struct alignas(32) RayPacket8 {

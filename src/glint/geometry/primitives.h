@@ -41,19 +41,24 @@ class Primitives {
     /// The stored (float) vertices A, B, C of triangle `id`, world space.
     std::array<Vec3f, 3> triangleVertices(uint32_t id) const {
         const Triangle& t = triangles_[id];
-        return {t.p0, t.p0 + t.e1, t.p0 + t.e2};
+        return {t.v0, t.v1, t.v2};
     }
     /// Bounds of everything.
     Bounds3f bounds() const;
 
-    /// Tests primitive `id` in float; on a closer hit, fills `hit` including primId.
+    /// Tests primitive `id` in float; if it is hit within the ray's range and closer than
+    /// `hit` (closerHit), fills `hit` and returns true.
     bool intersect(uint32_t id, const TraversalRay& ray, Hit& hit) const {
+        float t;
         bool found = id < triangleCount()
-                         ? intersectTriangle(triangles_[id], ray, hit)
-                         : intersectSphere(sphereSearch_[id - triangleCount()], ray, hit);
-        if (found) hit.primId = id;
-        return found;
+                         ? intersectTriangle(triangles_[id], ray, t)
+                         : intersectSphere(sphereSearch_[id - triangleCount()], ray, t);
+        if (!found || !closerHit(t, id, hit)) return false;
+        hit = {t, id};
+        return true;
     }
+    const Triangle& triangle(uint32_t id) const { return triangles_[id]; }
+    const SphereSearch& sphereSearch(uint32_t sphere) const { return sphereSearch_[sphere]; }
 
     /// Shading data for a hit that traversal returned for `ray`, refined in double.
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;

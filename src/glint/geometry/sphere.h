@@ -51,9 +51,9 @@ inline bool sphereRoots(const Vec3T<T>& o, const Vec3T<T>& d, T r2, T& t0, T& t1
 }
 }  // namespace detail
 
-/// On a hit with tMin < t < min(ray.tMax, hit.t) sets hit.t (the nearer such root) and
-/// returns true. `t` is the world-ray parameter: the mapped direction is not renormalised.
-inline bool intersectSphere(const SphereSearch& s, const TraversalRay& ray, Hit& hit) {
+/// On a hit with tMin < t < tMax sets `t` (the nearer such root) and returns true. `t` is the
+/// world-ray parameter: the mapped direction is not renormalised.
+inline bool intersectSphere(const SphereSearch& s, const TraversalRay& ray, float& t) {
     const auto& m = s.m;
     Vec3f o(m[0][0] * ray.origin.x + m[0][1] * ray.origin.y + m[0][2] * ray.origin.z + m[0][3],
             m[1][0] * ray.origin.x + m[1][1] * ray.origin.y + m[1][2] * ray.origin.z + m[1][3],
@@ -63,10 +63,9 @@ inline bool intersectSphere(const SphereSearch& s, const TraversalRay& ray, Hit&
             m[2][0] * ray.dir.x + m[2][1] * ray.dir.y + m[2][2] * ray.dir.z);
     float t0, t1;
     if (!detail::sphereRoots(o, d, 1.0f, t0, t1)) return false;
-    float tMax = std::min(ray.tMax, hit.t);
-    float t = t0 > ray.tMin ? t0 : t1;
-    if (!(t > ray.tMin && t < tMax)) return false;
-    hit.t = t;
+    float tHit = t0 > ray.tMin ? t0 : t1;
+    if (!(tHit > ray.tMin && tHit < ray.tMax)) return false;
+    t = tHit;
     return true;
 }
 

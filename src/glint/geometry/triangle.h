@@ -1,6 +1,6 @@
 #pragma once
-/// Triangles: stored in float as a vertex and two edges; searched in float, and the winning
-/// hit refined in double from the same stored data.
+/// Triangles: three float vertices, searched with a watertight float test, and the winning
+/// hit refined in double from the same stored vertices.
 
 #include <cmath>
 
@@ -10,41 +10,55 @@
 namespace glint {
 
 struct Triangle {
-    Vec3f p0, e1, e2;  ///< Vertex A and the edges B - A, C - A, world space.
+    Vec3f v0, v1, v2;  ///< World space, counter-clockwise seen from the front.
 
     static Triangle fromVertices(const Vec3& a, const Vec3& b, const Vec3& c) {
-        return {Vec3f(a), Vec3f(b - a), Vec3f(c - a)};
+        return {Vec3f(a), Vec3f(b), Vec3f(c)};
     }
     /// Unnormalised geometric normal (B - A) x (C - A): counter-clockwise faces point at the
-    /// viewer. Never flipped, as in the course's renderer. Computed in double from the stored
-    /// float edges, where each product is exact: it is zero exactly when the edges are parallel.
-    Vec3 normalDirection() const { return cross(Vec3(e1), Vec3(e2)); }
+    /// viewer. Never flipped, as in the course's renderer. In double from the float vertices:
+    /// the differences are exact and so is each product, so it is zero exactly when the
+    /// stored triangle has zero area.
+    Vec3 normalDirection() const {
+        Vec3 a(v0);
+        return cross(Vec3(v1) - a, Vec3(v2) - a);
+    }
     /// Zero area (collinear or repeated vertices) as stored. Primitives never keeps these.
     bool degenerate() const { return normalDirection() == Vec3(0); }
     Bounds3f bounds() const {
-        Vec3 a(p0), b = a + Vec3(e1), c = a + Vec3(e2);
-        return Bounds3f::enclosing(min(a, min(b, c)), max(a, max(b, c)));
+        Bounds3f b;
+        b.extend(v0);
+        b.extend(v1);
+        b.extend(v2);
+        return b;
     }
 };
 
-/// Moller-Trumbore test in float. On a hit with tMin < t < min(ray.tMax, hit.t) sets hit.t
-/// and returns true. Edges count as inside; rays in the triangle's plane never hit. The
-/// triangle must not be degenerate: for collinear vertices the float determinant can round to
-/// a tiny non-zero value and report a meaningless hit (Primitives drops such triangles).
-inline bool intersectTriangle(const Triangle& tri, const TraversalRay& ray, Hit& hit) {
-    Vec3f pvec = cross(ray.dir, tri.e2);
-    float det = dot(tri.e1, pvec);
-    if (det == 0 || !std::isfinite(det)) return false;
-    float inv = 1 / det;
-    Vec3f tvec = ray.origin - tri.p0;
-    float u = dot(tvec, pvec) * inv;
-    if (!(u >= 0 && u <= 1)) return false;
-    Vec3f qvec = cross(tvec, tri.e1);
-    float v = dot(ray.dir, qvec) * inv;
-    if (!(v >= 0 && u + v <= 1)) return false;
-    float t = dot(tri.e2, qvec) * inv;
-    if (!(t > ray.tMin && t < ray.tMax && t < hit.t)) return false;
-    hit.t = t;
+/// The watertight ray-triangle test of Woop, Benthin and Wald ("Watertight Ray/Triangle
+/// Intersection", JCGT 2013) in float, without its double-precision fallback: vertices are
+/// moved to the ray origin and sheared so the ray runs along +z; the signs of the three 2D
+/// edge functions decide inside/outside, computed the same way for both triangles sharing an
+/// edge, so no ray slips through between them. Edges count as inside; back faces are hit.
+///
+/// On a hit with tMin < t < tMax, sets `t` and returns true. The SIMD leaf kernels repeat these
+/// exact operations lane by lane, so both give bit-identical results. The triangle must not be
+/// degenerate (Primitives drops those).
+inline bool intersectTriangle(const Triangle& tri, const TraversalRay& ray, float& t) {
+    const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+    Vec3f a = tri.v0 - ray.origin, b = tri.v1 - ray.origin, c = tri.v2 - ray.origin;
+    float ax = a[kx] - ray.sx * a[kz], ay = a[ky] - ray.sy * a[kz];
+    float bx = b[kx] - ray.sx * b[kz], by = b[ky] - ray.sy * b[kz];
+    float cx = c[kx] - ray.sx * c[kz], cy = c[ky] - ray.sy * c[kz];
+    float u = cx * by - cy * bx;
+    float v = ax * cy - ay * cx;
+    float w = bx * ay - by * ax;
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+    float det = u + v + w;
+    if (det == 0) return false;
+    float tScaled = u * (ray.sz * a[kz]) + v * (ray.sz * b[kz]) + w * (ray.sz * c[kz]);
+    float tHit = tScaled / det;
+    if (!(tHit > ray.tMin && tHit < ray.tMax)) return false;
+    t = tHit;
     return true;
 }
 
@@ -53,13 +67,13 @@ struct TriangleHit {
     double t, b1, b2;
 };
 
-/// The same test in double for a ray known to hit `tri` near `tFloat` (no range checks).
+/// Moller-Trumbore in double for a ray known to hit `tri` near `tFloat` (no range checks).
 inline TriangleHit refineTriangleHit(const Triangle& tri, const Ray& ray, float tFloat) {
-    Vec3 e1(tri.e1), e2(tri.e2);
+    Vec3 v0(tri.v0), e1 = Vec3(tri.v1) - v0, e2 = Vec3(tri.v2) - v0;
     Vec3 pvec = cross(ray.dir, e2);
     double det = dot(e1, pvec);
     if (det == 0) return {tFloat, 0, 0};
-    Vec3 tvec = ray.origin - Vec3(tri.p0);
+    Vec3 tvec = ray.origin - v0;
     Vec3 qvec = cross(tvec, e1);
     return {dot(e2, qvec) / det, dot(tvec, pvec) / det, dot(ray.dir, qvec) / det};
 }

@@ -27,9 +27,9 @@ Ray makeRay(const Vec3& origin, const Vec3& dir, double tMin = 0, double tMax = 
 
 /// The float search on one sphere: the hit distance, or nothing.
 std::optional<float> trace(const Sphere& s, const Ray& ray) {
-    Hit hit;
-    if (!intersectSphere(SphereSearch::from(s), TraversalRay(ray), hit)) return std::nullopt;
-    return hit.t;
+    float t;
+    if (!intersectSphere(SphereSearch::from(s), TraversalRay(ray), t)) return std::nullopt;
+    return t;
 }
 
 // Unit sphere centred 5 units down the z axis.
@@ -99,10 +99,12 @@ TEST(Sphere, TMinAndTMaxBoundTheAcceptedRoots) {
     EXPECT_FALSE(trace(kUnit, makeRay(o, d, 6.5, kInfinity)));
 
     // A closer hit already found is kept.
-    Hit hit;
-    hit.t = 3;
-    EXPECT_FALSE(intersectSphere(SphereSearch::from(kUnit), TraversalRay(makeRay(o, d)), hit));
+    Primitives prims;
+    prims.addSphere(kUnit, 0);
+    Hit hit{3, 7};
+    EXPECT_FALSE(prims.intersect(0, TraversalRay(makeRay(o, d)), hit));
     EXPECT_EQ(hit.t, 3.0f);
+    EXPECT_EQ(hit.primId, 7u);
 }
 
 TEST(Sphere, SmallDistantSphereIsHitAccurately) {

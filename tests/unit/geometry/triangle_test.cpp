@@ -20,9 +20,9 @@ Ray makeRay(const Vec3& origin, const Vec3& dir, double tMin = 0, double tMax = 
 }
 
 std::optional<float> trace(const Triangle& tri, const Ray& ray) {
-    Hit hit;
-    if (!intersectTriangle(tri, TraversalRay(ray), hit)) return std::nullopt;
-    return hit.t;
+    float t;
+    if (!intersectTriangle(tri, TraversalRay(ray), t)) return std::nullopt;
+    return t;
 }
 
 // The right triangle A = 0, B = x, C = y in the plane z = 0, normal +z.
@@ -144,10 +144,28 @@ TEST(Triangle, TMinAndTMaxBoundTheHit) {
     // Behind the origin.
     EXPECT_FALSE(trace(kRight, makeRay({0.25, 0.25, 1}, {0, 0, 1})));
     // A closer hit already found is kept.
-    Hit hit;
-    hit.t = 0.5f;
-    EXPECT_FALSE(intersectTriangle(kRight, TraversalRay(down(0.25, 0.25)), hit));
+    Primitives prims;
+    prims.addTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, nullptr, 0);
+    Hit hit{0.5f, 9};
+    EXPECT_FALSE(prims.intersect(0, TraversalRay(down(0.25, 0.25)), hit));
     EXPECT_EQ(hit.t, 0.5f);
+    EXPECT_EQ(hit.primId, 9u);
+}
+
+TEST(Triangle, HitsAtTheSameDistanceGoToTheLowerPrimitiveId) {
+    // Two copies of one triangle: whichever is tested first, id 0 wins.
+    Primitives prims;
+    prims.addTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, nullptr, 0);
+    prims.addTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, nullptr, 0);
+    TraversalRay ray(down(0.25, 0.25));
+    Hit first, second;
+    EXPECT_TRUE(prims.intersect(1, ray, first));
+    EXPECT_TRUE(prims.intersect(0, ray, first));
+    EXPECT_EQ(first.primId, 0u);
+    EXPECT_TRUE(prims.intersect(0, ray, second));
+    EXPECT_FALSE(prims.intersect(1, ray, second));
+    EXPECT_EQ(second.primId, 0u);
+    EXPECT_EQ(first.t, second.t);
 }
 
 // The triangle A = (1,0,0), B = (0,2,0), C = (0,0,3) in the plane x + y/2 + z/3 = 1.
