@@ -1,41 +1,41 @@
 #pragma once
-/// Bounding volume hierarchy over a primitive set: binned surface-area-heuristic build, flat
-/// depth-first node array, stack-based ordered traversal without allocation.
+/// Glint's acceleration structure: an 8-wide BVH over triangles and (transformed) spheres,
+/// built with binned SAH on several threads, traversed by SIMD kernels chosen for the CPU.
+/// Layout: bvh_layout.h; build: bvh_build.cpp; kernels: bvh_isa_*.cpp, bvh_traverse.inl.
 
 #include <cstdint>
-#include <vector>
 
+#include "glint/accel/bvh_layout.h"
 #include "glint/geometry/primitives.h"
 
 namespace glint {
 
-struct BvhNode {
-    Bounds3f bounds;
-    /// Interior: index of the second child (the first follows this node).
-    /// Leaf: index of the first entry in the primitive index array.
-    uint32_t offset = 0;
-    uint16_t count = 0;  ///< Primitives in a leaf; 0 for interior nodes.
-    uint8_t axis = 0;    ///< Split axis of an interior node.
-};
+/// Instruction sets the traversal kernels exist for.
+enum class Isa { Auto, Portable, Avx2 };
 
 struct BvhBuildOptions {
-    int threads = 0;  ///< Build threads; 0 means all hardware threads.
+    int threads = 0;      ///< Build threads; 0 means all hardware threads.
+    Isa isa = Isa::Auto;  ///< Kernels to traverse with; Auto: the best this CPU runs.
 };
 
 struct BvhStats {
-    uint32_t nodes = 0, leaves = 0, maxDepth = 0, maxLeafSize = 0;
-    size_t bytes = 0;  ///< Everything traversal reads: nodes plus leaf data.
+    uint32_t nodes = 0;  ///< 8-wide nodes.
+    uint32_t leaves = 0;
+    uint32_t maxDepth = 0;     ///< Levels of nodes.
+    uint32_t maxLeafSize = 0;  ///< Primitives in the largest leaf.
+    size_t bytes = 0;          ///< Everything traversal reads: nodes and leaf data.
     double buildSeconds = 0;
 };
 
 class Bvh {
   public:
-    /// Builds over `prims`, which must outlive the BVH (a reference is kept).
+    /// Builds over `prims`. The BVH keeps its own copy of what traversal needs; `prims`
+    /// only has to live while building.
     void build(const Primitives& prims, const BvhBuildOptions& options = {});
 
     /// Closest hit with tMin < t < min(ray.tMax, hit.t); fills `hit` and returns true if any.
     /// Among hits at exactly the same distance the lowest primitive id wins, so the result
-    /// does not depend on traversal order.
+    /// does not depend on traversal order or instruction set.
     bool intersect(const Ray& ray, Hit& hit) const { return intersect(TraversalRay(ray), hit); }
     bool intersect(const TraversalRay& ray, Hit& hit) const;
     /// Whether anything lies strictly between tMin and tMax (any hit, not the closest).
@@ -44,23 +44,21 @@ class Bvh {
     /// Closest hits of the active rays of a packet; the same results as `intersect` per ray.
     void intersect8(const RayPacket8& rays, HitPacket8& hits) const;
 
-    /// The instruction set the traversal kernels use ("avx2" or "portable").
-    static const char* isa();
-
     const BvhStats& stats() const { return stats_; }
-    const std::vector<BvhNode>& nodes() const { return nodes_; }
+    const bvh::BvhData& data() const { return data_; }
+    /// The kernels this BVH traverses with.
+    Isa kernels() const { return isa_; }
 
-    /// Traversal stack depth bound; the builder never makes a deeper tree.
-    static constexpr int kMaxDepth = 96;
+    /// The best kernels this CPU runs (overridden by GLINT_ISA=portable in the environment).
+    static Isa bestIsa();
+    /// "avx2" or "portable": the kernels a default-built BVH uses on this machine.
+    static const char* isa();
+    static const char* name(Isa isa);
 
   private:
-    template <bool AnyHit>
-    bool traverse(const TraversalRay& ray, Hit& hit) const;
-
-    const Primitives* prims_ = nullptr;
-    std::vector<BvhNode> nodes_;
-    std::vector<uint32_t> primIndex_;
+    bvh::BvhData data_;
     BvhStats stats_;
+    Isa isa_ = Isa::Portable;
 };
 
 }  // namespace glint

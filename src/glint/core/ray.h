@@ -72,6 +72,13 @@ struct alignas(32) RayPacket8 {
     float tMin[8], tMax[8];
     uint8_t active = 0xff;  ///< Bit i set: lane i holds a ray.
 
+    /// Lane `lane` as a single ray.
+    TraversalRay ray(int lane) const {
+        return TraversalRay(Ray{{ox[lane], oy[lane], oz[lane]},
+                                {dx[lane], dy[lane], dz[lane]},
+                                tMin[lane],
+                                tMax[lane]});
+    }
     void set(int lane, const TraversalRay& r) {
         ox[lane] = r.origin.x, oy[lane] = r.origin.y, oz[lane] = r.origin.z;
         dx[lane] = r.dir.x, dy[lane] = r.dir.y, dz[lane] = r.dir.z;

@@ -10,11 +10,6 @@
 
 namespace glint {
 
-int hardwareThreads() {
-    unsigned n = std::thread::hardware_concurrency();
-    return n ? static_cast<int>(n) : 1;
-}
-
 RenderResult render(const Scene& scene, const RenderOptions& options) {
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();

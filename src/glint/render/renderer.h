@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "glint/core/parallel.h"
 #include "glint/render/film.h"
 #include "glint/render/whitted.h"
 
@@ -37,8 +38,5 @@ struct RenderResult {
 
 /// Renders `scene` (prepared, with a camera) at its width and height.
 RenderResult render(const Scene& scene, const RenderOptions& options);
-
-/// The number of threads `threads` = 0 stands for.
-int hardwareThreads();
 
 }  // namespace glint

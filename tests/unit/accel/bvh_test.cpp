@@ -3,10 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "glint/accel/brute_force.h"
+#include "glint/accel/bvh_build.h"
 #include "glint/math/mat4.h"
 #include "glint/math/rng.h"
 
@@ -80,16 +84,13 @@ struct Agreement {
 
 /// Compares BVH and brute force on one ray: hit/miss, exact t, and a tied primitive really
 /// being at that distance; occluded for rays with finite tMax.
-void compare(const Primitives& prims, const Bvh& bvh, const BruteForce& oracle, const Ray& ray,
+void compare(const Primitives&, const Bvh& bvh, const BruteForce& oracle, const Ray& ray,
              Agreement& a) {
     ++a.rays;
     Hit hb, ho;
     bool fb = bvh.intersect(ray, hb), fo = oracle.intersect(ray, ho);
-    bool ok = fb == fo && (!fb || hb.t == ho.t);
-    if (ok && fb && hb.primId != ho.primId) {
-        Hit alone;
-        ok = prims.intersect(hb.primId, TraversalRay(ray), alone) && alone.t == ho.t;
-    }
+    // With the tie rule (lowest id among equal distances) the answers are identical.
+    bool ok = fb == fo && (!fb || (hb.t == ho.t && hb.primId == ho.primId));
     if (std::isfinite(ray.tMax) && bvh.occluded(ray) != oracle.occluded(ray)) ok = false;
     // A tMax at the closest hit: nothing strictly closer, so neither may report occlusion.
     if (fo) {
@@ -105,9 +106,9 @@ void compare(const Primitives& prims, const Bvh& bvh, const BruteForce& oracle, 
                   std::to_string(ho.primId);
 }
 
-Agreement compareOnRandomRays(const Primitives& prims, int rays, uint64_t seed) {
+Agreement compareOnRandomRays(const Primitives& prims, int rays, uint64_t seed, Isa isa) {
     Bvh bvh;
-    bvh.build(prims);
+    bvh.build(prims, {0, isa});
     BruteForce oracle;
     oracle.build(prims);
     Random r(seed);
@@ -116,62 +117,107 @@ Agreement compareOnRandomRays(const Primitives& prims, int rays, uint64_t seed) 
     return a;
 }
 
-/// Structural checks: leaf sizes, depth, every primitive in exactly one leaf, children
-/// inside their parent's box.
-void expectSaneTree(const Bvh& bvh, uint32_t primCount) {
+/// Structural checks on the 8-wide layout: every primitive in exactly one leaf, leaf sizes and
+/// depth within bounds, every child inside the box its parent stores for it, unused slots
+/// empty.
+void expectSaneTree(const Bvh& bvh, const Primitives& prims) {
     const BvhStats& s = bvh.stats();
-    const auto& nodes = bvh.nodes();
+    const bvh::BvhData& d = bvh.data();
     EXPECT_LE(s.maxLeafSize, 8u);
-    EXPECT_LE(s.maxDepth, static_cast<uint32_t>(Bvh::kMaxDepth));
-    EXPECT_EQ(s.nodes, nodes.size());
-    EXPECT_EQ(s.nodes, 2 * s.leaves - 1);
-    uint32_t inLeaves = 0, leaves = 0;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-        const BvhNode& n = nodes[i];
-        if (n.count > 0) {
+    EXPECT_LE(s.maxDepth, bvh::kMaxDepth);
+    EXPECT_EQ(s.nodes, d.nodes.size());
+    std::vector<int> seen(prims.size(), 0);
+    uint32_t leaves = 0;
+    auto inside = [](const Bounds3f& inner, const Bounds3f& outer) {
+        for (int a = 0; a < 3; ++a)
+            if (inner.lo[a] < outer.lo[a] || inner.hi[a] > outer.hi[a]) return false;
+        return true;
+    };
+    // Visits `ref`, whose box in its parent is `box` (everything for the root).
+    std::function<void(bvh::NodeRef, const Bounds3f&)> visit = [&](bvh::NodeRef ref,
+                                                                   const Bounds3f& box) {
+        if (bvh::isLeaf(ref)) {
             ++leaves;
-            inLeaves += n.count;
-            EXPECT_LE(n.count, 8);
-            EXPECT_LE(n.offset + n.count, primCount);
-            continue;
-        }
-        ASSERT_LT(n.offset, nodes.size());
-        ASSERT_GT(n.offset, i + 1);
-        for (size_t child : {i + 1, static_cast<size_t>(n.offset)}) {
-            const Bounds3f& c = nodes[child].bounds;
-            for (int a = 0; a < 3; ++a) {
-                EXPECT_GE(c.lo[a], n.bounds.lo[a]);
-                EXPECT_LE(c.hi[a], n.bounds.hi[a]);
+            uint32_t first = bvh::leafFirst(ref), count = bvh::leafCount(ref);
+            std::vector<uint32_t> ids;
+            if (bvh::isSphereLeaf(ref)) {
+                for (uint32_t i = first; i < first + count; ++i) ids.push_back(d.sphereIds[i]);
+            } else {
+                for (uint32_t b = first; b < first + count; ++b)
+                    for (uint32_t id : d.tris[b].id)
+                        if (id != bvh::kEmpty) ids.push_back(id);
             }
+            EXPECT_LE(ids.size(), 8u);
+            for (uint32_t id : ids) {
+                ASSERT_LT(id, prims.size());
+                ++seen[id];
+                EXPECT_EQ(id >= prims.triangleCount(), bvh::isSphereLeaf(ref));
+                EXPECT_TRUE(inside(prims.bounds(id), box)) << "primitive " << id;
+            }
+            return;
         }
-    }
+        ASSERT_LT(ref, d.nodes.size());
+        const bvh::Node8& n = d.nodes[ref];
+        int used = 0;
+        for (int i = 0; i < bvh::kWidth; ++i) {
+            Bounds3f child{{n.lo[0][i], n.lo[1][i], n.lo[2][i]},
+                           {n.hi[0][i], n.hi[1][i], n.hi[2][i]}};
+            if (n.child[i] == bvh::kEmpty) {
+                EXPECT_TRUE(child.empty());
+                continue;
+            }
+            ++used;
+            EXPECT_TRUE(inside(child, box));
+            visit(n.child[i], child);
+        }
+        EXPECT_GE(used, 2);
+    };
+    if (d.root != bvh::kEmpty) visit(d.root, prims.bounds());
     EXPECT_EQ(leaves, s.leaves);
-    EXPECT_EQ(inLeaves, primCount);
+    for (uint32_t id = 0; id < prims.size(); ++id) EXPECT_EQ(seen[id], 1) << "primitive " << id;
 }
 
-TEST(Bvh, AgreesWithBruteForceOnMixedRandomPrimitives) {
+/// The kernel sets this build and CPU can run: every test below runs once per set.
+std::vector<Isa> kernelSets() {
+    std::vector<Isa> sets{Isa::Portable};
+#if GLINT_HAVE_AVX2
+    if (__builtin_cpu_supports("avx2")) sets.push_back(Isa::Avx2);
+#endif
+    return sets;
+}
+
+class BvhKernels : public testing::TestWithParam<Isa> {
+  protected:
+    Bvh build(const Primitives& prims, int threads = 0) {
+        Bvh bvh;
+        bvh.build(prims, {threads, GetParam()});
+        EXPECT_EQ(bvh.kernels(), GetParam());
+        return bvh;
+    }
+};
+
+TEST_P(BvhKernels, AgreesWithBruteForceOnMixedRandomPrimitives) {
     Primitives prims;
     Random r(2024);
     addRandomScene(prims, r, 1500, 300);
-    Agreement a = compareOnRandomRays(prims, 5000, 99);
+    Agreement a = compareOnRandomRays(prims, 5000, 99, GetParam());
     EXPECT_EQ(a.mismatches, 0) << a.first;
     EXPECT_GT(a.hits, a.rays / 4);  // the comparison is not mostly misses
     EXPECT_LT(a.hits, a.rays);
 }
 
-TEST(Bvh, AgreesWithBruteForceOnALargeRandomSet) {
+TEST_P(BvhKernels, AgreesWithBruteForceOnALargeRandomSet) {
     Primitives prims;
     Random r(77);
     addRandomScene(prims, r, 20000, 2000);
-    Bvh bvh;
-    bvh.build(prims);
-    expectSaneTree(bvh, prims.size());
-    Agreement a = compareOnRandomRays(prims, 2000, 5);
+    Bvh bvh = build(prims);
+    expectSaneTree(bvh, prims);
+    Agreement a = compareOnRandomRays(prims, 2000, 5, GetParam());
     EXPECT_EQ(a.mismatches, 0) << a.first;
     EXPECT_GT(a.hits, a.rays / 2);
 }
 
-TEST(Bvh, AgreesOnEdgesAndVerticesOfAxisAlignedTriangles) {
+TEST_P(BvhKernels, AgreesOnEdgesAndVerticesOfAxisAlignedTriangles) {
     // Axis-aligned triangles have flat boxes; rays aimed exactly at their edges and corners
     // are where rounding in the box test could cull a hit that the triangle test accepts.
     Primitives prims;
@@ -182,8 +228,7 @@ TEST(Bvh, AgreesOnEdgesAndVerticesOfAxisAlignedTriangles) {
             prims.addTriangle({x, 0, y}, {x + 1, 0, y}, {x, 0, y + 1}, nullptr, 0);  // y = 0
             prims.addTriangle({0, x, y}, {0, x + 1, y}, {0, x, y + 1}, nullptr, 0);  // x = 0
         }
-    Bvh bvh;
-    bvh.build(prims);
+    Bvh bvh = build(prims);
     BruteForce oracle;
     oracle.build(prims);
     Random r(11);
@@ -207,23 +252,21 @@ TEST(Bvh, AgreesOnEdgesAndVerticesOfAxisAlignedTriangles) {
     EXPECT_GT(a.hits, a.rays / 2);
 }
 
-TEST(Bvh, EmptySceneHitsNothing) {
+TEST_P(BvhKernels, EmptySceneHitsNothing) {
     Primitives prims;
-    Bvh bvh;
-    bvh.build(prims);
+    Bvh bvh = build(prims);
     Hit hit;
     EXPECT_FALSE(bvh.intersect(Ray{{0, 0, 0}, {0, 0, 1}, 0, kInfinity}, hit));
     EXPECT_FALSE(bvh.occluded(Ray{{0, 0, 0}, {0, 0, 1}, 0, 10}));
     EXPECT_EQ(bvh.stats().nodes, 0u);
-    EXPECT_TRUE(bvh.nodes().empty());
+    EXPECT_EQ(bvh.data().root, bvh::kEmpty);
 }
 
-TEST(Bvh, SinglePrimitiveIsOneLeaf) {
+TEST_P(BvhKernels, SinglePrimitiveIsOneLeaf) {
     Primitives prims;
     prims.addSphere(Sphere{{0, 0, 5}, 1, {}}, 0);
-    Bvh bvh;
-    bvh.build(prims);
-    EXPECT_EQ(bvh.stats().nodes, 1u);
+    Bvh bvh = build(prims);
+    EXPECT_EQ(bvh.stats().nodes, 0u);  // the root is a leaf
     EXPECT_EQ(bvh.stats().leaves, 1u);
     Hit hit;
     ASSERT_TRUE(bvh.intersect(Ray{{0, 0, 0}, {0, 0, 1}, 0, kInfinity}, hit));
@@ -234,62 +277,131 @@ TEST(Bvh, SinglePrimitiveIsOneLeaf) {
     EXPECT_FALSE(bvh.occluded(Ray{{0, 0, 0}, {0, 1, 0}, 0, 100}));
 }
 
-TEST(Bvh, ThousandsOfIdenticalPrimitivesBuildAndAgree) {
+TEST_P(BvhKernels, ThousandsOfIdenticalPrimitivesBuildAndAgree) {
     Primitives prims;
     for (int i = 0; i < 5000; ++i)
         prims.addTriangle({-1, -1, 0}, {1, -1, 0}, {0, 1, 0}, nullptr, 0);
-    Bvh bvh;
-    bvh.build(prims);
-    expectSaneTree(bvh, prims.size());
+    Bvh bvh = build(prims);
+    expectSaneTree(bvh, prims);
     Hit hit;
     ASSERT_TRUE(bvh.intersect(Ray{{0, 0, 3}, {0, 0, -1}, 0, kInfinity}, hit));
     EXPECT_EQ(hit.t, 3.0f);
-    Agreement a = compareOnRandomRays(prims, 300, 3);
+    Agreement a = compareOnRandomRays(prims, 300, 3, GetParam());
     EXPECT_EQ(a.mismatches, 0) << a.first;
 }
 
-TEST(Bvh, ConcentricSpheresWithOneCentroidAgree) {
+TEST_P(BvhKernels, ConcentricSpheresWithOneCentroidAgree) {
     // All centroids equal, sizes differ: the outermost sphere must win from outside.
     Primitives prims;
     for (int i = 1; i <= 2000; ++i) prims.addSphere(Sphere{{1, 2, 3}, 0.005 * i, {}}, 0);
-    Bvh bvh;
-    bvh.build(prims);
-    expectSaneTree(bvh, prims.size());
+    Bvh bvh = build(prims);
+    expectSaneTree(bvh, prims);
     Hit hit;
     ASSERT_TRUE(bvh.intersect(Ray{{1, 2, -20}, {0, 0, 1}, 0, kInfinity}, hit));
     EXPECT_FLOAT_EQ(hit.t, 13.0f);
     EXPECT_EQ(hit.primId, 1999u);
-    Agreement a = compareOnRandomRays(prims, 300, 4);
+    Agreement a = compareOnRandomRays(prims, 300, 4, GetParam());
     EXPECT_EQ(a.mismatches, 0) << a.first;
 }
 
-TEST(Bvh, GeometricallySpacedPrimitivesStayWithinTheDepthBound) {
+TEST_P(BvhKernels, GeometricallySpacedPrimitivesStayWithinTheDepthBound) {
     // Centroids at 1.02^i along x, sizes growing alike: a skewed set for the SAH.
     Primitives prims;
     for (int i = 0; i < 3000; ++i) {
         double x = std::pow(1.02, i), s = 0.01 * x;
         prims.addTriangle({x, 0, 0}, {x + s, 0, 0}, {x, s, s}, nullptr, 0);
     }
-    Bvh bvh;
-    bvh.build(prims);
-    expectSaneTree(bvh, prims.size());
-    Agreement a = compareOnRandomRays(prims, 500, 6);
+    Bvh bvh = build(prims);
+    expectSaneTree(bvh, prims);
+    Agreement a = compareOnRandomRays(prims, 500, 6, GetParam());
     EXPECT_EQ(a.mismatches, 0) << a.first;
 }
 
-TEST(Bvh, RebuildingReplacesTheTree) {
+TEST_P(BvhKernels, RebuildingReplacesTheTree) {
     Primitives big, small;
     Random r(1);
     addRandomScene(big, r, 500, 50);
     small.addSphere(Sphere{{0, 0, 5}, 1, {}}, 0);
-    Bvh bvh;
-    bvh.build(big);
-    bvh.build(small);
-    EXPECT_EQ(bvh.stats().nodes, 1u);
+    Bvh bvh = build(big);
+    bvh.build(small, {0, GetParam()});
+    EXPECT_EQ(bvh.stats().nodes, 0u);  // one primitive: the root is a leaf
+    EXPECT_EQ(bvh.stats().leaves, 1u);
     Hit hit;
     ASSERT_TRUE(bvh.intersect(Ray{{0, 0, 0}, {0, 0, 1}, 0, kInfinity}, hit));
     EXPECT_EQ(hit.primId, 0u);
 }
+
+TEST_P(BvhKernels, PacketsGiveTheSameHitsAsSingleRays) {
+    Primitives prims;
+    Random r(31);
+    addRandomScene(prims, r, 3000, 300);
+    Bvh bvh = build(prims);
+    int lanes = 0;
+    for (int p = 0; p < 400; ++p) {
+        RayPacket8 packet;
+        packet.active = static_cast<uint8_t>(p % 5 == 0 ? r.below(256) : 0xff);
+        // Coherent packets (a small cone from one origin) and incoherent ones.
+        Vec3 origin = r.point(-15, 15), base = r.direction();
+        Ray rays[8];
+        for (int i = 0; i < 8; ++i) {
+            rays[i] = p % 2 ? Ray{origin, normalize(base + r.point(-0.05, 0.05)), 0, kInfinity}
+                            : randomRay(prims, r, i);
+            packet.set(i, TraversalRay(rays[i]));
+        }
+        HitPacket8 hits;
+        bvh.intersect8(packet, hits);
+        for (int i = 0; i < 8; ++i) {
+            Hit single;
+            bool found = (packet.active >> i & 1) && bvh.intersect(packet.ray(i), single);
+            EXPECT_EQ(hits.t[i], single.t) << "packet " << p << " lane " << i;
+            if (found) {
+                EXPECT_EQ(hits.primId[i], single.primId);
+            }
+            lanes += found;
+        }
+    }
+    EXPECT_GT(lanes, 400);
+}
+
+TEST_P(BvhKernels, TheTreeDoesNotDependOnTheBuildThreadCount) {
+    Primitives prims;
+    Random r(8);
+    addRandomScene(prims, r, 40000, 2000);
+    Bvh one = build(prims, 1), four = build(prims, 4);
+    const bvh::BvhData &a = one.data(), &b = four.data();
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    ASSERT_EQ(a.tris.size(), b.tris.size());
+    EXPECT_EQ(a.root, b.root);
+    EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(bvh::Node8)), 0);
+    EXPECT_EQ(std::memcmp(a.tris.data(), b.tris.data(), a.tris.size() * sizeof(bvh::Tri4)), 0);
+    EXPECT_EQ(a.sphereIds, b.sphereIds);
+}
+
+TEST(Bvh, KernelSetsGiveIdenticalHits) {
+    // The portable kernels are the reference: every other set must match them bit for bit.
+    Primitives prims;
+    Random r(5);
+    addRandomScene(prims, r, 5000, 500);
+    Bvh reference;
+    reference.build(prims, {0, Isa::Portable});
+    for (Isa isa : kernelSets()) {
+        Bvh other;
+        other.build(prims, {0, isa});
+        Random rays(6);
+        int differ = 0;
+        for (int i = 0; i < 5000; ++i) {
+            Ray ray = randomRay(prims, rays, i);
+            Hit a, b;
+            bool fa = reference.intersect(ray, a), fb = other.intersect(ray, b);
+            differ += fa != fb || a.t != b.t || a.primId != b.primId ||
+                      reference.occluded(ray) != other.occluded(ray);
+        }
+        EXPECT_EQ(differ, 0) << Bvh::name(isa);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Kernels, BvhKernels, testing::ValuesIn(kernelSets()),
+                         [](const auto& p) { return std::string(Bvh::name(p.param)); });
 
 }  // namespace
 }  // namespace glint

@@ -1,0 +1,25 @@
+#pragma once
+/// Building Glint's 8-wide BVH (see bvh_layout.h).
+
+#include <cstdint>
+
+#include "glint/accel/bvh_layout.h"
+#include "glint/geometry/primitives.h"
+
+namespace glint::bvh {
+
+struct BuildSummary {
+    uint32_t leaves = 0;
+    uint32_t maxDepth = 0;     ///< Levels of 8-wide nodes below the root.
+    uint32_t maxLeafSize = 0;  ///< Primitives in the largest leaf.
+};
+
+/// Deepest tree the builder makes (levels of 8-wide nodes). Traversal stacks hold
+/// 7 * kMaxDepth + 1 entries: at most seven pushes per level.
+constexpr uint32_t kMaxDepth = 80;
+
+/// Builds over all primitives of `prims` with binned SAH on `threads` threads (>= 1).
+/// Replaces `out`. Throws std::length_error past the layout's limits (2^26 leaf items).
+BuildSummary build(const Primitives& prims, int threads, BvhData& out);
+
+}  // namespace glint::bvh

@@ -1,0 +1,118 @@
+// The AVX2 traversal kernels. Every header is included first, for the baseline instruction set;
+// only the code below the target pragma, in its own namespace, may use AVX2. So no inline
+// function shared with other files is ever compiled with AVX2 (which could leak AVX2
+// instructions into the portable path through the linker's choice of one copy).
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <bit>
+#include <limits>
+
+#include "glint/accel/bvh_build.h"
+#include "glint/accel/bvh_kernels.h"
+#include "glint/geometry/sphere.h"
+#include "glint/geometry/triangle.h"
+
+#pragma GCC push_options
+#pragma GCC target("avx2")
+
+namespace glint::bvh::avx2 {
+namespace {
+
+struct Isa {
+    struct RayBoxes {
+        __m256 origin[3], invDir[3], tMin;
+        int nearHi[3];  ///< 1 where the ray runs towards -axis: enter through `hi`.
+
+        explicit RayBoxes(const TraversalRay& r) {
+            for (int a = 0; a < 3; ++a) {
+                origin[a] = _mm256_set1_ps(r.origin[a]);
+                invDir[a] = _mm256_set1_ps(r.invDir[a]);
+                nearHi[a] = r.invDir[a] < 0;
+            }
+            tMin = _mm256_set1_ps(r.tMin);
+        }
+    };
+
+    static uint32_t boxes(const Node8& n, const RayBoxes& r, float tMax, float* tNear) {
+        const __m256 farScale = _mm256_set1_ps(1 + 4 * std::numeric_limits<float>::epsilon());
+        __m256 enter = r.tMin, exit = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+        for (int a = 0; a < 3; ++a) {
+            const float* nearPlane = r.nearHi[a] ? n.hi[a] : n.lo[a];
+            const float* farPlane = r.nearHi[a] ? n.lo[a] : n.hi[a];
+            __m256 tn =
+                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(nearPlane), r.origin[a]), r.invDir[a]);
+            __m256 tf =
+                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(farPlane), r.origin[a]), r.invDir[a]);
+            enter = _mm256_max_ps(enter, tn);
+            exit = _mm256_min_ps(exit, tf);
+        }
+        exit = _mm256_min_ps(_mm256_mul_ps(exit, farScale), _mm256_set1_ps(tMax));
+        _mm256_store_ps(tNear, enter);
+        return static_cast<uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
+    }
+
+    static uint32_t triangles(const Tri4& b, const TraversalRay& ray, float tBest, float* t) {
+        // The operations of intersectTriangle(), in the same order, four lanes at a time.
+        const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+        const __m128 ox = _mm_set1_ps(ray.origin[kx]), oy = _mm_set1_ps(ray.origin[ky]),
+                     oz = _mm_set1_ps(ray.origin[kz]);
+        const __m128 sx = _mm_set1_ps(ray.sx), sy = _mm_set1_ps(ray.sy), sz = _mm_set1_ps(ray.sz);
+        auto shear = [&](const float(&v)[3][kLanes], __m128& x, __m128& y, __m128& z) {
+            __m128 px = _mm_sub_ps(_mm_load_ps(v[kx]), ox);
+            __m128 py = _mm_sub_ps(_mm_load_ps(v[ky]), oy);
+            z = _mm_sub_ps(_mm_load_ps(v[kz]), oz);
+            x = _mm_sub_ps(px, _mm_mul_ps(sx, z));
+            y = _mm_sub_ps(py, _mm_mul_ps(sy, z));
+        };
+        __m128 ax, ay, az, bx, by, bz, cx, cy, cz;
+        shear(b.v0, ax, ay, az);
+        shear(b.v1, bx, by, bz);
+        shear(b.v2, cx, cy, cz);
+        __m128 u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+        __m128 v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+        __m128 w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+        const __m128 zero = _mm_setzero_ps();
+        __m128 anyNeg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)),
+                                  _mm_cmplt_ps(w, zero));
+        __m128 anyPos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)),
+                                  _mm_cmpgt_ps(w, zero));
+        __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
+        __m128 tScaled = _mm_add_ps(
+            _mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, az)), _mm_mul_ps(v, _mm_mul_ps(sz, bz))),
+            _mm_mul_ps(w, _mm_mul_ps(sz, cz)));
+        __m128 tHit = _mm_div_ps(tScaled, det);
+        __m128 ok = _mm_andnot_ps(_mm_and_ps(anyNeg, anyPos), _mm_cmpneq_ps(det, zero));
+        ok = _mm_and_ps(ok, _mm_cmpgt_ps(tHit, _mm_set1_ps(ray.tMin)));
+        ok = _mm_and_ps(ok, _mm_cmplt_ps(tHit, _mm_set1_ps(ray.tMax)));
+        ok = _mm_and_ps(ok, _mm_cmple_ps(tHit, _mm_set1_ps(tBest)));
+        _mm_store_ps(t, tHit);
+        return static_cast<uint32_t>(_mm_movemask_ps(ok));
+    }
+};
+
+#include "glint/accel/bvh_traverse.inl"
+
+}  // namespace
+
+bool intersect(const BvhData& d, const TraversalRay& ray, Hit& hit) {
+    return traverse<false>(d, ray, hit);
+}
+
+bool occluded(const BvhData& d, const TraversalRay& ray) {
+    Hit hit;
+    return traverse<true>(d, ray, hit);
+}
+
+void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
+    for (int i = 0; i < 8; ++i) {
+        if (!(rays.active >> i & 1)) continue;
+        Hit h;
+        if (traverse<false>(d, rays.ray(i), h)) hits.t[i] = h.t, hits.primId[i] = h.primId;
+    }
+}
+
+}  // namespace glint::bvh::avx2
+
+#pragma GCC pop_options

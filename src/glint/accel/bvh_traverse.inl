@@ -1,0 +1,123 @@
+// Generic BVH traversal, instantiated once per instruction set (bvh_isa_*.cpp).
+//
+// Included inside a namespace that defines `struct Isa` with
+//   struct Isa::RayBoxes { explicit RayBoxes(const TraversalRay&); };
+//   static uint32_t Isa::boxes(const Node8&, const RayBoxes&, float tMax, float* tNear);
+//     -> bit i set when child i's box meets [tMin, tMax] (conservatively); tNear[i] its entry;
+//   static uint32_t Isa::triangles(const Tri4&, const TraversalRay&, float tBest, float* t);
+//     -> bit i set when lane i is hit with tMin < t < tMax and t <= tBest, computing t exactly
+//        as intersectTriangle() does;
+// and nothing else: everything here is ISA-independent. This file has no includes: the
+// including file provides them before opening its namespace.
+
+/// Widening of far distances and of the current best distance, so that rounding never culls
+/// a box holding a hit at (or tied with) the best one.
+constexpr float kFarScale = 1 + 4 * std::numeric_limits<float>::epsilon();
+
+struct StackEntry {
+    NodeRef ref;
+    float dist;
+};
+constexpr int kStackSize = 7 * static_cast<int>(kMaxDepth) + 1;
+
+/// Tests a leaf. Closest hit: updates `hit` by the closerHit rule. Any hit: returns true at the
+/// first hit within the ray's range.
+template <bool AnyHit>
+inline bool leafHits(const BvhData& d, NodeRef ref, const TraversalRay& ray, Hit& hit) {
+    uint32_t first = leafFirst(ref), count = leafCount(ref);
+    bool found = false;
+    if (isSphereLeaf(ref)) {
+        for (uint32_t i = first; i < first + count; ++i) {
+            float t;
+            if (!intersectSphere(d.spheres[i], ray, t)) continue;
+            if constexpr (AnyHit) return true;
+            if (closerHit(t, d.sphereIds[i], hit)) hit = {t, d.sphereIds[i]}, found = true;
+        }
+        return found;
+    }
+    for (uint32_t b = first; b < first + count; ++b) {
+        alignas(16) float t[kLanes];
+        uint32_t lanes = Isa::triangles(d.tris[b], ray, hit.t, t);
+        if constexpr (AnyHit) {
+            if (lanes) return true;
+        }
+        while (lanes) {
+            int lane = std::countr_zero(lanes);
+            lanes &= lanes - 1;
+            uint32_t id = d.tris[b].id[lane];
+            if (closerHit(t[lane], id, hit)) hit = {t[lane], id}, found = true;
+        }
+    }
+    return found;
+}
+
+/// Closest hit (ordered, near child first, culling by distance) or any hit.
+template <bool AnyHit>
+bool traverse(const BvhData& d, const TraversalRay& ray, Hit& hit) {
+    if (d.root == kEmpty) return false;
+    const typename Isa::RayBoxes boxes(ray);
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    NodeRef ref = d.root;
+    bool found = false;
+    float limit = std::min(ray.tMax, hit.t) * kFarScale;
+    for (;;) {
+        // Descend to a leaf, pushing the other children met on the way.
+        bool reachedLeaf = true;
+        while (!isLeaf(ref)) {
+            const Node8& n = d.nodes[ref];
+            alignas(32) float dist[kWidth];
+            uint32_t mask = Isa::boxes(n, boxes, limit, dist);
+            if (mask == 0) {
+                reachedLeaf = false;
+                break;
+            }
+            int first = std::countr_zero(mask);
+            mask &= mask - 1;
+            if (mask == 0) {
+                ref = n.child[first];
+                continue;
+            }
+            if constexpr (AnyHit) {
+                while (mask) {
+                    int c = std::countr_zero(mask);
+                    mask &= mask - 1;
+                    stack[sp++] = {n.child[c], dist[c]};
+                }
+                ref = n.child[first];
+                continue;
+            }
+            // Two or more children: visit the nearest, push the rest farthest first.
+            StackEntry hits[kWidth];
+            int k = 0;
+            hits[k++] = {n.child[first], dist[first]};
+            while (mask) {
+                int c = std::countr_zero(mask);
+                mask &= mask - 1;
+                StackEntry e{n.child[c], dist[c]};
+                int j = k++;
+                while (j > 0 && hits[j - 1].dist < e.dist) {
+                    hits[j] = hits[j - 1];
+                    --j;
+                }
+                hits[j] = e;
+            }
+            for (int i = 0; i < k - 1; ++i) stack[sp++] = hits[i];
+            ref = hits[k - 1].ref;
+        }
+        if (reachedLeaf && leafHits<AnyHit>(d, ref, ray, hit)) {
+            if constexpr (AnyHit) return true;
+            found = true;
+            limit = std::min(ray.tMax, hit.t) * kFarScale;
+        }
+        // Pop the next subtree that can still hold a hit.
+        for (;;) {
+            if (sp == 0) return found;
+            const StackEntry& e = stack[--sp];
+            if (AnyHit || e.dist <= limit) {
+                ref = e.ref;
+                break;
+            }
+        }
+    }
+}
