@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <condition_variable>
 #include <functional>
 #include <limits>
@@ -11,10 +12,15 @@
 #include <stdexcept>
 #include <thread>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace glint::bvh {
 namespace {
 
 constexpr int kBins = 16;
+constexpr uint32_t kAllAxesFrom = 32;  // smaller ranges are split along their longest axis
 constexpr uint32_t kMaxLeafTriangles = 2 * kLanes;  // two blocks
 constexpr uint32_t kMaxLeafSpheres = 4;
 constexpr float kTraversalCost = 1;  // a node visit, relative to one triangle block or sphere
@@ -22,19 +28,95 @@ constexpr uint32_t kMedianSplitDepth = 48;  // deeper binary splits halve by cou
 constexpr uint32_t kTaskThreshold = 8192;   // subtrees at least this big may go to idle threads
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
+/// Four floats: SSE where available, plain arrays elsewhere. Lane 3 is always 0 in boxes.
+#if defined(__SSE2__)
+struct V4 {
+    __m128 v;
+    static V4 load(const float* p) { return {_mm_and_ps(_mm_load_ps(p), xyzMask())}; }
+    static V4 splat(float f) { return {_mm_set1_ps(f)}; }
+    static V4 of(float x, float y, float z) { return {_mm_setr_ps(x, y, z, 0)}; }
+    friend V4 min(V4 a, V4 b) { return {_mm_min_ps(a.v, b.v)}; }
+    friend V4 max(V4 a, V4 b) { return {_mm_max_ps(a.v, b.v)}; }
+    friend V4 operator+(V4 a, V4 b) { return {_mm_add_ps(a.v, b.v)}; }
+    friend V4 operator-(V4 a, V4 b) { return {_mm_sub_ps(a.v, b.v)}; }
+    friend V4 operator*(V4 a, V4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+    void store(float* out) const { _mm_storeu_ps(out, v); }
+
+  private:
+    static __m128 xyzMask() { return _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)); }
+};
+#else
+struct V4 {
+    float v[4];
+    static V4 load(const float* p) { return {{p[0], p[1], p[2], 0}}; }
+    static V4 splat(float f) { return {{f, f, f, f}}; }
+    static V4 of(float x, float y, float z) { return {{x, y, z, 0}}; }
+    template <typename F>
+    static V4 zip(V4 a, V4 b, F f) {
+        return {{f(a.v[0], b.v[0]), f(a.v[1], b.v[1]), f(a.v[2], b.v[2]), f(a.v[3], b.v[3])}};
+    }
+    friend V4 min(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return y < x ? y : x; });
+    }
+    friend V4 max(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x < y ? y : x; });
+    }
+    friend V4 operator+(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x + y; });
+    }
+    friend V4 operator-(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x - y; });
+    }
+    friend V4 operator*(V4 a, V4 b) {
+        return zip(a, b, [](float x, float y) { return x * y; });
+    }
+    void store(float* out) const { std::copy(v, v + 4, out); }
+};
+#endif
+
+/// A box as two V4 (lane 3 unused).
+struct Box4 {
+    V4 lo = V4::splat(kInf), hi = V4::splat(-kInf);
+
+    void extend(V4 l, V4 h) { lo = min(lo, l), hi = max(hi, h); }
+    void extend(V4 p) { lo = min(lo, p), hi = max(hi, p); }
+    void extend(const Box4& b) { lo = min(lo, b.lo), hi = max(hi, b.hi); }
+    Bounds3f bounds3() const {
+        alignas(16) float l[4], h[4];
+        lo.store(l);
+        hi.store(h);
+        return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+    }
+    /// Surface area; +inf for an empty box (never used with zero primitives).
+    float area() const {
+#if defined(__SSE2__)
+        __m128 d = _mm_sub_ps(hi.v, lo.v);                                 // dx dy dz 0
+        __m128 rot = _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 0, 2, 1));        // dy dz dx 0
+        __m128 p = _mm_mul_ps(d, rot);                                     // xy yz zx 0
+        __m128 s = _mm_add_ps(p, _mm_movehl_ps(p, p));                     // xy+zx yz ..
+        s = _mm_add_ss(s, _mm_shuffle_ps(s, s, _MM_SHUFFLE(1, 1, 1, 1)));  // sum
+        return 2 * _mm_cvtss_f32(s);
+#else
+        return bounds3().area();
+#endif
+    }
+};
+
 /// A primitive's bounds during the build; lo + hi stands for its centroid (twice it).
-struct PrimRef {
-    Vec3f lo;
+struct alignas(16) PrimRef {
+    float lo[3];
     uint32_t id;
-    Vec3f hi;
+    float hi[3];
     uint32_t sphere;  ///< 1 for spheres, 0 for triangles.
 
-    Vec3f centroid2() const { return lo + hi; }
+    V4 lo4() const { return V4::load(lo); }
+    V4 hi4() const { return V4::load(hi); }
+    float centroid2(int axis) const { return lo[axis] + hi[axis]; }
 };
 
 struct Range {
     uint32_t begin = 0, end = 0, spheres = 0;
-    Bounds3f bounds, centroids;  ///< Centroids as lo + hi.
+    Box4 bounds, centroids;  ///< Centroids as lo + hi.
 
     uint32_t size() const { return end - begin; }
     uint32_t triangles() const { return size() - spheres; }
@@ -156,7 +238,8 @@ class TaskPool {
 
 class Builder {
   public:
-    Builder(std::vector<PrimRef>& refs, int threads) : refs_(refs), leaves_(refs.size()) {
+    Builder(std::vector<PrimRef>& refs, int threads)
+        : refs_(refs), leaves_(refs.size()), threads_(threads) {
         if (threads > 1) pool_ = std::make_unique<TaskPool>(threads);
     }
 
@@ -184,58 +267,127 @@ class Builder {
         Range r;
         r.begin = begin;
         r.end = end;
-        for (uint32_t i = begin; i < end; ++i) {
-            const PrimRef& p = refs_[i];
-            r.bounds.extend(p.lo);
-            r.bounds.extend(p.hi);
-            r.centroids.extend(p.centroid2());
-            r.spheres += p.sphere;
-        }
+        for (uint32_t i = begin; i < end; ++i) add(r, refs_[i]);
         return r;
     }
 
-    static int binOf(float c, float lo, float scale) {
-        int b = static_cast<int>((c - lo) * scale);
-        return std::clamp(b, 0, kBins - 1);
+    static void add(Range& r, const PrimRef& p) {
+        V4 lo = p.lo4(), hi = p.hi4();
+        r.bounds.extend(lo, hi);
+        r.centroids.extend(lo + hi);
+        r.spheres += p.sphere;
+    }
+
+    /// Where centroids fall in the bins of `r`: bin = clamp((c - lo) * scale, 0, kBins - 1),
+    /// computed the same way when binning (four axes at a time) and when partitioning.
+    /// Small ranges use fewer bins (one per primitive): their sweeps dominate otherwise.
+    struct Binning {
+        int count;
+        V4 lo, scale;
+        float loAxis[4], scaleAxis[4];
+
+        explicit Binning(const Range& r)
+            : count(static_cast<int>(std::clamp<uint32_t>(r.size(), 2, kBins))) {
+            Bounds3f c = r.centroids.bounds3();
+            Vec3f extent = c.diagonal();
+            float s[3];
+            for (int a = 0; a < 3; ++a)
+                s[a] = extent[a] > 0 ? static_cast<float>(count) / extent[a] : 0;
+            lo = V4::of(c.lo.x, c.lo.y, c.lo.z);
+            scale = V4::of(s[0], s[1], s[2]);
+            for (int a = 0; a < 3; ++a) loAxis[a] = c.lo[a], scaleAxis[a] = s[a];
+        }
+        /// Bins of a centroid on the three axes.
+        void bins(V4 centroid, int* out) const {
+            alignas(16) float f[4];
+            min(max((centroid - lo) * scale, V4::splat(0)), V4::splat(last())).store(f);
+            for (int a = 0; a < 3; ++a) out[a] = static_cast<int>(f[a]);
+        }
+        int bin(const PrimRef& p, int axis) const {
+            float f = (p.centroid2(axis) - loAxis[axis]) * scaleAxis[axis];
+            return static_cast<int>(std::min(std::max(f, 0.0f), last()));
+        }
+        float last() const { return static_cast<float>(count - 1); }
+    };
+
+    struct Bin {
+        Box4 bounds;
+        uint32_t triangles = 0, spheres = 0;
+    };
+    using Bins = std::array<std::array<Bin, kBins>, 3>;  // the first Binning::count are used
+
+    void binRange(const Binning& binning, uint32_t begin, uint32_t end, Bins& bins) const {
+        for (uint32_t i = begin; i < end; ++i) {
+            const PrimRef& p = refs_[i];
+            V4 lo = p.lo4(), hi = p.hi4();
+            int b[3];
+            binning.bins(lo + hi, b);
+            for (int a = 0; a < 3; ++a) {
+                Bin& bin = bins[a][b[a]];
+                bin.bounds.extend(lo, hi);
+                bin.triangles += 1 - p.sphere;
+                bin.spheres += p.sphere;
+            }
+        }
+    }
+
+    /// Bins all of `r`, in parallel chunks when it is large and threads are idle.
+    void binAll(const Range& r, const Binning& binning, Bins& bins) const {
+        constexpr uint32_t kParallelBinning = 1u << 16;
+        int threads =
+            pool_ && r.size() >= kParallelBinning && pool_->hasIdleWorker() ? threads_ : 1;
+        if (threads == 1) return binRange(binning, r.begin, r.end, bins);
+        std::vector<Bins> partial(static_cast<size_t>(threads));
+        std::vector<std::thread> workers;
+        uint32_t chunk =
+            (r.size() + static_cast<uint32_t>(threads) - 1) / static_cast<uint32_t>(threads);
+        for (int t = 0; t < threads; ++t) {
+            uint32_t b = r.begin + static_cast<uint32_t>(t) * chunk;
+            uint32_t e = std::min(r.end, b + chunk);
+            if (t + 1 < threads)
+                workers.emplace_back([&, b, e, t] { binRange(binning, b, e, partial[t]); });
+            else
+                binRange(binning, b, e, partial[t]);
+        }
+        for (auto& w : workers) w.join();
+        for (const Bins& p : partial)
+            for (int a = 0; a < 3; ++a)
+                for (int k = 0; k < binning.count; ++k) {
+                    bins[a][k].bounds.extend(p[a][k].bounds);
+                    bins[a][k].triangles += p[a][k].triangles;
+                    bins[a][k].spheres += p[a][k].spheres;
+                }
     }
 
     /// Leaf, or how to split: binned SAH over the three axes, else halving by count.
     Decision decide(const Range& r, uint32_t depth) const {
         uint32_t n = r.size();
-        if (n <= 1) return {};
+        // One block of triangles: any split costs a node visit plus two blocks' worth of area.
+        if (n <= 1 || (r.spheres == 0 && n <= kLanes)) return {};
         bool mixed = r.spheres != 0 && r.spheres != n;
+        Bounds3f centroids = r.centroids.bounds3();
         if (depth >= kMedianSplitDepth) {
             if (fitsOneLeaf(r)) return {};
-            return {mixed ? SplitKind::Types : SplitKind::Median, r.centroids.longestAxis(), 0};
+            return {mixed ? SplitKind::Types : SplitKind::Median, centroids.longestAxis(), 0};
         }
 
-        struct Bin {
-            Bounds3f bounds;
-            uint32_t triangles = 0, spheres = 0;
-        };
-        std::array<std::array<Bin, kBins>, 3> bins{};
-        Vec3f extent = r.centroids.diagonal(), scale;
-        for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0 ? kBins / extent[a] : 0;
-        for (uint32_t i = r.begin; i < r.end; ++i) {
-            const PrimRef& p = refs_[i];
-            Vec3f c = p.centroid2();
-            for (int a = 0; a < 3; ++a) {
-                Bin& b = bins[a][binOf(c[a], r.centroids.lo[a], scale[a])];
-                b.bounds.extend(p.lo);
-                b.bounds.extend(p.hi);
-                b.triangles += 1 - p.sphere;
-                b.spheres += p.sphere;
-            }
-        }
+        Binning binning(r);
+        const int nb = binning.count;
+        Bins bins;
+        for (int a = 0; a < 3; ++a) std::fill_n(bins[a].begin(), nb, Bin{});
+        binAll(r, binning, bins);
 
+        Vec3f extent = centroids.diagonal();
         float bestCost = kInf;
         int bestAxis = -1, bestBin = 0;
+        // Small ranges: only the longest axis (the sweeps cost more than the binning there).
+        const int longest = centroids.longestAxis();
         for (int a = 0; a < 3; ++a) {
-            if (!(extent[a] > 0)) continue;
+            if (!(extent[a] > 0) || (n < kAllAxesFrom && a != longest)) continue;
             std::array<float, kBins> right{};
-            Bounds3f acc;
+            Box4 acc;
             uint32_t tris = 0, sph = 0;
-            for (int b = kBins - 1; b > 0; --b) {
+            for (int b = nb - 1; b > 0; --b) {
                 acc.extend(bins[a][b].bounds);
                 tris += bins[a][b].triangles;
                 sph += bins[a][b].spheres;
@@ -243,7 +395,7 @@ class Builder {
             }
             acc = {};
             tris = sph = 0;
-            for (int b = 0; b < kBins - 1; ++b) {
+            for (int b = 0; b < nb - 1; ++b) {
                 acc.extend(bins[a][b].bounds);
                 tris += bins[a][b].triangles;
                 sph += bins[a][b].spheres;
@@ -261,40 +413,48 @@ class Builder {
         // All centroids coincide (or the areas are degenerate): halve, separating types first.
         if (mixed) return {SplitKind::Types, 0, 0};
         if (fitsOneLeaf(r)) return {};
-        return {SplitKind::Median, r.centroids.longestAxis(), 0};
+        return {SplitKind::Median, centroids.longestAxis(), 0};
     }
 
-    /// Splits `r` as decided; returns the split point.
-    uint32_t partition(const Range& r, const Decision& d) {
-        PrimRef* first = refs_.data() + r.begin;
-        PrimRef* last = refs_.data() + r.end;
-        PrimRef* mid = nullptr;
-        switch (d.kind) {
-            case SplitKind::Sah: {
-                float lo = r.centroids.lo[d.axis];
-                float scale = kBins / r.centroids.diagonal()[d.axis];
-                int axis = d.axis, bin = d.bin;
-                mid = std::partition(first, last, [&](const PrimRef& p) {
-                    return binOf(p.centroid2()[axis], lo, scale) <= bin;
-                });
-                break;
-            }
-            case SplitKind::Types:
-                mid = std::partition(first, last, [](const PrimRef& p) { return p.sphere == 0; });
-                break;
-            case SplitKind::Median:
-            case SplitKind::Leaf: {
-                mid = first + r.size() / 2;
-                int axis = d.axis;
-                std::nth_element(first, mid, last, [axis](const PrimRef& a, const PrimRef& b) {
-                    return a.centroid2()[axis] < b.centroid2()[axis];
-                });
-                break;
-            }
+    /// Moves the refs of `r` for which `left` holds to the front, computing both sides' ranges
+    /// on the way (no second pass over the data).
+    template <typename Pred>
+    std::pair<Range, Range> partitionBy(const Range& r, Pred left) {
+        Range L, R;
+        uint32_t i = r.begin, j = r.end;
+        for (;;) {
+            while (i < j && left(refs_[i])) add(L, refs_[i++]);
+            while (i < j && !left(refs_[j - 1])) add(R, refs_[--j]);
+            if (i >= j) break;
+            std::swap(refs_[i], refs_[j - 1]);
+            add(L, refs_[i++]);
+            add(R, refs_[--j]);
         }
-        auto split = static_cast<uint32_t>(mid - refs_.data());
-        if (split == r.begin || split == r.end) split = r.begin + r.size() / 2;  // safety net
-        return split;
+        L.begin = r.begin, L.end = i, R.begin = i, R.end = r.end;
+        return {L, R};
+    }
+
+    /// Splits `r` as decided into two non-empty ranges.
+    std::pair<Range, Range> split(const Range& r, const Decision& d) {
+        std::pair<Range, Range> parts;
+        if (d.kind == SplitKind::Sah) {
+            Binning binning(r);
+            int axis = d.axis, bin = d.bin;
+            parts = partitionBy(r, [&](const PrimRef& p) { return binning.bin(p, axis) <= bin; });
+        } else if (d.kind == SplitKind::Types) {
+            parts = partitionBy(r, [](const PrimRef& p) { return p.sphere == 0; });
+        }
+        if (parts.first.size() == 0 || parts.second.size() == 0) {
+            // Median (or a safety net for a split that separated nothing): halve by count.
+            uint32_t mid = r.begin + r.size() / 2;
+            int axis = d.axis;
+            std::nth_element(refs_.data() + r.begin, refs_.data() + mid, refs_.data() + r.end,
+                             [axis](const PrimRef& a, const PrimRef& b) {
+                                 return a.centroid2(axis) < b.centroid2(axis);
+                             });
+            parts = {makeRange(r.begin, mid), makeRange(mid, r.end)};
+        }
+        return parts;
     }
 
     uint32_t makeLeaf(const Range& r) {
@@ -327,8 +487,7 @@ class Builder {
                     best = static_cast<int>(i), bestArea = slots[i].range.bounds.area();
             if (best < 0) break;
             Slot s = slots[best];
-            uint32_t mid = partition(s.range, s.decision);
-            Range left = makeRange(s.range.begin, mid), right = makeRange(mid, s.range.end);
+            auto [left, right] = split(s.range, s.decision);
             slots[best] = {left, decide(left, s.depth + 1), s.depth + 1};
             slots[count++] = {right, decide(right, s.depth + 1), s.depth + 1};
         }
@@ -338,7 +497,7 @@ class Builder {
         node.count = count;
         uint32_t deepest = level + 1;
         for (uint32_t i = 0; i < count; ++i) {
-            node.bounds[i] = slots[i].range.bounds;
+            node.bounds[i] = slots[i].range.bounds.bounds3();
             node.child[i] = kEmpty;
         }
         for (uint32_t i = 0; i < count; ++i) {
@@ -365,6 +524,7 @@ class Builder {
     std::atomic<uint32_t> leafCount_{0};
     std::atomic<uint32_t> maxDepth_{0};
     NodePool nodes_;
+    int threads_;
     std::unique_ptr<TaskPool> pool_;
 };
 
@@ -458,7 +618,10 @@ BuildSummary build(const Primitives& prims, int threads, BvhData& out) {
     std::vector<PrimRef> refs(n);
     for (uint32_t i = 0; i < n; ++i) {
         Bounds3f b = prims.bounds(i);
-        refs[i] = {b.lo, i, b.hi, i < prims.triangleCount() ? 0u : 1u};
+        refs[i] = {{b.lo.x, b.lo.y, b.lo.z},
+                   i,
+                   {b.hi.x, b.hi.y, b.hi.z},
+                   i < prims.triangleCount() ? 0u : 1u};
     }
 
     Builder builder(refs, std::max(1, threads));
