@@ -34,13 +34,14 @@ struct TraversalRay {
     float sx, sy, sz;
 
     explicit TraversalRay(const Ray& r)
-        : origin(r.origin),
-          dir(r.dir),
-          tMin(static_cast<float>(r.tMin)),
-          tMax(static_cast<float>(r.tMax)) {
+        : TraversalRay(Vec3f(r.origin), Vec3f(r.dir), static_cast<float>(r.tMin),
+                       static_cast<float>(r.tMax)) {}
+
+    TraversalRay(const Vec3f& o, const Vec3f& d, float t0, float t1)
+        : origin(o), dir(d), tMin(t0), tMax(t1) {
         for (int a = 0; a < 3; ++a) {
-            float d = dir[a];
-            invDir[a] = std::abs(d) < 1e-18f ? (d < 0 ? -1e18f : 1e18f) : 1 / d;
+            float c = dir[a];
+            invDir[a] = std::abs(c) < 1e-18f ? (c < 0 ? -1e18f : 1e18f) : 1 / c;
         }
         Vec3f ad(std::abs(dir.x), std::abs(dir.y), std::abs(dir.z));
         kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
@@ -74,10 +75,8 @@ struct alignas(32) RayPacket8 {
 
     /// Lane `lane` as a single ray.
     TraversalRay ray(int lane) const {
-        return TraversalRay(Ray{{ox[lane], oy[lane], oz[lane]},
-                                {dx[lane], dy[lane], dz[lane]},
-                                tMin[lane],
-                                tMax[lane]});
+        return {{ox[lane], oy[lane], oz[lane]}, {dx[lane], dy[lane], dz[lane]}, tMin[lane],
+                tMax[lane]};
     }
     void set(int lane, const TraversalRay& r) {
         ox[lane] = r.origin.x, oy[lane] = r.origin.y, oz[lane] = r.origin.z;
