@@ -6,6 +6,7 @@
 
 #include "glint/accel/bvh_build.h"
 #include "glint/accel/bvh_kernels.h"
+#include "glint/accel/bvh_packet.h"
 #include "glint/geometry/sphere.h"
 #include "glint/geometry/triangle.h"
 
@@ -53,6 +54,51 @@ struct Isa {
         }
         return mask;
     }
+
+    // Packets (see bvh_traverse.inl): plain loops over the eight rays.
+    struct PacketBoxes {
+        const Packet* p;
+        explicit PacketBoxes(const Packet& packet) : p(&packet) {}
+    };
+    struct PacketLanes {
+        const Packet* p;
+        explicit PacketLanes(const Packet& packet) : p(&packet) {}
+    };
+
+    static uint32_t packetBoxes(const Node8& n, const PacketBoxes& b, float tMax, float* tNear) {
+        constexpr float farScale = 1 + 4 * std::numeric_limits<float>::epsilon();
+        const Packet& p = *b.p;
+        uint32_t mask = 0;
+        for (int i = 0; i < kWidth; ++i) {
+            float enter = p.tMin, exit = std::numeric_limits<float>::infinity();
+            for (int a = 0; a < 3; ++a) {
+                float dn = (p.nearHi[a] ? n.hi[a][i] : n.lo[a][i]) - p.origin[a];
+                float df = (p.nearHi[a] ? n.lo[a][i] : n.hi[a][i]) - p.origin[a];
+                enter = std::max(enter, std::min(dn * p.invLo[a], dn * p.invHi[a]));
+                exit = std::min(exit, std::max(df * p.invLo[a], df * p.invHi[a]));
+            }
+            exit = std::min(exit * farScale, tMax);
+            tNear[i] = enter;
+            mask |= static_cast<uint32_t>(enter <= exit) << i;
+        }
+        return mask;
+    }
+
+    static void packetTriangles(const Tri4& b, const PacketLanes& l, float* bestT,
+                                uint32_t* bestId) {
+        for (int lane = 0; lane < 8; ++lane) {
+            if (!(l.p->active >> lane & 1)) continue;
+            Hit hit{bestT[lane], bestId[lane]};
+            alignas(16) float t[kLanes];
+            uint32_t hits = triangles(b, l.p->rays[lane], hit.t, t);
+            while (hits) {
+                int k = std::countr_zero(hits);
+                hits &= hits - 1;
+                if (closerHit(t[k], b.id[k], hit)) hit = {t[k], b.id[k]};
+            }
+            bestT[lane] = hit.t, bestId[lane] = hit.primId;
+        }
+    }
 };
 
 #include "glint/accel/bvh_traverse.inl"
@@ -69,11 +115,7 @@ bool occluded(const BvhData& d, const TraversalRay& ray) {
 }
 
 void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
-    for (int i = 0; i < 8; ++i) {
-        if (!(rays.active >> i & 1)) continue;
-        Hit h;
-        if (traverse<false>(d, rays.ray(i), h)) hits.t[i] = h.t, hits.primId[i] = h.primId;
-    }
+    traversePacket(d, rays, hits);
 }
 
 }  // namespace glint::bvh::portable

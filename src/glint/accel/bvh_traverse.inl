@@ -121,3 +121,129 @@ bool traverse(const BvhData& d, const TraversalRay& ray, Hit& hit) {
         }
     }
 }
+
+// ---- Packets ----------------------------------------------------------------------------
+//
+// A packet whose active rays share one origin and, per axis, one direction sign is traversed
+// as a whole with interval arithmetic: per axis, the reciprocal directions lie in [lo, hi], so
+// the nearest possible entry and farthest possible exit of a box over all the rays bound every
+// ray's own. A box is culled only if no ray of the packet can meet it. At the leaves each
+// triangle is tested against every ray with the arithmetic of intersectTriangle(), and each
+// lane keeps its best hit by the closerHit rule: results equal single-ray traversal exactly.
+// Other packets are traced one ray at a time.
+
+/// The packet-level distance limit: the farthest any active ray still needs to look.
+inline float packetLimit(const Packet& p, const float* bestT) {
+    float limit = 0;
+    for (int i = 0; i < 8; ++i)
+        if (p.active >> i & 1) limit = std::max(limit, std::min(p.rays[i].tMax, bestT[i]));
+    return limit * kFarScale;
+}
+
+inline void packetLeaf(const BvhData& d, NodeRef ref, const Packet& p,
+                       const typename Isa::PacketLanes& lanes, float* bestT, uint32_t* bestId) {
+    uint32_t first = leafFirst(ref), count = leafCount(ref);
+    if (isSphereLeaf(ref)) {
+        for (uint32_t i = first; i < first + count; ++i)
+            for (int lane = 0; lane < 8; ++lane) {
+                float t;
+                if (!(p.active >> lane & 1) || !intersectSphere(d.spheres[i], p.rays[lane], t))
+                    continue;
+                Hit best{bestT[lane], bestId[lane]};
+                if (closerHit(t, d.sphereIds[i], best))
+                    bestT[lane] = t, bestId[lane] = d.sphereIds[i];
+            }
+        return;
+    }
+    for (uint32_t b = first; b < first + count; ++b) {
+        if (p.sameFrame) {
+            Isa::packetTriangles(d.tris[b], lanes, bestT, bestId);
+            continue;
+        }
+        for (int lane = 0; lane < 8; ++lane) {
+            if (!(p.active >> lane & 1)) continue;
+            Hit hit{bestT[lane], bestId[lane]};
+            alignas(16) float t[kLanes];
+            uint32_t hits = Isa::triangles(d.tris[b], p.rays[lane], hit.t, t);
+            while (hits) {
+                int k = std::countr_zero(hits);
+                hits &= hits - 1;
+                if (closerHit(t[k], d.tris[b].id[k], hit)) hit = {t[k], d.tris[b].id[k]};
+            }
+            bestT[lane] = hit.t, bestId[lane] = hit.primId;
+        }
+    }
+}
+
+inline void traversePacket(const BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
+    if (d.root == kEmpty || rays.active == 0) return;
+    const Packet p(rays);
+    if (!p.coherent) {
+        for (int i = 0; i < 8; ++i) {
+            if (!(p.active >> i & 1)) continue;
+            Hit h{hits.t[i], hits.primId[i]};
+            if (traverse<false>(d, p.rays[i], h)) hits.t[i] = h.t, hits.primId[i] = h.primId;
+        }
+        return;
+    }
+    const typename Isa::PacketBoxes boxes(p);
+    const typename Isa::PacketLanes lanes(p);
+    alignas(32) float bestT[8];
+    alignas(32) uint32_t bestId[8];
+    for (int i = 0; i < 8; ++i) bestT[i] = hits.t[i], bestId[i] = hits.primId[i];
+
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    NodeRef ref = d.root;
+    float limit = packetLimit(p, bestT);
+    for (;;) {
+        bool reachedLeaf = true;
+        while (!isLeaf(ref)) {
+            const Node8& n = d.nodes[ref];
+            alignas(32) float dist[kWidth];
+            uint32_t mask = Isa::packetBoxes(n, boxes, limit, dist);
+            if (mask == 0) {
+                reachedLeaf = false;
+                break;
+            }
+            int first = std::countr_zero(mask);
+            mask &= mask - 1;
+            if (mask == 0) {
+                ref = n.child[first];
+                continue;
+            }
+            StackEntry near[kWidth];
+            int k = 0;
+            near[k++] = {n.child[first], dist[first]};
+            while (mask) {
+                int c = std::countr_zero(mask);
+                mask &= mask - 1;
+                StackEntry e{n.child[c], dist[c]};
+                int j = k++;
+                while (j > 0 && near[j - 1].dist < e.dist) {
+                    near[j] = near[j - 1];
+                    --j;
+                }
+                near[j] = e;
+            }
+            for (int i = 0; i < k - 1; ++i) stack[sp++] = near[i];
+            ref = near[k - 1].ref;
+        }
+        if (reachedLeaf) {
+            packetLeaf(d, ref, p, lanes, bestT, bestId);
+            limit = packetLimit(p, bestT);
+        }
+        for (;;) {
+            if (sp == 0) {
+                for (int i = 0; i < 8; ++i)
+                    if (p.active >> i & 1) hits.t[i] = bestT[i], hits.primId[i] = bestId[i];
+                return;
+            }
+            const StackEntry& e = stack[--sp];
+            if (e.dist <= limit) {
+                ref = e.ref;
+                break;
+            }
+        }
+    }
+}

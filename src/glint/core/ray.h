@@ -27,11 +27,13 @@ struct TraversalRay {
     /// 1/dir, with components of magnitude below 1e-18 replaced by +-1e18 so that slab
     /// distances are never 0 * infinity.
     Vec3f invDir;
-    float tMin, tMax;
+    float tMin = 0, tMax = 0;
     /// The watertight triangle test's frame: kz is the axis of largest |dir|, and the shear
     /// (sx, sy, sz) maps dir to (0, 0, 1) in axes (kx, ky, kz).
-    int kx, ky, kz;
-    float sx, sy, sz;
+    int kx = 0, ky = 1, kz = 2;
+    float sx = 0, sy = 0, sz = 1;
+
+    TraversalRay() = default;
 
     explicit TraversalRay(const Ray& r)
         : TraversalRay(Vec3f(r.origin), Vec3f(r.dir), static_cast<float>(r.tMin),
@@ -75,8 +77,8 @@ struct alignas(32) RayPacket8 {
 
     /// Lane `lane` as a single ray.
     TraversalRay ray(int lane) const {
-        return {{ox[lane], oy[lane], oz[lane]}, {dx[lane], dy[lane], dz[lane]}, tMin[lane],
-                tMax[lane]};
+        return {
+            {ox[lane], oy[lane], oz[lane]}, {dx[lane], dy[lane], dz[lane]}, tMin[lane], tMax[lane]};
     }
     void set(int lane, const TraversalRay& r) {
         ox[lane] = r.origin.x, oy[lane] = r.origin.y, oz[lane] = r.origin.z;

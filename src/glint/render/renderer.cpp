@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <limits>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -31,22 +32,55 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     std::condition_variable finished;
     int running = 0;
 
+    // Camera rays go in packets of eight: 4 x 2 pixels at one sample per pixel, or eight
+    // samples of one pixel. Each pixel still sums its samples in the sampler's order.
+    struct Sample {
+        int pixel;  ///< Index within the block.
+        Ray ray;
+    };
+    auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
+                           RayCounts& counts) {
+        samples.clear();
+        int w = std::min(4, x1 - bx), h = std::min(2, y1 - by);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
+                    samples.push_back({y * 4 + x, camera.generateRay(px, py)});
+                });
+        Vec3 sum[8];
+        for (size_t i = 0; i < samples.size(); i += 8) {
+            int n = static_cast<int>(std::min<size_t>(8, samples.size() - i));
+            RayPacket8 packet;
+            packet.active = static_cast<uint8_t>((1u << n) - 1);
+            for (int k = 0; k < n; ++k) packet.set(k, TraversalRay(samples[i + k].ray));
+            HitPacket8 hits;
+            scene.bvh().intersect8(packet, hits);
+            counts.camera += static_cast<uint64_t>(n);
+            for (int k = 0; k < n; ++k) {
+                Hit hit = hits[k];
+                bool found = hit.t < std::numeric_limits<float>::infinity();
+                sum[samples[i + k].pixel] +=
+                    integrator.shade(samples[i + k].ray, found ? &hit : nullptr, 0, counts);
+            }
+        }
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const Vec3& s = sum[y * 4 + x];
+                result.film.at(bx + x, by + y) = sampler.samplesPerPixel() == 1 ? s : s * weight;
+            }
+    };
+
     auto worker = [&] {
         RayCounts counts;
+        std::vector<Sample> samples;
         for (;;) {
             if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
             int t = nextTile.fetch_add(1, std::memory_order_relaxed);
             if (t >= tilesTotal) break;
             int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
             int x1 = std::min(x0 + tile, scene.width), y1 = std::min(y0 + tile, scene.height);
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) {
-                    Vec3 sum;
-                    sampler.forEachSample(x, y, [&](double px, double py) {
-                        sum += integrator.li(camera.generateRay(px, py), 0, counts);
-                    });
-                    result.film.at(x, y) = sampler.samplesPerPixel() == 1 ? sum : sum * weight;
-                }
+            for (int by = y0; by < y1; by += 2)
+                for (int bx = x0; bx < x1; bx += 4) renderBlock(bx, by, x1, y1, samples, counts);
             tilesDone.fetch_add(1, std::memory_order_relaxed);
         }
         std::lock_guard lock(mutex);

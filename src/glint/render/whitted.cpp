@@ -9,9 +9,13 @@ namespace glint {
 Vec3 WhittedIntegrator::li(const Ray& ray, int depth, RayCounts& counts) const {
     (depth == 0 ? counts.camera : counts.reflection)++;
     Hit hit;
-    if (!scene_.bvh().intersect(ray, hit)) return scene_.background.eval(ray.dir);
+    bool found = scene_.bvh().intersect(ray, hit);
+    return shade(ray, found ? &hit : nullptr, depth, counts);
+}
 
-    SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
+Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, RayCounts& counts) const {
+    if (!hit) return scene_.background.eval(ray.dir);
+    SurfaceInteraction si = scene_.primitives.interaction(ray, *hit);
     const Material& m = scene_.materials[si.material];
     Vec3 color = localShading(si, -ray.dir, m, counts);
 

@@ -30,6 +30,10 @@ class WhittedIntegrator {
     /// rays it traces into `counts`, `ray` itself included.
     Vec3 li(const Ray& ray, int depth, RayCounts& counts) const;
 
+    /// Radiance along `ray` given its closest hit (null: it hits nothing), found by the caller,
+    /// e.g. for a whole packet at once. Does not count `ray` itself.
+    Vec3 shade(const Ray& ray, const Hit* hit, int depth, RayCounts& counts) const;
+
   private:
     /// Ambient + emission + the lights' Blinn-Phong terms at a hit, without the mirror ray.
     Vec3 localShading(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
