@@ -5,6 +5,8 @@
 #   make demo    deps + build + render the built-in scene to glint.png
 #   make test    deps + build + run every test (ctest)
 #   make clean   remove the build directory
+#   make bench   deps for the benchmarks (Embree, POV-Ray) + Release build in build-bench + run
+#                bench/run.sh: Glint against Embree and POV-Ray (see docs/performance.md)
 
 BUILD_DIR   ?= build
 BUILD_TYPE  ?= Release
@@ -14,9 +16,14 @@ JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 # Debian packages: compiler and build tools, then libraries (see docs/dependencies in README).
 DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libgtest-dev libgmock-dev
 
+# `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
+# the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh).
+BENCH_DIR  ?= build-bench
+BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libembree-dev povray bc
+
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps build demo test clean
+.PHONY: deps build demo test clean bench
 
 deps:
 	@missing=""; \
@@ -46,3 +53,10 @@ test: deps
 
 clean:
 	rm -rf $(BUILD_DIR)
+
+bench:
+	@$(MAKE) --no-print-directory deps DEPS="$(BENCH_DEPS)"
+	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DGLINT_BUILD_BENCH=ON \
+	  -DGLINT_BUILD_TESTS=OFF -DGLINT_WERROR=$(GLINT_WERROR)
+	cmake --build $(BENCH_DIR) -j $(JOBS)
+	bench/run.sh $(BENCH_DIR)

@@ -13,7 +13,9 @@ namespace glint::bench {
 
 struct Mesh {
     std::vector<std::array<double, 3>> vertices;
-    std::vector<std::array<uint32_t, 3>> triangles;  ///< Counter-clockwise seen from outside.
+    /// As issue 3 defines them: (a, b, c), (a, c, d) per quad. That winding faces into the tube,
+    /// which traversal does not care about; renderable files reverse it (gen_scenes.cpp).
+    std::vector<std::array<uint32_t, 3>> triangles;
 };
 
 /// NU x NV quads, two triangles each: the torus of issue 3 (R = 1, r = 0.35, ripple amplitude

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "glint/io/image_io.h"
+#include "glint/io/numbers.h"
 
 namespace glint {
 namespace {
@@ -69,7 +70,11 @@ class Parser {
     Vec3 vec3(int i) const { return {real(i), real(i + 1), real(i + 2)}; }
     Vec3 colour(int i) const { return vec3(i); }
     const Transform& transform();
-    uint32_t material() { return scene_->addMaterial(material_); }
+    /// The id of the current material, added to the scene when it changed since last asked.
+    uint32_t material() {
+        if (materialChanged_) materialId_ = scene_->addMaterial(material_), materialChanged_ = false;
+        return materialId_;
+    }
     /// Argument `i` as an index into a pile of `count` entries, named `one` / `many`.
     uint32_t vertexIndex(int i, size_t count, const char* one, const char* many) const;
     static bool inRange(const Vec3& p) {
@@ -104,10 +109,22 @@ class Parser {
     void cmdDirectional();
     void cmdPoint();
     void cmdAttenuation();
-    void cmdAmbient() { material_.ambient = colour(1); }
-    void cmdDiffuse() { material_.diffuse = colour(1); }
-    void cmdSpecular() { material_.specular = colour(1); }
-    void cmdEmission() { material_.emission = colour(1); }
+    void cmdAmbient() {
+        material_.ambient = colour(1);
+        materialChanged_ = true;
+    }
+    void cmdDiffuse() {
+        material_.diffuse = colour(1);
+        materialChanged_ = true;
+    }
+    void cmdSpecular() {
+        material_.specular = colour(1);
+        materialChanged_ = true;
+    }
+    void cmdEmission() {
+        material_.emission = colour(1);
+        materialChanged_ = true;
+    }
     void cmdShininess();
     void cmdBackground();
 
@@ -137,6 +154,8 @@ class Parser {
     std::optional<Transform> transform_;  ///< stack_.back() baked; empty if singular.
     bool transformValid_ = false;
     Material material_;
+    bool materialChanged_ = true;
+    uint32_t materialId_ = 0;
     Vec3 attenuation_{1, 0, 0};
     std::vector<Vec3> vertices_;
     std::vector<std::array<Vec3, 2>> normalVertices_;  ///< Position and unit normal (or zero).
@@ -242,8 +261,9 @@ double Parser::number(int i) const {
     std::string_view s = tok_[i].text;
     const char* b = s.data();
     const char* e = b + s.size();
-    if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;  // "+1"
     double v = 0;
+    if (parseDecimalFast(b, e, v)) return v;
+    if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;  // "+1"
     auto [p, ec] = std::from_chars(b, e, v);
     if (ec == std::errc::result_out_of_range && p == e) {
         // Overflow is an error; underflow (1e-400) reads as the nearest double, zero or tiny.
@@ -268,8 +288,9 @@ long long Parser::integer(int i, long long lo, long long hi) const {
     std::string_view s = tok_[i].text;
     const char* b = s.data();
     const char* e = b + s.size();
-    if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;
     long long v = 0;
+    if (parseUnsignedFast(b, e, v) && v >= lo && v <= hi) return v;
+    if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;
     auto [p, ec] = std::from_chars(b, e, v);
     if (ec == std::errc::result_out_of_range || (ec == std::errc() && p == e && (v < lo || v > hi)))
         fail(i, "integer " + quoted(i) + " is out of range (" + std::to_string(lo) + " to " +
@@ -519,6 +540,7 @@ void Parser::cmdShininess() {
     double s = real(1);
     if (s < 0) fail(1, "shininess must not be negative, got " + quoted(1));
     material_.shininess = s;
+    materialChanged_ = true;
 }
 
 void Parser::cmdBackground() {
@@ -546,10 +568,11 @@ std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnos
                std::to_string(kMaxSceneFileBytes));
     std::ifstream in(path, std::ios::binary);
     if (!in) cannot(std::strerror(errno));
-    std::string text(static_cast<size_t>(st.st_size), '\0');
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    if (in.gcount() != static_cast<std::streamsize>(text.size())) cannot("read failed");
-    return parseHw3Scene(text, path, warnings);
+    auto size = static_cast<size_t>(st.st_size);
+    auto text = std::make_unique_for_overwrite<char[]>(size);  // no zero-filling of 1 GiB
+    in.read(text.get(), static_cast<std::streamsize>(size));
+    if (in.gcount() != static_cast<std::streamsize>(size)) cannot("read failed");
+    return parseHw3Scene(std::string_view(text.get(), size), path, warnings);
 }
 
 std::vector<std::string_view> hw3CommandNames() {

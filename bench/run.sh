@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The full benchmark of issue 3 (what `make bench` runs), on a build configured with
+# -DGLINT_BUILD_BENCH=ON:
+#   1. BVH build and traversal against Intel Embree (bench/glint_traversal_bench, when built);
+#   2. whole renders against POV-Ray 3.7 (bench/render_compare.sh);
+#   3. --stats medians for the official course scenes (bench/course_stats.sh).
+# Usage: bench/run.sh BUILD_DIR
+set -euo pipefail
+
+if [ $# -ne 1 ]; then
+    echo "usage: $0 BUILD_DIR" >&2
+    exit 2
+fi
+here=$(cd "$(dirname "$0")" && pwd)
+build=$(cd "$1" && pwd)
+
+header() { printf '\n==== %s ====\n\n' "$*"; }
+
+model=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
+cores=$(lscpu | awk -F: '/^Core\(s\) per socket/ {c = $2} /^Socket\(s\)/ {s = $2}
+                         END {if (c && s) print c * s}')
+echo "Glint benchmark, $(date -u '+%Y-%m-%d %H:%M UTC')"
+echo "Machine: ${model:-unknown CPU}, ${cores:-?} cores, $(nproc) hardware threads;" \
+    "$("$build/glint" --version 2>/dev/null || echo 'glint ?'), build $build"
+
+header "1. BVH build and traversal: Glint vs Embree"
+if [ -x "$build/bench/glint_traversal_bench" ]; then
+    "$build/bench/glint_traversal_bench"
+else
+    echo "(skipped: $build/bench/glint_traversal_bench was not built; it needs libembree-dev)"
+fi
+
+header "2. Whole renders: Glint vs POV-Ray"
+"$here/render_compare.sh" "$build"
+
+header "3. Course scenes: glint --stats"
+"$here/course_stats.sh" "$build/glint" 7 2
