@@ -21,7 +21,7 @@ namespace {
 
 constexpr int kBins = 16;
 constexpr uint32_t kAllAxesFrom = 32;  // smaller ranges are split along their longest axis
-constexpr uint32_t kMaxLeafTriangles = 2 * kLanes;  // two blocks
+constexpr uint32_t kMaxLeafTriangles = 2 * kLanes;
 constexpr uint32_t kMaxLeafSpheres = 4;
 constexpr float kTraversalCost = 1;  // a node visit, relative to one triangle block or sphere
 constexpr uint32_t kMedianSplitDepth = 48;  // deeper binary splits halve by count

@@ -24,13 +24,17 @@ namespace {
 struct Isa {
     struct RayBoxes {
         __m256 origin[3], invDir[3], tMin;
-        int nearHi[3];  ///< 1 where the ray runs towards -axis: enter through `hi`.
+        /// Float offsets in a Node8 of the planes a ray meets first and last on each axis
+        /// (`hi` first where it runs towards -axis).
+        int nearOff[3], farOff[3];
 
         explicit RayBoxes(const TraversalRay& r) {
             for (int a = 0; a < 3; ++a) {
                 origin[a] = _mm256_set1_ps(r.origin[a]);
                 invDir[a] = _mm256_set1_ps(r.invDir[a]);
-                nearHi[a] = r.invDir[a] < 0;
+                bool neg = r.invDir[a] < 0;
+                nearOff[a] = (neg ? 3 + a : a) * kWidth;
+                farOff[a] = (neg ? a : 3 + a) * kWidth;
             }
             tMin = _mm256_set1_ps(r.tMin);
         }
@@ -39,13 +43,12 @@ struct Isa {
     static uint32_t boxes(const Node8& n, const RayBoxes& r, float tMax, float* tNear) {
         const __m256 farScale = _mm256_set1_ps(1 + 4 * std::numeric_limits<float>::epsilon());
         __m256 enter = r.tMin, exit = _mm256_set1_ps(std::numeric_limits<float>::infinity());
+        const float* base = n.lo[0];  // lo[3][8] then hi[3][8]
         for (int a = 0; a < 3; ++a) {
-            const float* nearPlane = r.nearHi[a] ? n.hi[a] : n.lo[a];
-            const float* farPlane = r.nearHi[a] ? n.lo[a] : n.hi[a];
-            __m256 tn =
-                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(nearPlane), r.origin[a]), r.invDir[a]);
-            __m256 tf =
-                _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(farPlane), r.origin[a]), r.invDir[a]);
+            __m256 tn = _mm256_mul_ps(
+                _mm256_sub_ps(_mm256_load_ps(base + r.nearOff[a]), r.origin[a]), r.invDir[a]);
+            __m256 tf = _mm256_mul_ps(
+                _mm256_sub_ps(_mm256_load_ps(base + r.farOff[a]), r.origin[a]), r.invDir[a]);
             enter = _mm256_max_ps(enter, tn);
             exit = _mm256_min_ps(exit, tf);
         }

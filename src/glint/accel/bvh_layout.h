@@ -7,6 +7,7 @@
 /// run of spheres. Everything is in flat arrays in depth-first order; children are 32-bit
 /// references.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -42,6 +43,7 @@ struct alignas(32) Node8 {
     NodeRef child[kWidth];
 };
 static_assert(sizeof(Node8) == 224);
+static_assert(offsetof(Node8, hi) == 3 * kWidth * sizeof(float));  // kernels index lo then hi
 
 /// Four triangles for the watertight test; unused lanes hold NaN vertices (never hit).
 struct alignas(16) Tri4 {

@@ -51,6 +51,40 @@ inline bool leafHits(const BvhData& d, NodeRef ref, const TraversalRay& ray, Hit
     return found;
 }
 
+/// At least two children were hit (`first` and the bits of `rest`): pushes all but the nearest,
+/// farthest deepest, and returns the nearest. The common case of two is handled directly; more
+/// are pushed and the pushed run sorted in place.
+inline NodeRef orderChildren(const Node8& n, int first, uint32_t rest, const float* dist,
+                             StackEntry* stack, int& sp) {
+    int second = std::countr_zero(rest);
+    rest &= rest - 1;
+    if (rest == 0) {
+        bool firstNearer = dist[first] <= dist[second];
+        int nearC = firstNearer ? first : second, farC = firstNearer ? second : first;
+        stack[sp++] = {n.child[farC], dist[farC]};
+        return n.child[nearC];
+    }
+    int base = sp;
+    stack[sp++] = {n.child[first], dist[first]};
+    stack[sp++] = {n.child[second], dist[second]};
+    while (rest) {
+        int c = std::countr_zero(rest);
+        rest &= rest - 1;
+        stack[sp++] = {n.child[c], dist[c]};
+    }
+    // Descending by distance, so that the nearest is on top.
+    for (int i = base + 1; i < sp; ++i) {
+        StackEntry e = stack[i];
+        int j = i;
+        while (j > base && stack[j - 1].dist < e.dist) {
+            stack[j] = stack[j - 1];
+            --j;
+        }
+        stack[j] = e;
+    }
+    return stack[--sp].ref;
+}
+
 /// Closest hit (ordered, near child first, culling by distance) or any hit.
 template <bool AnyHit>
 bool traverse(const BvhData& d, const TraversalRay& ray, Hit& hit) {
@@ -87,23 +121,7 @@ bool traverse(const BvhData& d, const TraversalRay& ray, Hit& hit) {
                 ref = n.child[first];
                 continue;
             }
-            // Two or more children: visit the nearest, push the rest farthest first.
-            StackEntry hits[kWidth];
-            int k = 0;
-            hits[k++] = {n.child[first], dist[first]};
-            while (mask) {
-                int c = std::countr_zero(mask);
-                mask &= mask - 1;
-                StackEntry e{n.child[c], dist[c]};
-                int j = k++;
-                while (j > 0 && hits[j - 1].dist < e.dist) {
-                    hits[j] = hits[j - 1];
-                    --j;
-                }
-                hits[j] = e;
-            }
-            for (int i = 0; i < k - 1; ++i) stack[sp++] = hits[i];
-            ref = hits[k - 1].ref;
+            ref = orderChildren(n, first, mask, dist, stack, sp);
         }
         if (reachedLeaf && leafHits<AnyHit>(d, ref, ray, hit)) {
             if constexpr (AnyHit) return true;
@@ -212,22 +230,7 @@ inline void traversePacket(const BvhData& d, const RayPacket8& rays, HitPacket8&
                 ref = n.child[first];
                 continue;
             }
-            StackEntry near[kWidth];
-            int k = 0;
-            near[k++] = {n.child[first], dist[first]};
-            while (mask) {
-                int c = std::countr_zero(mask);
-                mask &= mask - 1;
-                StackEntry e{n.child[c], dist[c]};
-                int j = k++;
-                while (j > 0 && near[j - 1].dist < e.dist) {
-                    near[j] = near[j - 1];
-                    --j;
-                }
-                near[j] = e;
-            }
-            for (int i = 0; i < k - 1; ++i) stack[sp++] = near[i];
-            ref = near[k - 1].ref;
+            ref = orderChildren(n, first, mask, dist, stack, sp);
         }
         if (reachedLeaf) {
             packetLeaf(d, ref, p, lanes, bestT, bestId);
