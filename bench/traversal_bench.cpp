@@ -597,7 +597,15 @@ uint64_t runGlint(const Traversal& tr, const Workload& w, size_t begin, size_t e
             break;
         case Kind::Packet8:
             for (size_t i = begin; i < end; ++i) {
-                const glint::RayPacket8& p = w.packets->glint[i];
+                // Set up from the same float data Embree's packet holds, inside the timed loop.
+                const RTCRay8& e = w.packets->embree[i];
+                glint::RayPacket8 p;
+                p.active = w.packets->glint[i].active;
+                for (int l = 0; l < 8; ++l)
+                    p.set(l, {{e.org_x[l], e.org_y[l], e.org_z[l]},
+                              {e.dir_x[l], e.dir_y[l], e.dir_z[l]},
+                              e.tnear[l],
+                              e.tfar[l]});
                 glint::HitPacket8 h;
                 tr.bvh.intersect8(p, h);
                 for (int l = 0; l < 8; ++l) hits += ((p.active >> l) & 1u) && h.t[l] < kInf;

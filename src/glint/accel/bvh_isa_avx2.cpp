@@ -97,12 +97,13 @@ struct Isa {
 
     // Packets (see bvh_traverse.inl).
     struct PacketBoxes {
-        __m256 origin[3], invLo[3], invHi[3], tMin;
+        __m256 originNear[3], originFar[3], invLo[3], invHi[3], tMin;
         int nearHi[3];
 
         explicit PacketBoxes(const Packet& p) {
             for (int a = 0; a < 3; ++a) {
-                origin[a] = _mm256_set1_ps(p.origin[a]);
+                originNear[a] = _mm256_set1_ps(p.originNear[a]);
+                originFar[a] = _mm256_set1_ps(p.originFar[a]);
                 invLo[a] = _mm256_set1_ps(p.invLo[a]);
                 invHi[a] = _mm256_set1_ps(p.invHi[a]);
                 nearHi[a] = p.nearHi[a];
@@ -137,8 +138,10 @@ struct Isa {
         const __m256 farScale = _mm256_set1_ps(1 + 4 * std::numeric_limits<float>::epsilon());
         __m256 enter = b.tMin, exit = _mm256_set1_ps(std::numeric_limits<float>::infinity());
         for (int a = 0; a < 3; ++a) {
-            __m256 dn = _mm256_sub_ps(_mm256_load_ps(b.nearHi[a] ? n.hi[a] : n.lo[a]), b.origin[a]);
-            __m256 df = _mm256_sub_ps(_mm256_load_ps(b.nearHi[a] ? n.lo[a] : n.hi[a]), b.origin[a]);
+            __m256 dn =
+                _mm256_sub_ps(_mm256_load_ps(b.nearHi[a] ? n.hi[a] : n.lo[a]), b.originNear[a]);
+            __m256 df =
+                _mm256_sub_ps(_mm256_load_ps(b.nearHi[a] ? n.lo[a] : n.hi[a]), b.originFar[a]);
             enter = _mm256_max_ps(
                 enter, _mm256_min_ps(_mm256_mul_ps(dn, b.invLo[a]), _mm256_mul_ps(dn, b.invHi[a])));
             exit = _mm256_min_ps(
@@ -149,46 +152,53 @@ struct Isa {
         return static_cast<uint32_t>(_mm256_movemask_ps(_mm256_cmp_ps(enter, exit, _CMP_LE_OQ)));
     }
 
-    /// The four triangles of `b` against the eight rays: intersectTriangle()'s arithmetic per
-    /// lane, best hits kept by the closerHit rule.
+    /// Triangle k of `b` against the eight rays: intersectTriangle()'s arithmetic per lane.
+    /// Returns the lanes hit within their range; `t` receives the distances.
+    static __m256 laneHits(const Tri4& b, int k, const PacketLanes& l, __m256& t) {
+        const int kx = l.kx, ky = l.ky, kz = l.kz;
+        const __m256 zero = _mm256_setzero_ps();
+        auto shear = [&](const float(&v)[3][kLanes], __m256& x, __m256& y, __m256& z) {
+            __m256 px = _mm256_sub_ps(_mm256_set1_ps(v[kx][k]), l.ox);
+            __m256 py = _mm256_sub_ps(_mm256_set1_ps(v[ky][k]), l.oy);
+            z = _mm256_sub_ps(_mm256_set1_ps(v[kz][k]), l.oz);
+            x = _mm256_sub_ps(px, _mm256_mul_ps(l.sx, z));
+            y = _mm256_sub_ps(py, _mm256_mul_ps(l.sy, z));
+        };
+        __m256 ax, ay, az, bx, by, bz, cx, cy, cz;
+        shear(b.v0, ax, ay, az);
+        shear(b.v1, bx, by, bz);
+        shear(b.v2, cx, cy, cz);
+        __m256 u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
+        __m256 v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
+        __m256 w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
+        __m256 anyNeg = _mm256_or_ps(
+            _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
+            _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
+        __m256 anyPos = _mm256_or_ps(
+            _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
+            _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
+        __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+        __m256 tScaled = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, _mm256_mul_ps(l.sz, az)),
+                                                     _mm256_mul_ps(v, _mm256_mul_ps(l.sz, bz))),
+                                       _mm256_mul_ps(w, _mm256_mul_ps(l.sz, cz)));
+        t = _mm256_div_ps(tScaled, det);
+        __m256 ok =
+            _mm256_andnot_ps(_mm256_and_ps(anyNeg, anyPos), _mm256_cmp_ps(det, zero, _CMP_NEQ_UQ));
+        ok = _mm256_and_ps(ok, _mm256_cmp_ps(t, l.tMin, _CMP_GT_OQ));
+        return _mm256_and_ps(ok, _mm256_cmp_ps(t, l.tMax, _CMP_LT_OQ));
+    }
+
+    /// The four triangles of `b` against the eight rays; each lane keeps its best hit by the
+    /// closerHit rule.
     static void packetTriangles(const Tri4& b, const PacketLanes& l, float* bestT,
                                 uint32_t* bestId) {
-        const int kx = l.kx, ky = l.ky, kz = l.kz;
         __m256 bt = _mm256_load_ps(bestT);
         __m256i bid = _mm256_load_si256(reinterpret_cast<const __m256i*>(bestId));
-        const __m256 zero = _mm256_setzero_ps();
         const __m256i flip = _mm256_set1_epi32(static_cast<int>(0x80000000u));
         for (int k = 0; k < kLanes; ++k) {
             if (b.id[k] == kEmpty) continue;
-            auto shear = [&](const float(&v)[3][kLanes], __m256& x, __m256& y, __m256& z) {
-                __m256 px = _mm256_sub_ps(_mm256_set1_ps(v[kx][k]), l.ox);
-                __m256 py = _mm256_sub_ps(_mm256_set1_ps(v[ky][k]), l.oy);
-                z = _mm256_sub_ps(_mm256_set1_ps(v[kz][k]), l.oz);
-                x = _mm256_sub_ps(px, _mm256_mul_ps(l.sx, z));
-                y = _mm256_sub_ps(py, _mm256_mul_ps(l.sy, z));
-            };
-            __m256 ax, ay, az, bx, by, bz, cx, cy, cz;
-            shear(b.v0, ax, ay, az);
-            shear(b.v1, bx, by, bz);
-            shear(b.v2, cx, cy, cz);
-            __m256 u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
-            __m256 v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
-            __m256 w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
-            __m256 anyNeg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ),
-                                                      _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
-                                         _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
-            __m256 anyPos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ),
-                                                      _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
-                                         _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
-            __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-            __m256 tScaled = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, _mm256_mul_ps(l.sz, az)),
-                                                         _mm256_mul_ps(v, _mm256_mul_ps(l.sz, bz))),
-                                           _mm256_mul_ps(w, _mm256_mul_ps(l.sz, cz)));
-            __m256 t = _mm256_div_ps(tScaled, det);
-            __m256 ok = _mm256_andnot_ps(_mm256_and_ps(anyNeg, anyPos),
-                                         _mm256_cmp_ps(det, zero, _CMP_NEQ_UQ));
-            ok = _mm256_and_ps(ok, _mm256_cmp_ps(t, l.tMin, _CMP_GT_OQ));
-            ok = _mm256_and_ps(ok, _mm256_cmp_ps(t, l.tMax, _CMP_LT_OQ));
+            __m256 t;
+            __m256 ok = laneHits(b, k, l, t);
             __m256i id = _mm256_set1_epi32(static_cast<int>(b.id[k]));
             __m256 lowerId = _mm256_castsi256_ps(
                 _mm256_cmpgt_epi32(_mm256_xor_si256(bid, flip), _mm256_xor_si256(id, flip)));
@@ -201,6 +211,17 @@ struct Isa {
         }
         _mm256_store_ps(bestT, bt);
         _mm256_store_si256(reinterpret_cast<__m256i*>(bestId), bid);
+    }
+
+    /// Lanes whose ray hits any of the four triangles within its range.
+    static uint32_t packetTrianglesAny(const Tri4& b, const PacketLanes& l) {
+        __m256 any = _mm256_setzero_ps();
+        for (int k = 0; k < kLanes; ++k) {
+            if (b.id[k] == kEmpty) continue;
+            __m256 t;
+            any = _mm256_or_ps(any, laneHits(b, k, l, t));
+        }
+        return static_cast<uint32_t>(_mm256_movemask_ps(any));
     }
 };
 
@@ -220,6 +241,8 @@ bool occluded(const BvhData& d, const TraversalRay& ray) {
 void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
     traversePacket(d, rays, hits);
 }
+
+uint32_t occluded8(const BvhData& d, const RayPacket8& rays) { return occludedPacket(d, rays); }
 
 }  // namespace glint::bvh::avx2
 

@@ -72,8 +72,8 @@ struct Isa {
         for (int i = 0; i < kWidth; ++i) {
             float enter = p.tMin, exit = std::numeric_limits<float>::infinity();
             for (int a = 0; a < 3; ++a) {
-                float dn = (p.nearHi[a] ? n.hi[a][i] : n.lo[a][i]) - p.origin[a];
-                float df = (p.nearHi[a] ? n.lo[a][i] : n.hi[a][i]) - p.origin[a];
+                float dn = (p.nearHi[a] ? n.hi[a][i] : n.lo[a][i]) - p.originNear[a];
+                float df = (p.nearHi[a] ? n.lo[a][i] : n.hi[a][i]) - p.originFar[a];
                 enter = std::max(enter, std::min(dn * p.invLo[a], dn * p.invHi[a]));
                 exit = std::min(exit, std::max(df * p.invLo[a], df * p.invHi[a]));
             }
@@ -99,6 +99,18 @@ struct Isa {
             bestT[lane] = hit.t, bestId[lane] = hit.primId;
         }
     }
+
+    /// Lanes whose ray hits any of the four triangles within its range.
+    static uint32_t packetTrianglesAny(const Tri4& b, const PacketLanes& l) {
+        uint32_t hit = 0;
+        for (int lane = 0; lane < 8; ++lane) {
+            alignas(16) float t[kLanes];
+            if ((l.p->active >> lane & 1) &&
+                triangles(b, l.p->rays[lane], std::numeric_limits<float>::infinity(), t))
+                hit |= 1u << lane;
+        }
+        return hit;
+    }
 };
 
 #include "glint/accel/bvh_traverse.inl"
@@ -117,5 +129,7 @@ bool occluded(const BvhData& d, const TraversalRay& ray) {
 void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
     traversePacket(d, rays, hits);
 }
+
+uint32_t occluded8(const BvhData& d, const RayPacket8& rays) { return occludedPacket(d, rays); }
 
 }  // namespace glint::bvh::portable

@@ -250,3 +250,84 @@ inline void traversePacket(const BvhData& d, const RayPacket8& rays, HitPacket8&
         }
     }
 }
+
+/// Any hit for each active ray of a packet: returns the lanes whose ray is blocked. Lanes stop
+/// being tested once blocked; the packet stops when all are.
+inline uint32_t occludedPacket(const BvhData& d, const RayPacket8& rays) {
+    if (d.root == kEmpty || rays.active == 0) return 0;
+    const Packet p(rays);
+    uint32_t blocked = 0;
+    if (!p.coherent) {
+        for (int i = 0; i < 8; ++i) {
+            Hit h;
+            if ((p.active >> i & 1) && traverse<true>(d, p.rays[i], h)) blocked |= 1u << i;
+        }
+        return blocked;
+    }
+    const typename Isa::PacketBoxes boxes(p);
+    const typename Isa::PacketLanes lanes(p);
+    uint32_t pending = p.active;
+    auto limitOf = [&] {
+        float limit = 0;
+        for (int i = 0; i < 8; ++i)
+            if (pending >> i & 1) limit = std::max(limit, p.rays[i].tMax);
+        return limit * kFarScale;
+    };
+    float limit = limitOf();
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    NodeRef ref = d.root;
+    for (;;) {
+        bool reachedLeaf = true;
+        while (!isLeaf(ref)) {
+            const Node8& n = d.nodes[ref];
+            alignas(32) float dist[kWidth];
+            uint32_t mask = Isa::packetBoxes(n, boxes, limit, dist);
+            if (mask == 0) {
+                reachedLeaf = false;
+                break;
+            }
+            int first = std::countr_zero(mask);
+            mask &= mask - 1;
+            while (mask) {
+                int c = std::countr_zero(mask);
+                mask &= mask - 1;
+                stack[sp++] = {n.child[c], dist[c]};
+            }
+            ref = n.child[first];
+        }
+        if (reachedLeaf) {
+            uint32_t first = leafFirst(ref), count = leafCount(ref), hit = 0;
+            if (isSphereLeaf(ref)) {
+                for (uint32_t i = first; i < first + count; ++i)
+                    for (int lane = 0; lane < 8; ++lane) {
+                        float t;
+                        if ((pending >> lane & 1) && intersectSphere(d.spheres[i], p.rays[lane], t))
+                            hit |= 1u << lane;
+                    }
+            } else {
+                for (uint32_t b = first; b < first + count; ++b) {
+                    if (p.sameFrame) {
+                        hit |= Isa::packetTrianglesAny(d.tris[b], lanes) & pending;
+                        continue;
+                    }
+                    for (int lane = 0; lane < 8; ++lane) {
+                        alignas(16) float t[kLanes];
+                        if ((pending >> lane & 1) &&
+                            Isa::triangles(d.tris[b], p.rays[lane],
+                                           std::numeric_limits<float>::infinity(), t))
+                            hit |= 1u << lane;
+                    }
+                }
+            }
+            if (hit & pending) {
+                blocked |= hit & pending;
+                pending &= ~hit;
+                if (pending == 0) return blocked;
+                limit = limitOf();
+            }
+        }
+        if (sp == 0) return blocked;
+        ref = stack[--sp].ref;
+    }
+}

@@ -68,23 +68,13 @@ inline bool closerHit(float t, uint32_t id, const Hit& best) {
     return t < best.t || (t == best.t && id < best.primId);
 }
 
-/// Up to eight rays traced together (coherent camera rays), in float, one lane per ray.
-struct alignas(32) RayPacket8 {
-    float ox[8], oy[8], oz[8];
-    float dx[8], dy[8], dz[8];
-    float tMin[8], tMax[8];
+/// Up to eight rays traced together (e.g. coherent camera rays), each prepared for traversal.
+struct RayPacket8 {
+    TraversalRay rays[8];
     uint8_t active = 0xff;  ///< Bit i set: lane i holds a ray.
 
-    /// Lane `lane` as a single ray.
-    TraversalRay ray(int lane) const {
-        return {
-            {ox[lane], oy[lane], oz[lane]}, {dx[lane], dy[lane], dz[lane]}, tMin[lane], tMax[lane]};
-    }
-    void set(int lane, const TraversalRay& r) {
-        ox[lane] = r.origin.x, oy[lane] = r.origin.y, oz[lane] = r.origin.z;
-        dx[lane] = r.dir.x, dy[lane] = r.dir.y, dz[lane] = r.dir.z;
-        tMin[lane] = r.tMin, tMax[lane] = r.tMax;
-    }
+    const TraversalRay& ray(int lane) const { return rays[lane]; }
+    void set(int lane, const TraversalRay& r) { rays[lane] = r; }
 };
 
 /// The closest hits of a packet's rays; lanes without a hit keep t = infinity.

@@ -52,16 +52,17 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             int n = static_cast<int>(std::min<size_t>(8, samples.size() - i));
             RayPacket8 packet;
             packet.active = static_cast<uint8_t>((1u << n) - 1);
-            for (int k = 0; k < n; ++k) packet.set(k, TraversalRay(samples[i + k].ray));
+            Ray rays[8];
+            for (int k = 0; k < n; ++k) {
+                rays[k] = samples[i + k].ray;
+                packet.set(k, TraversalRay(rays[k]));
+            }
             HitPacket8 hits;
             scene.bvh().intersect8(packet, hits);
             counts.camera += static_cast<uint64_t>(n);
-            for (int k = 0; k < n; ++k) {
-                Hit hit = hits[k];
-                bool found = hit.t < std::numeric_limits<float>::infinity();
-                sum[samples[i + k].pixel] +=
-                    integrator.shade(samples[i + k].ray, found ? &hit : nullptr, 0, counts);
-            }
+            Vec3 color[8];
+            integrator.shade8(rays, hits, packet.active, 0, color, counts);
+            for (int k = 0; k < n; ++k) sum[samples[i + k].pixel] += color[k];
         }
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {

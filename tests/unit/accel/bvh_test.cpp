@@ -331,23 +331,38 @@ TEST_P(BvhKernels, RebuildingReplacesTheTree) {
     EXPECT_EQ(hit.primId, 0u);
 }
 
+/// Packets of three kinds: a thin cone from one origin (camera rays), rays from nearby origins in
+/// similar directions (shadow or reflection rays of neighbouring pixels), and unrelated rays.
+RayPacket8 randomPacket(const Primitives& prims, Random& r, int p, Ray (&rays)[8]) {
+    RayPacket8 packet;
+    packet.active = static_cast<uint8_t>(p % 5 == 0 ? r.below(256) : 0xff);
+    Vec3 origin = r.point(-15, 15), base = r.direction();
+    for (int i = 0; i < 8; ++i) {
+        switch (p % 3) {
+            case 0:
+                rays[i] = Ray{origin, normalize(base + r.point(-0.05, 0.05)), 0, kInfinity};
+                break;
+            case 1:
+                rays[i] = Ray{origin + r.point(-0.1, 0.1), normalize(base + r.point(-0.05, 0.05)),
+                              0, r.uni(0, 1) < 0.5 ? kInfinity : r.uni(1, 30)};
+                break;
+            default:
+                rays[i] = randomRay(prims, r, i);
+        }
+        packet.set(i, TraversalRay(rays[i]));
+    }
+    return packet;
+}
+
 TEST_P(BvhKernels, PacketsGiveTheSameHitsAsSingleRays) {
     Primitives prims;
     Random r(31);
     addRandomScene(prims, r, 3000, 300);
     Bvh bvh = build(prims);
     int lanes = 0;
-    for (int p = 0; p < 400; ++p) {
-        RayPacket8 packet;
-        packet.active = static_cast<uint8_t>(p % 5 == 0 ? r.below(256) : 0xff);
-        // Coherent packets (a small cone from one origin) and incoherent ones.
-        Vec3 origin = r.point(-15, 15), base = r.direction();
+    for (int p = 0; p < 600; ++p) {
         Ray rays[8];
-        for (int i = 0; i < 8; ++i) {
-            rays[i] = p % 2 ? Ray{origin, normalize(base + r.point(-0.05, 0.05)), 0, kInfinity}
-                            : randomRay(prims, r, i);
-            packet.set(i, TraversalRay(rays[i]));
-        }
+        RayPacket8 packet = randomPacket(prims, r, p, rays);
         HitPacket8 hits;
         bvh.intersect8(packet, hits);
         for (int i = 0; i < 8; ++i) {
@@ -360,7 +375,30 @@ TEST_P(BvhKernels, PacketsGiveTheSameHitsAsSingleRays) {
             lanes += found;
         }
     }
-    EXPECT_GT(lanes, 400);
+    EXPECT_GT(lanes, 600);
+}
+
+TEST_P(BvhKernels, PacketOcclusionEqualsSingleRays) {
+    Primitives prims;
+    Random r(32);
+    addRandomScene(prims, r, 3000, 300);
+    Bvh bvh = build(prims);
+    int blocked = 0, free = 0;
+    for (int p = 0; p < 600; ++p) {
+        Ray rays[8];
+        RayPacket8 packet = randomPacket(prims, r, p, rays);
+        for (int i = 0; i < 8; ++i)  // finite segments, as shadow rays
+            if (!std::isfinite(packet.rays[i].tMax)) packet.rays[i].tMax = 12;
+        uint32_t mask = bvh.occluded8(packet);
+        for (int i = 0; i < 8; ++i) {
+            bool expected = (packet.active >> i & 1) && bvh.occluded(packet.ray(i));
+            EXPECT_EQ((mask >> i & 1) != 0, expected) << "packet " << p << " lane " << i;
+            blocked += expected;
+            free += (packet.active >> i & 1) && !expected;
+        }
+    }
+    EXPECT_GT(blocked, 300);
+    EXPECT_GT(free, 300);
 }
 
 TEST_P(BvhKernels, TheTreeDoesNotDependOnTheBuildThreadCount) {
