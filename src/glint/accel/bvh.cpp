@@ -76,11 +76,4 @@ void Bvh::intersect8(const RayPacket8& rays, HitPacket8& hits) const {
     bvh::portable::intersect8(data_, rays, hits);
 }
 
-uint32_t Bvh::occluded8(const RayPacket8& rays) const {
-#if GLINT_HAVE_AVX2
-    if (isa_ == Isa::Avx2) return bvh::avx2::occluded8(data_, rays);
-#endif
-    return bvh::portable::occluded8(data_, rays);
-}
-
 }  // namespace glint

@@ -43,8 +43,6 @@ class Bvh {
     bool occluded(const TraversalRay& ray) const;
     /// Closest hits of the active rays of a packet; the same results as `intersect` per ray.
     void intersect8(const RayPacket8& rays, HitPacket8& hits) const;
-    /// The active lanes whose ray is blocked; the same answers as `occluded` per ray.
-    uint32_t occluded8(const RayPacket8& rays) const;
 
     const BvhStats& stats() const { return stats_; }
     const bvh::BvhData& data() const { return data_; }

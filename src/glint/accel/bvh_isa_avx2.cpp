@@ -212,17 +212,6 @@ struct Isa {
         _mm256_store_ps(bestT, bt);
         _mm256_store_si256(reinterpret_cast<__m256i*>(bestId), bid);
     }
-
-    /// Lanes whose ray hits any of the four triangles within its range.
-    static uint32_t packetTrianglesAny(const Tri4& b, const PacketLanes& l) {
-        __m256 any = _mm256_setzero_ps();
-        for (int k = 0; k < kLanes; ++k) {
-            if (b.id[k] == kEmpty) continue;
-            __m256 t;
-            any = _mm256_or_ps(any, laneHits(b, k, l, t));
-        }
-        return static_cast<uint32_t>(_mm256_movemask_ps(any));
-    }
 };
 
 #include "glint/accel/bvh_traverse.inl"
@@ -241,8 +230,6 @@ bool occluded(const BvhData& d, const TraversalRay& ray) {
 void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
     traversePacket(d, rays, hits);
 }
-
-uint32_t occluded8(const BvhData& d, const RayPacket8& rays) { return occludedPacket(d, rays); }
 
 }  // namespace glint::bvh::avx2
 

@@ -99,18 +99,6 @@ struct Isa {
             bestT[lane] = hit.t, bestId[lane] = hit.primId;
         }
     }
-
-    /// Lanes whose ray hits any of the four triangles within its range.
-    static uint32_t packetTrianglesAny(const Tri4& b, const PacketLanes& l) {
-        uint32_t hit = 0;
-        for (int lane = 0; lane < 8; ++lane) {
-            alignas(16) float t[kLanes];
-            if ((l.p->active >> lane & 1) &&
-                triangles(b, l.p->rays[lane], std::numeric_limits<float>::infinity(), t))
-                hit |= 1u << lane;
-        }
-        return hit;
-    }
 };
 
 #include "glint/accel/bvh_traverse.inl"
@@ -129,7 +117,5 @@ bool occluded(const BvhData& d, const TraversalRay& ray) {
 void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
     traversePacket(d, rays, hits);
 }
-
-uint32_t occluded8(const BvhData& d, const RayPacket8& rays) { return occludedPacket(d, rays); }
 
 }  // namespace glint::bvh::portable

@@ -11,7 +11,6 @@ namespace portable {
 bool intersect(const BvhData& d, const TraversalRay& ray, Hit& hit);
 bool occluded(const BvhData& d, const TraversalRay& ray);
 void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits);
-uint32_t occluded8(const BvhData& d, const RayPacket8& rays);
 }  // namespace portable
 
 #if GLINT_HAVE_AVX2
@@ -20,7 +19,6 @@ namespace avx2 {
 bool intersect(const BvhData& d, const TraversalRay& ray, Hit& hit);
 bool occluded(const BvhData& d, const TraversalRay& ray);
 void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits);
-uint32_t occluded8(const BvhData& d, const RayPacket8& rays);
 }  // namespace avx2
 #endif
 

@@ -72,7 +72,8 @@ class Parser {
     const Transform& transform();
     /// The id of the current material, added to the scene when it changed since last asked.
     uint32_t material() {
-        if (materialChanged_) materialId_ = scene_->addMaterial(material_), materialChanged_ = false;
+        if (materialChanged_)
+            materialId_ = scene_->addMaterial(material_), materialChanged_ = false;
         return materialId_;
     }
     /// Argument `i` as an index into a pile of `count` entries, named `one` / `many`.

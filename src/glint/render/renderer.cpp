@@ -33,7 +33,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     int running = 0;
 
     // Camera rays go in packets of eight: 4 x 2 pixels at one sample per pixel, or eight
-    // samples of one pixel. Each pixel still sums its samples in the sampler's order.
+    // samples of one pixel. Each pixel still sums its samples in the sampler's order. Shadow
+    // and mirror rays go one by one: they start on the surfaces, often in different leaves of
+    // dense meshes, and packets of them measured up to 2x slower (docs/performance.md).
     struct Sample {
         int pixel;  ///< Index within the block.
         Ray ray;
@@ -60,9 +62,12 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             HitPacket8 hits;
             scene.bvh().intersect8(packet, hits);
             counts.camera += static_cast<uint64_t>(n);
-            Vec3 color[8];
-            integrator.shade8(rays, hits, packet.active, 0, color, counts);
-            for (int k = 0; k < n; ++k) sum[samples[i + k].pixel] += color[k];
+            for (int k = 0; k < n; ++k) {
+                Hit hit = hits[k];
+                bool found = hit.t < std::numeric_limits<float>::infinity();
+                sum[samples[i + k].pixel] +=
+                    integrator.shade(rays[k], found ? &hit : nullptr, 0, counts);
+            }
         }
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {

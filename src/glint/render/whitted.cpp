@@ -1,8 +1,6 @@
 #include "glint/render/whitted.h"
 
-#include <bit>
 #include <cmath>
-#include <limits>
 
 #include "glint/core/spawn.h"
 
@@ -52,76 +50,6 @@ Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, RayCoun
         color += m.specular * li(spawnRay(si.p, r, scene_.spawnOffset()), depth + 1, counts);
     }
     return color;
-}
-
-void WhittedIntegrator::shade8(const Ray* rays, const HitPacket8& hits, uint32_t active, int depth,
-                               Vec3* out, RayCounts& counts) const {
-    // The same steps as shade(), lane by lane, with every traced ray in a packet.
-    SurfaceInteraction si[8];
-    const Material* m[8];
-    Vec3 color[8];
-    uint32_t hit = 0;
-    for (uint32_t lanes = active; lanes; lanes &= lanes - 1) {
-        int i = std::countr_zero(lanes);
-        if (!(hits.t[i] < std::numeric_limits<float>::infinity())) {
-            out[i] = scene_.background.eval(rays[i].dir);
-            continue;
-        }
-        si[i] = scene_.primitives.interaction(rays[i], hits[i]);
-        m[i] = &scene_.materials[si[i].material];
-        color[i] = m[i]->ambient + m[i]->emission;
-        hit |= 1u << i;
-    }
-
-    for (const Light& light : scene_.lights) {
-        RayPacket8 shadow;
-        shadow.active = 0;
-        LightSample ls[8];
-        double nDotL[8];
-        for (uint32_t lanes = hit; lanes; lanes &= lanes - 1) {
-            int i = std::countr_zero(lanes);
-            ls[i] = light.sample(si[i].p);
-            nDotL[i] = dot(si[i].n, ls[i].wi);
-            if (!(nDotL[i] > 0)) continue;
-            shadow.set(
-                i, TraversalRay(spawnRay(si[i].p, ls[i].wi, scene_.spawnOffset(), ls[i].distance)));
-            shadow.active = static_cast<uint8_t>(shadow.active | (1u << i));
-        }
-        if (!shadow.active) continue;
-        counts.shadow += static_cast<uint64_t>(std::popcount(shadow.active));
-        uint32_t lit = shadow.active & ~scene_.bvh().occluded8(shadow);
-        for (; lit; lit &= lit - 1) {
-            int i = std::countr_zero(lit);
-            color[i] += lightTerm(si[i], -rays[i].dir, *m[i], ls[i], nDotL[i]);
-        }
-    }
-
-    RayPacket8 mirror;
-    mirror.active = 0;
-    Ray mirrorRays[8];
-    for (uint32_t lanes = hit; lanes; lanes &= lanes - 1) {
-        int i = std::countr_zero(lanes);
-        if (!reflects(*m[i], depth, scene_.maxDepth)) continue;
-        Vec3 r = normalize(reflect(rays[i].dir, si[i].n));
-        mirrorRays[i] = spawnRay(si[i].p, r, scene_.spawnOffset());
-        mirror.set(i, TraversalRay(mirrorRays[i]));
-        mirror.active = static_cast<uint8_t>(mirror.active | (1u << i));
-    }
-    if (mirror.active) {
-        counts.reflection += static_cast<uint64_t>(std::popcount(mirror.active));
-        HitPacket8 mirrorHits;
-        scene_.bvh().intersect8(mirror, mirrorHits);
-        Vec3 reflected[8];
-        shade8(mirrorRays, mirrorHits, mirror.active, depth + 1, reflected, counts);
-        for (uint32_t lanes = mirror.active; lanes; lanes &= lanes - 1) {
-            int i = std::countr_zero(lanes);
-            color[i] += m[i]->specular * reflected[i];
-        }
-    }
-    for (uint32_t lanes = hit; lanes; lanes &= lanes - 1) {
-        int i = std::countr_zero(lanes);
-        out[i] = color[i];
-    }
 }
 
 }  // namespace glint

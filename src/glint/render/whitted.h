@@ -34,12 +34,6 @@ class WhittedIntegrator {
     /// e.g. for a whole packet at once. Does not count `ray` itself.
     Vec3 shade(const Ray& ray, const Hit* hit, int depth, RayCounts& counts) const;
 
-    /// shade() for the `active` lanes of up to eight rays at the same depth, whose closest hits
-    /// are `hits`: their shadow and mirror rays are traced as packets too. Each lane gets
-    /// exactly what shade() gives for its ray alone. Writes `out[lane]` for active lanes.
-    void shade8(const Ray* rays, const HitPacket8& hits, uint32_t active, int depth, Vec3* out,
-                RayCounts& counts) const;
-
   private:
     const Scene& scene_;
 };

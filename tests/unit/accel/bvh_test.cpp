@@ -378,29 +378,6 @@ TEST_P(BvhKernels, PacketsGiveTheSameHitsAsSingleRays) {
     EXPECT_GT(lanes, 600);
 }
 
-TEST_P(BvhKernels, PacketOcclusionEqualsSingleRays) {
-    Primitives prims;
-    Random r(32);
-    addRandomScene(prims, r, 3000, 300);
-    Bvh bvh = build(prims);
-    int blocked = 0, free = 0;
-    for (int p = 0; p < 600; ++p) {
-        Ray rays[8];
-        RayPacket8 packet = randomPacket(prims, r, p, rays);
-        for (int i = 0; i < 8; ++i)  // finite segments, as shadow rays
-            if (!std::isfinite(packet.rays[i].tMax)) packet.rays[i].tMax = 12;
-        uint32_t mask = bvh.occluded8(packet);
-        for (int i = 0; i < 8; ++i) {
-            bool expected = (packet.active >> i & 1) && bvh.occluded(packet.ray(i));
-            EXPECT_EQ((mask >> i & 1) != 0, expected) << "packet " << p << " lane " << i;
-            blocked += expected;
-            free += (packet.active >> i & 1) && !expected;
-        }
-    }
-    EXPECT_GT(blocked, 300);
-    EXPECT_GT(free, 300);
-}
-
 TEST_P(BvhKernels, TheTreeDoesNotDependOnTheBuildThreadCount) {
     Primitives prims;
     Random r(8);
