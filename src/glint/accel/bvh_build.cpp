@@ -238,7 +238,7 @@ class TaskPool {
 
 class Builder {
   public:
-    Builder(std::vector<PrimRef>& refs, int threads)
+    Builder(LargeArray<PrimRef>& refs, int threads)
         : refs_(refs), leaves_(refs.size()), threads_(threads) {
         if (threads > 1) pool_ = std::make_unique<TaskPool>(threads);
     }
@@ -519,8 +519,8 @@ class Builder {
         return id;
     }
 
-    std::vector<PrimRef>& refs_;
-    std::vector<LeafRecord> leaves_;
+    LargeArray<PrimRef>& refs_;
+    LargeArray<LeafRecord> leaves_;
     std::atomic<uint32_t> leafCount_{0};
     std::atomic<uint32_t> maxDepth_{0};
     NodePool nodes_;
@@ -531,7 +531,7 @@ class Builder {
 /// Lays the tmp tree out depth first into `out`, creating leaf blocks as they come.
 class Flattener {
   public:
-    Flattener(Builder& b, const std::vector<PrimRef>& refs, const Primitives& prims, BvhData& out,
+    Flattener(Builder& b, const LargeArray<PrimRef>& refs, const Primitives& prims, BvhData& out,
               BuildSummary& summary)
         : b_(b), refs_(refs), prims_(prims), out_(out), summary_(summary) {}
 
@@ -601,7 +601,7 @@ class Flattener {
     }
 
     Builder& b_;
-    const std::vector<PrimRef>& refs_;
+    const LargeArray<PrimRef>& refs_;
     const Primitives& prims_;
     BvhData& out_;
     BuildSummary& summary_;
@@ -615,7 +615,7 @@ BuildSummary build(const Primitives& prims, int threads, BvhData& out) {
     uint32_t n = prims.size();
     if (n == 0) return summary;
 
-    std::vector<PrimRef> refs(n);
+    LargeArray<PrimRef> refs(n);
     for (uint32_t i = 0; i < n; ++i) {
         Bounds3f b = prims.bounds(i);
         refs[i] = {{b.lo.x, b.lo.y, b.lo.z},

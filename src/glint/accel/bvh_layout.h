@@ -9,8 +9,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <vector>
 
+#include "glint/core/huge_pages.h"
 #include "glint/geometry/sphere.h"
 
 namespace glint::bvh {
@@ -55,10 +55,10 @@ static_assert(sizeof(Tri4) == 160);
 /// Everything traversal reads.
 struct BvhData {
     NodeRef root = kEmpty;  ///< Node 0 when interior; a leaf for tiny scenes.
-    std::vector<Node8> nodes;
-    std::vector<Tri4> tris;
-    std::vector<SphereSearch> spheres;  ///< Sphere leaf items, in leaf order.
-    std::vector<uint32_t> sphereIds;    ///< Their primitive ids.
+    LargeVector<Node8> nodes;
+    LargeVector<Tri4> tris;
+    LargeVector<SphereSearch> spheres;  ///< Sphere leaf items, in leaf order.
+    LargeVector<uint32_t> sphereIds;    ///< Their primitive ids.
 
     size_t bytes() const {
         return nodes.size() * sizeof(Node8) + tris.size() * sizeof(Tri4) +
