@@ -24,8 +24,9 @@ constexpr uint32_t kAllAxesFrom = 32;  // smaller ranges are split along their l
 constexpr uint32_t kMaxLeafTriangles = 2 * kLanes;
 constexpr uint32_t kMaxLeafSpheres = 4;
 constexpr float kTraversalCost = 1;  // a node visit, relative to one triangle block or sphere
-constexpr uint32_t kMedianSplitDepth = 48;  // deeper binary splits halve by count
-constexpr uint32_t kTaskThreshold = 8192;   // subtrees at least this big may go to idle threads
+constexpr uint32_t kMedianSplitDepth = 48;     // deeper binary splits halve by count
+constexpr uint32_t kTaskThreshold = 8192;      // subtrees at least this big may go to idle threads
+constexpr uint32_t kParallelSplit = 1u << 15;  // splits this big may run beside each other
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 /// Four floats: SSE where available, plain arrays elsewhere. Lane 3 is always 0 in boxes.
@@ -474,22 +475,43 @@ class Builder {
         Decision d = decide(r, depth);
         if (d.kind == SplitKind::Leaf) return makeLeaf(r);
 
-        // Grow an 8-wide node: keep splitting the child with the largest area.
+        // Grow an 8-wide node in rounds: each round splits, largest area first, as many of the
+        // splittable children as still fit. The splits of a round are independent, so large
+        // ones run in parallel; the rule does not depend on the thread count.
         std::array<Slot, kWidth> slots;
         slots[0] = {r, d, depth};
         uint32_t count = 1;
         while (count < kWidth) {
-            int best = -1;
-            float bestArea = -1;
+            std::array<uint32_t, kWidth> order;
+            uint32_t candidates = 0;
             for (uint32_t i = 0; i < count; ++i)
-                if (slots[i].decision.kind != SplitKind::Leaf &&
-                    slots[i].range.bounds.area() > bestArea)
-                    best = static_cast<int>(i), bestArea = slots[i].range.bounds.area();
-            if (best < 0) break;
-            Slot s = slots[best];
-            auto [left, right] = split(s.range, s.decision);
-            slots[best] = {left, decide(left, s.depth + 1), s.depth + 1};
-            slots[count++] = {right, decide(right, s.depth + 1), s.depth + 1};
+                if (slots[i].decision.kind != SplitKind::Leaf) order[candidates++] = i;
+            if (candidates == 0) break;
+            std::stable_sort(order.begin(), order.begin() + candidates,
+                             [&](uint32_t a, uint32_t b) {
+                                 return slots[a].range.bounds.area() > slots[b].range.bounds.area();
+                             });
+            uint32_t take = std::min(candidates, kWidth - count);
+            std::array<std::pair<Slot, Slot>, kWidth> halves;
+            auto splitOne = [&](uint32_t j) {
+                const Slot& s = slots[order[j]];
+                auto [left, right] = split(s.range, s.decision);
+                halves[j] = {{left, decide(left, s.depth + 1), s.depth + 1},
+                             {right, decide(right, s.depth + 1), s.depth + 1}};
+            };
+            std::vector<std::thread> helpers;
+            for (uint32_t j = 0; j < take; ++j) {
+                bool big = slots[order[j]].range.size() >= kParallelSplit;
+                if (j + 1 < take && big && pool_ && pool_->hasIdleWorker())
+                    helpers.emplace_back(splitOne, j);
+                else
+                    splitOne(j);
+            }
+            for (auto& h : helpers) h.join();
+            for (uint32_t j = 0; j < take; ++j) {
+                slots[order[j]] = halves[j].first;
+                slots[count++] = halves[j].second;
+            }
         }
 
         uint32_t id = nodes_.allocate();
