@@ -140,15 +140,17 @@ struct Decision {
     int axis = 0, bin = 0;
 };
 
-/// Ranges of the flat PrimRef array; leaves are recorded here and laid out after the build.
-struct LeafRecord {
-    uint32_t begin, end;
+/// A child while building: a tmp node id, or a leaf: kLeafBit | the first of `size` refs.
+struct ChildRef {
+    uint32_t ref = kEmpty;
+    uint32_t size = 0;
 };
 
-/// An 8-wide node while building: children are tmp node ids or leaf record ids (kLeafBit).
+/// An 8-wide node while building. Nodes are written only by the task that builds them, and
+/// leaves live in their parent: building shares no counters or arrays between threads.
 struct TmpNode {
     Bounds3f bounds[kWidth];
-    uint32_t child[kWidth];
+    ChildRef child[kWidth];
     uint32_t count = 0;
 };
 
@@ -240,27 +242,24 @@ class TaskPool {
 class Builder {
   public:
     Builder(LargeArray<PrimRef>& refs, int threads)
-        : refs_(refs), leaves_(refs.size()), threads_(threads) {
+        : refs_(refs), threads_(threads) {
         if (threads > 1) pool_ = std::make_unique<TaskPool>(threads);
     }
 
-    /// Builds the tree over all refs; returns the root (tmp node id or leaf record id).
-    uint32_t buildAll() {
+    /// Builds the tree over all refs; returns the root.
+    ChildRef buildAll() {
         Range all = makeRange(0, static_cast<uint32_t>(refs_.size()));
-        uint32_t root = kEmpty;
+        ChildRef root;
         if (pool_) {
-            pool_->push([&] { root = subtree(all, 0, 0); });
+            pool_->push([&] { root = subtree(all, 0); });
             pool_->run();
         } else {
-            root = subtree(all, 0, 0);
+            root = subtree(all, 0);
         }
         return root;
     }
 
     NodePool& nodes() { return nodes_; }
-    const LeafRecord& leaf(uint32_t id) const { return leaves_[id]; }
-    uint32_t leafCount() const { return leafCount_.load(); }
-    uint32_t maxDepth() const { return maxDepth_.load(); }
 
   private:
     /// Bounds, centroid bounds and sphere count of refs [begin, end).
@@ -458,11 +457,7 @@ class Builder {
         return parts;
     }
 
-    uint32_t makeLeaf(const Range& r) {
-        uint32_t id = leafCount_.fetch_add(1, std::memory_order_relaxed);
-        leaves_[id] = {r.begin, r.end};
-        return kLeafBit | id;
-    }
+    static ChildRef makeLeaf(const Range& r) { return {kLeafBit | r.begin, r.size()}; }
 
     struct Slot {
         Range range;
@@ -470,8 +465,8 @@ class Builder {
         uint32_t depth;  ///< Binary splits above this range.
     };
 
-    /// Builds the subtree over `r`; returns a tmp node id or a leaf record ref.
-    uint32_t subtree(const Range& r, uint32_t depth, uint32_t level) {
+    /// Builds the subtree over `r`.
+    ChildRef subtree(const Range& r, uint32_t depth) {
         Decision d = decide(r, depth);
         if (d.kind == SplitKind::Leaf) return makeLeaf(r);
 
@@ -517,34 +512,24 @@ class Builder {
         uint32_t id = nodes_.allocate();
         TmpNode& node = nodes_[id];
         node.count = count;
-        uint32_t deepest = level + 1;
-        for (uint32_t i = 0; i < count; ++i) {
-            node.bounds[i] = slots[i].range.bounds.bounds3();
-            node.child[i] = kEmpty;
-        }
+        for (uint32_t i = 0; i < count; ++i) node.bounds[i] = slots[i].range.bounds.bounds3();
         for (uint32_t i = 0; i < count; ++i) {
             const Slot& s = slots[i];
             if (s.decision.kind == SplitKind::Leaf) {
                 node.child[i] = makeLeaf(s.range);
-            } else if (pool_ && s.range.size() >= kTaskThreshold && pool_->hasIdleWorker()) {
-                pool_->push([this, id, i, s, level] {
-                    uint32_t c = subtree(s.range, s.depth, level + 1);
-                    nodes_[id].child[i] = c;
-                });
+            } else if (pool_ && s.range.size() >= kTaskThreshold) {
+                // Every large subtree is a task, whichever thread is free takes it: a split
+                // handed out only to idle threads left them waiting while one thread built
+                // most of the tree.
+                pool_->push([this, id, i, s] { nodes_[id].child[i] = subtree(s.range, s.depth); });
             } else {
-                node.child[i] = subtree(s.range, s.depth, level + 1);
+                node.child[i] = subtree(s.range, s.depth);
             }
         }
-        uint32_t seen = maxDepth_.load(std::memory_order_relaxed);
-        while (deepest > seen && !maxDepth_.compare_exchange_weak(seen, deepest)) {
-        }
-        return id;
+        return {id, 0};
     }
 
     LargeArray<PrimRef>& refs_;
-    LargeArray<LeafRecord> leaves_;
-    std::atomic<uint32_t> leafCount_{0};
-    std::atomic<uint32_t> maxDepth_{0};
     NodePool nodes_;
     int threads_;
     std::unique_ptr<TaskPool> pool_;
@@ -557,8 +542,11 @@ class Flattener {
               BuildSummary& summary)
         : b_(b), refs_(refs), prims_(prims), out_(out), summary_(summary) {}
 
-    NodeRef flatten(uint32_t ref) {
-        if (ref & kLeafBit) return leaf(b_.leaf(ref & ~kLeafBit));
+    /// Lays out `c`, `depth` levels of nodes below the root; returns its final reference.
+    NodeRef flatten(const ChildRef& c, uint32_t depth = 0) {
+        if (c.ref & kLeafBit) return leaf(c.ref & ~kLeafBit, c.size);
+        summary_.maxDepth = std::max(summary_.maxDepth, depth + 1);
+        uint32_t ref = c.ref;
         auto index = static_cast<uint32_t>(out_.nodes.size());
         if (index >= kLeafBit) throw std::length_error("BVH too large");
         out_.nodes.emplace_back();
@@ -573,22 +561,23 @@ class Flattener {
             n.child[i] = kEmpty;
         }
         for (uint32_t i = 0; i < tmp.count; ++i) {
-            NodeRef c = flatten(tmp.child[i]);
-            out_.nodes[index].child[i] = c;
+            NodeRef child = flatten(tmp.child[i], depth + 1);
+            out_.nodes[index].child[i] = child;
         }
         return index;
     }
 
   private:
-    NodeRef leaf(const LeafRecord& l) {
-        uint32_t n = l.end - l.begin;
+    /// The leaf of refs [begin, begin + n).
+    NodeRef leaf(uint32_t begin, uint32_t n) {
+        const uint32_t end = begin + n;
         summary_.leaves++;
         summary_.maxLeafSize = std::max(summary_.maxLeafSize, n);
-        bool spheres = refs_[l.begin].sphere != 0;
+        bool spheres = refs_[begin].sphere != 0;
         if (spheres) {
             auto first = static_cast<uint32_t>(out_.spheres.size());
             check(first, n);
-            for (uint32_t i = l.begin; i < l.end; ++i) {
+            for (uint32_t i = begin; i < end; ++i) {
                 uint32_t id = refs_[i].id;
                 out_.spheres.push_back(prims_.sphereSearch(id - prims_.triangleCount()));
                 out_.sphereIds.push_back(id);
@@ -602,8 +591,8 @@ class Flattener {
         for (uint32_t b = 0; b < blocks; ++b) {
             Tri4 t;
             for (int lane = 0; lane < kLanes; ++lane) {
-                uint32_t i = l.begin + b * kLanes + static_cast<uint32_t>(lane);
-                bool used = i < l.end;
+                uint32_t i = begin + b * kLanes + static_cast<uint32_t>(lane);
+                bool used = i < end;
                 const Triangle* tri = used ? &prims_.triangle(refs_[i].id) : nullptr;
                 for (int c = 0; c < 3; ++c) {
                     t.v0[c][lane] = used ? tri->v0[c] : nan;
@@ -647,14 +636,15 @@ BuildSummary build(const Primitives& prims, int threads, BvhData& out) {
     }
 
     Builder builder(refs, std::max(1, threads));
-    uint32_t root = builder.buildAll();
+    ChildRef root = builder.buildAll();
 
     out.nodes.reserve(builder.nodes().size());
-    out.tris.reserve(prims.triangleCount() / kLanes + builder.leafCount());
+    // An upper bound (one block per triangle): untouched reserved memory costs nothing, and a
+    // tight array would need a second pass or a 40 MB copy.
+    out.tris.reserve(prims.triangleCount());
     Flattener flattener(builder, refs, prims, out, summary);
     out.root = flattener.flatten(root);
-    summary.maxDepth = builder.maxDepth();
-    out.tris.shrink_to_fit();
+
     return summary;
 }
 
