@@ -23,6 +23,15 @@ void Primitives::addSphere(const Sphere& sphere, uint32_t material) {
     sphereMaterial_.push_back(material);
 }
 
+void Primitives::reserve(size_t triangles, size_t spheres) {
+    triangles_.reserve(triangles_.size() + triangles);
+    triangleMaterial_.reserve(triangleMaterial_.size() + triangles);
+    triangleNormals_.reserve(triangleNormals_.size() + triangles);
+    spheres_.reserve(spheres_.size() + spheres);
+    sphereSearch_.reserve(sphereSearch_.size() + spheres);
+    sphereMaterial_.reserve(sphereMaterial_.size() + spheres);
+}
+
 Bounds3f Primitives::bounds() const {
     Bounds3f b;
     for (uint32_t i = 0; i < size(); ++i) b.extend(bounds(i));

@@ -29,6 +29,8 @@ class Primitives {
     bool addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
                      uint32_t material);
     void addSphere(const Sphere& sphere, uint32_t material);
+    /// Room for this many more triangles and spheres, so that adding them does not reallocate.
+    void reserve(size_t triangles, size_t spheres);
 
     uint32_t size() const { return static_cast<uint32_t>(triangles_.size() + spheres_.size()); }
     uint32_t triangleCount() const { return static_cast<uint32_t>(triangles_.size()); }

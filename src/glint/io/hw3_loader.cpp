@@ -10,10 +10,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <limits>
+#include <system_error>
 
 #include "glint/io/image_io.h"
+#include "glint/io/mapped_file.h"
 #include "glint/io/numbers.h"
 
 namespace glint {
@@ -197,7 +198,31 @@ const std::vector<Command>& Parser::commands() {
     return table;
 }
 
+/// Upper bounds of the primitives and vertices a scene text creates, from its lines' first
+/// words: enough to reserve storage once instead of growing it (and copying) many times.
+struct Counts {
+    size_t triangles = 0, spheres = 0, vertices = 0;
+};
+
+Counts countLines(std::string_view text) {
+    Counts c;
+    const char* p = text.data();
+    const char* end = p + text.size();
+    while (p < end) {
+        while (p < end && (*p == ' ' || *p == '\t')) ++p;
+        if (end - p >= 3 && p[0] == 't' && p[1] == 'r' && p[2] == 'i') ++c.triangles;
+        if (end - p >= 6 && p[0] == 's' && p[1] == 'p' && p[2] == 'h') ++c.spheres;
+        if (end - p >= 6 && p[0] == 'v' && p[1] == 'e' && p[2] == 'r') ++c.vertices;
+        const void* nl = std::memchr(p, '\n', static_cast<size_t>(end - p));
+        p = nl ? static_cast<const char*>(nl) + 1 : end;
+    }
+    return c;
+}
+
 std::unique_ptr<Scene> Parser::run() {
+    Counts counts = countLines(text_);
+    scene_->primitives.reserve(counts.triangles, counts.spheres);
+    vertices_.reserve(counts.vertices);
     size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
     while (pos < text_.size()) {
         size_t end = text_.find('\n', pos);
@@ -567,13 +592,13 @@ std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnos
     if (st.st_size > kMaxSceneFileBytes)
         cannot("the file has " + std::to_string(st.st_size) + " bytes, more than the limit of " +
                std::to_string(kMaxSceneFileBytes));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) cannot(std::strerror(errno));
-    auto size = static_cast<size_t>(st.st_size);
-    auto text = std::make_unique_for_overwrite<char[]>(size);  // no zero-filling of 1 GiB
-    in.read(text.get(), static_cast<std::streamsize>(size));
-    if (in.gcount() != static_cast<std::streamsize>(size)) cannot("read failed");
-    return parseHw3Scene(std::string_view(text.get(), size), path, warnings);
+    try {
+        MappedFile file(path);
+        return parseHw3Scene(file.text(), path, warnings);
+    } catch (const std::system_error& e) {
+        throw SceneError({path, 0, 0},
+                         std::string("cannot read scene: ") + std::strerror(e.code().value()));
+    }
 }
 
 std::vector<std::string_view> hw3CommandNames() {
