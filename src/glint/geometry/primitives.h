@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "glint/core/huge_pages.h"
 #include "glint/geometry/sphere.h"
 #include "glint/geometry/triangle.h"
 
@@ -68,13 +69,14 @@ class Primitives {
   private:
     static constexpr uint32_t kFlat = UINT32_MAX;
 
-    std::vector<Triangle> triangles_;
-    std::vector<uint32_t> triangleMaterial_;
-    std::vector<uint32_t> triangleNormals_;  ///< Index into vertexNormals_, or kFlat.
-    std::vector<std::array<Vec3, 3>> vertexNormals_;
-    std::vector<Sphere> spheres_;
-    std::vector<SphereSearch> sphereSearch_;
-    std::vector<uint32_t> sphereMaterial_;
+    // Large arrays in huge pages: scenes of millions of triangles fill them in one go.
+    LargeVector<Triangle> triangles_;
+    LargeVector<uint32_t> triangleMaterial_;
+    LargeVector<uint32_t> triangleNormals_;  ///< Index into vertexNormals_, or kFlat.
+    LargeVector<std::array<Vec3, 3>> vertexNormals_;
+    LargeVector<Sphere> spheres_;
+    LargeVector<SphereSearch> sphereSearch_;
+    LargeVector<uint32_t> sphereMaterial_;
 };
 
 }  // namespace glint

@@ -159,7 +159,7 @@ class Parser {
     bool materialChanged_ = true;
     uint32_t materialId_ = 0;
     Vec3 attenuation_{1, 0, 0};
-    std::vector<Vec3> vertices_;
+    LargeVector<Vec3> vertices_;
     std::vector<std::array<Vec3, 2>> normalVertices_;  ///< Position and unit normal (or zero).
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
