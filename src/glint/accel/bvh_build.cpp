@@ -241,8 +241,7 @@ class TaskPool {
 
 class Builder {
   public:
-    Builder(LargeArray<PrimRef>& refs, int threads)
-        : refs_(refs), threads_(threads) {
+    Builder(LargeArray<PrimRef>& refs, int threads) : refs_(refs), threads_(threads) {
         if (threads > 1) pool_ = std::make_unique<TaskPool>(threads);
     }
 
@@ -535,24 +534,92 @@ class Builder {
     std::unique_ptr<TaskPool> pool_;
 };
 
-/// Lays the tmp tree out depth first into `out`, creating leaf blocks as they come.
+/// Sizes of a laid-out subtree, and a place to write one.
+struct Layout {
+    uint32_t nodes = 0, tris = 0, spheres = 0;
+
+    Layout& operator+=(const Layout& o) {
+        nodes += o.nodes, tris += o.tris, spheres += o.spheres;
+        return *this;
+    }
+};
+
+/// Lays the tmp tree out depth first into `out`, creating leaf blocks as they come. Subtrees
+/// can be laid out concurrently: each writes at positions computed beforehand, so the layout
+/// is the same as a single depth-first pass.
 class Flattener {
   public:
-    Flattener(Builder& b, const LargeArray<PrimRef>& refs, const Primitives& prims, BvhData& out,
-              BuildSummary& summary)
-        : b_(b), refs_(refs), prims_(prims), out_(out), summary_(summary) {}
+    Flattener(Builder& b, const LargeArray<PrimRef>& refs, const Primitives& prims, BvhData& out)
+        : b_(b), refs_(refs), prims_(prims), out_(out) {}
 
-    /// Lays out `c`, `depth` levels of nodes below the root; returns its final reference.
-    NodeRef flatten(const ChildRef& c, uint32_t depth = 0) {
-        if (c.ref & kLeafBit) return leaf(c.ref & ~kLeafBit, c.size);
-        summary_.maxDepth = std::max(summary_.maxDepth, depth + 1);
-        uint32_t ref = c.ref;
-        auto index = static_cast<uint32_t>(out_.nodes.size());
+    /// What `c` occupies once laid out.
+    Layout size(const ChildRef& c) {
+        if (c.ref & kLeafBit) {
+            bool spheres = refs_[c.ref & ~kLeafBit].sphere != 0;
+            uint32_t blocks = (c.size + kLanes - 1) / kLanes;
+            return spheres ? Layout{0, 0, c.size} : Layout{0, blocks, 0};
+        }
+        Layout l{1, 0, 0};
+        const TmpNode& tmp = b_.nodes()[c.ref];
+        for (uint32_t i = 0; i < tmp.count; ++i) l += size(tmp.child[i]);
+        return l;
+    }
+
+    /// Lays out `c`, `depth` levels of nodes below the root, starting at `at` (which advances);
+    /// returns its final reference.
+    NodeRef flatten(const ChildRef& c, Layout& at, uint32_t depth, BuildSummary& summary) {
+        if (c.ref & kLeafBit) return leaf(c.ref & ~kLeafBit, c.size, at, summary);
+        summary.maxDepth = std::max(summary.maxDepth, depth + 1);
+        uint32_t index = at.nodes++;
         if (index >= kLeafBit) throw std::length_error("BVH too large");
-        out_.nodes.emplace_back();
-        const TmpNode& tmp = b_.nodes()[ref];
+        const TmpNode& tmp = b_.nodes()[c.ref];
+        writeNode(index, tmp);
+        for (uint32_t i = 0; i < tmp.count; ++i)
+            out_.nodes[index].child[i] = flatten(tmp.child[i], at, depth + 1, summary);
+        return index;
+    }
+
+    /// Lays out the whole tree, the root's subtrees on up to `threads` threads.
+    NodeRef flattenAll(const ChildRef& root, int threads, BuildSummary& summary) {
+        Layout total = size(root);
+        out_.nodes.resize(total.nodes);
+        out_.tris.resize(total.tris);
+        out_.spheres.resize(total.spheres);
+        out_.sphereIds.resize(total.spheres);
+        Layout at;
+        if ((root.ref & kLeafBit) || threads <= 1) return flatten(root, at, 0, summary);
+
+        const TmpNode& tmp = b_.nodes()[root.ref];
+        summary.maxDepth = 1;
+        writeNode(at.nodes++, tmp);
+        std::array<Layout, kWidth> starts;
+        std::array<BuildSummary, kWidth> parts{};
+        for (uint32_t i = 0; i < tmp.count; ++i) {
+            starts[i] = at;
+            at += size(tmp.child[i]);
+        }
+        std::atomic<uint32_t> next{0};
+        auto work = [&] {
+            for (uint32_t i; (i = next.fetch_add(1)) < tmp.count;)
+                out_.nodes[0].child[i] = flatten(tmp.child[i], starts[i], 1, parts[i]);
+        };
+        std::vector<std::thread> helpers;
+        for (int t = 1; t < std::min<int>(threads, static_cast<int>(tmp.count)); ++t)
+            helpers.emplace_back(work);
+        work();
+        for (auto& h : helpers) h.join();
+        for (uint32_t i = 0; i < tmp.count; ++i) {
+            summary.leaves += parts[i].leaves;
+            summary.maxDepth = std::max(summary.maxDepth, parts[i].maxDepth);
+            summary.maxLeafSize = std::max(summary.maxLeafSize, parts[i].maxLeafSize);
+        }
+        return 0;
+    }
+
+  private:
+    void writeNode(uint32_t index, const TmpNode& tmp) {
+        Node8& n = out_.nodes[index];
         for (uint32_t i = 0; i < kWidth; ++i) {
-            Node8& n = out_.nodes[index];
             bool used = i < tmp.count;
             for (int a = 0; a < 3; ++a) {
                 n.lo[a][i] = used ? tmp.bounds[i].lo[a] : std::numeric_limits<float>::infinity();
@@ -560,36 +627,29 @@ class Flattener {
             }
             n.child[i] = kEmpty;
         }
-        for (uint32_t i = 0; i < tmp.count; ++i) {
-            NodeRef child = flatten(tmp.child[i], depth + 1);
-            out_.nodes[index].child[i] = child;
-        }
-        return index;
     }
 
-  private:
     /// The leaf of refs [begin, begin + n).
-    NodeRef leaf(uint32_t begin, uint32_t n) {
+    NodeRef leaf(uint32_t begin, uint32_t n, Layout& at, BuildSummary& summary) {
         const uint32_t end = begin + n;
-        summary_.leaves++;
-        summary_.maxLeafSize = std::max(summary_.maxLeafSize, n);
-        bool spheres = refs_[begin].sphere != 0;
-        if (spheres) {
-            auto first = static_cast<uint32_t>(out_.spheres.size());
+        summary.leaves++;
+        summary.maxLeafSize = std::max(summary.maxLeafSize, n);
+        if (refs_[begin].sphere != 0) {
+            uint32_t first = at.spheres;
             check(first, n);
-            for (uint32_t i = begin; i < end; ++i) {
+            for (uint32_t i = begin; i < end; ++i, ++at.spheres) {
                 uint32_t id = refs_[i].id;
-                out_.spheres.push_back(prims_.sphereSearch(id - prims_.triangleCount()));
-                out_.sphereIds.push_back(id);
+                out_.spheres[at.spheres] = prims_.sphereSearch(id - prims_.triangleCount());
+                out_.sphereIds[at.spheres] = id;
             }
             return makeLeaf(true, first, n);
         }
-        auto first = static_cast<uint32_t>(out_.tris.size());
+        uint32_t first = at.tris;
         uint32_t blocks = (n + kLanes - 1) / kLanes;
         check(first, blocks);
         constexpr float nan = std::numeric_limits<float>::quiet_NaN();
         for (uint32_t b = 0; b < blocks; ++b) {
-            Tri4 t;
+            Tri4& t = out_.tris[at.tris++];
             for (int lane = 0; lane < kLanes; ++lane) {
                 uint32_t i = begin + b * kLanes + static_cast<uint32_t>(lane);
                 bool used = i < end;
@@ -601,7 +661,6 @@ class Flattener {
                 }
                 t.id[lane] = used ? refs_[i].id : kEmpty;
             }
-            out_.tris.push_back(t);
         }
         return makeLeaf(false, first, blocks);
     }
@@ -615,7 +674,6 @@ class Flattener {
     const LargeArray<PrimRef>& refs_;
     const Primitives& prims_;
     BvhData& out_;
-    BuildSummary& summary_;
 };
 
 }  // namespace
@@ -638,12 +696,8 @@ BuildSummary build(const Primitives& prims, int threads, BvhData& out) {
     Builder builder(refs, std::max(1, threads));
     ChildRef root = builder.buildAll();
 
-    out.nodes.reserve(builder.nodes().size());
-    // An upper bound (one block per triangle): untouched reserved memory costs nothing, and a
-    // tight array would need a second pass or a 40 MB copy.
-    out.tris.reserve(prims.triangleCount());
-    Flattener flattener(builder, refs, prims, out, summary);
-    out.root = flattener.flatten(root);
+    Flattener flattener(builder, refs, prims, out);
+    out.root = flattener.flattenAll(root, std::max(1, threads), summary);
 
     return summary;
 }

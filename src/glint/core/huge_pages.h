@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -24,7 +26,8 @@ inline void* allocateLarge(size_t bytes) {
         size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
         // Map one huge page more than needed, so that the block can start on a 2 MiB boundary.
         size_t mapped = rounded + kHugePage;
-        void* raw = mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        void* raw =
+            mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
         if (raw == MAP_FAILED) throw std::bad_alloc();
         auto base = reinterpret_cast<uintptr_t>(raw);
         uintptr_t aligned = (base + kHugePage - 1) / kHugePage * kHugePage;
@@ -35,7 +38,7 @@ inline void* allocateLarge(size_t bytes) {
         return reinterpret_cast<void*>(aligned);
     }
 #endif
-    return ::operator new(bytes, std::align_val_t{64});
+    return ::operator new (bytes, std::align_val_t{64});
 }
 
 inline void freeLarge(void* p, size_t bytes) {
@@ -45,7 +48,7 @@ inline void freeLarge(void* p, size_t bytes) {
         return;
     }
 #endif
-    ::operator delete(p, std::align_val_t{64});
+    ::operator delete (p, std::align_val_t{64});
 }
 }  // namespace detail
 
@@ -61,6 +64,17 @@ struct HugePageAllocator {
     T* allocate(size_t n) { return static_cast<T*>(detail::allocateLarge(n * sizeof(T))); }
     void deallocate(T* p, size_t n) { detail::freeLarge(p, n * sizeof(T)); }
 
+    /// resize() default-initialises: trivial elements are left as they are, not zero-filled
+    /// (huge arrays about to be overwritten should not be written twice).
+    template <typename U>
+    void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+        ::new (static_cast<void*>(p)) U;
+    }
+    template <typename U, typename... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+
     template <typename U>
     bool operator==(const HugePageAllocator<U>&) const {
         return true;
@@ -75,7 +89,7 @@ using LargeVector = std::vector<T, HugePageAllocator<T>>;
 /// that is about to be overwritten: no time spent zero-filling).
 template <typename T>
 class LargeArray {
-public:
+  public:
     explicit LargeArray(size_t n)
         : n_(n), p_(n ? static_cast<T*>(detail::allocateLarge(n * sizeof(T))) : nullptr) {}
     ~LargeArray() {
@@ -89,7 +103,7 @@ public:
     T* data() { return p_; }
     size_t size() const { return n_; }
 
-private:
+  private:
     size_t n_;
     T* p_;
 };
