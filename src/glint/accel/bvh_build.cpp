@@ -144,6 +144,7 @@ struct Decision {
 struct ChildRef {
     uint32_t ref = kEmpty;
     uint32_t size = 0;
+    bool spheres = false;  ///< A leaf of spheres (leaves hold one kind).
 };
 
 /// An 8-wide node while building. Nodes are written only by the task that builds them, and
@@ -456,7 +457,9 @@ class Builder {
         return parts;
     }
 
-    static ChildRef makeLeaf(const Range& r) { return {kLeafBit | r.begin, r.size()}; }
+    static ChildRef makeLeaf(const Range& r) {
+        return {kLeafBit | r.begin, r.size(), r.spheres != 0};
+    }
 
     struct Slot {
         Range range;
@@ -554,11 +557,8 @@ class Flattener {
 
     /// What `c` occupies once laid out.
     Layout size(const ChildRef& c) {
-        if (c.ref & kLeafBit) {
-            bool spheres = refs_[c.ref & ~kLeafBit].sphere != 0;
-            uint32_t blocks = (c.size + kLanes - 1) / kLanes;
-            return spheres ? Layout{0, 0, c.size} : Layout{0, blocks, 0};
-        }
+        if (c.ref & kLeafBit)
+            return c.spheres ? Layout{0, 0, c.size} : Layout{0, (c.size + kLanes - 1) / kLanes, 0};
         Layout l{1, 0, 0};
         const TmpNode& tmp = b_.nodes()[c.ref];
         for (uint32_t i = 0; i < tmp.count; ++i) l += size(tmp.child[i]);
@@ -568,7 +568,7 @@ class Flattener {
     /// Lays out `c`, `depth` levels of nodes below the root, starting at `at` (which advances);
     /// returns its final reference.
     NodeRef flatten(const ChildRef& c, Layout& at, uint32_t depth, BuildSummary& summary) {
-        if (c.ref & kLeafBit) return leaf(c.ref & ~kLeafBit, c.size, at, summary);
+        if (c.ref & kLeafBit) return leaf(c, at, summary);
         summary.maxDepth = std::max(summary.maxDepth, depth + 1);
         uint32_t index = at.nodes++;
         if (index >= kLeafBit) throw std::length_error("BVH too large");
@@ -629,12 +629,11 @@ class Flattener {
         }
     }
 
-    /// The leaf of refs [begin, begin + n).
-    NodeRef leaf(uint32_t begin, uint32_t n, Layout& at, BuildSummary& summary) {
-        const uint32_t end = begin + n;
+    NodeRef leaf(const ChildRef& c, Layout& at, BuildSummary& summary) {
+        const uint32_t begin = c.ref & ~kLeafBit, n = c.size, end = begin + n;
         summary.leaves++;
         summary.maxLeafSize = std::max(summary.maxLeafSize, n);
-        if (refs_[begin].sphere != 0) {
+        if (c.spheres) {
             uint32_t first = at.spheres;
             check(first, n);
             for (uint32_t i = begin; i < end; ++i, ++at.spheres) {
@@ -654,10 +653,10 @@ class Flattener {
                 uint32_t i = begin + b * kLanes + static_cast<uint32_t>(lane);
                 bool used = i < end;
                 const Triangle* tri = used ? &prims_.triangle(refs_[i].id) : nullptr;
-                for (int c = 0; c < 3; ++c) {
-                    t.v0[c][lane] = used ? tri->v0[c] : nan;
-                    t.v1[c][lane] = used ? tri->v1[c] : nan;
-                    t.v2[c][lane] = used ? tri->v2[c] : nan;
+                for (int k = 0; k < 3; ++k) {
+                    t.v0[k][lane] = used ? tri->v0[k] : nan;
+                    t.v1[k][lane] = used ? tri->v1[k] : nan;
+                    t.v2[k][lane] = used ? tri->v2[k] : nan;
                 }
                 t.id[lane] = used ? refs_[i].id : kEmpty;
             }
