@@ -5,7 +5,10 @@ find_package(PkgConfig REQUIRED)
 # CLI11 (libcli11-dev): command-line parsing for apps/.
 find_package(CLI11 CONFIG REQUIRED)
 
-# stb (libstb-dev): PNG/JPEG decoding and PNG encoding in io/.
+# libpng (libpng-dev): PNG encoding in io/ (fast settings).
+find_package(PNG REQUIRED)
+
+# stb (libstb-dev): PNG/JPEG decoding in io/.
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 
 if(GLINT_BUILD_TESTS)

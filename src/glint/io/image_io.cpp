@@ -1,7 +1,7 @@
 #include "glint/io/image_io.h"
 
+#include <png.h>
 #include <stb_image.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <bit>
@@ -40,6 +40,39 @@ std::string header(const char* magic, int w, int h, const char* last) {
 
 }  // namespace
 
+/// PNG through libpng, tuned for speed: zlib level 1 and the "up" filter. On renders this is
+/// about 4x faster than stb's encoder and the files come out smaller (docs/performance.md).
+std::string encodePng(const Image8& img) {
+    std::string out;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        throw RenderError("PNG encoding failed: out of memory");
+    }
+    if (setjmp(png_jmpbuf(png))) {  // libpng reports errors by longjmp
+        png_destroy_write_struct(&png, &info);
+        throw RenderError("PNG encoding failed");
+    }
+    png_set_write_fn(
+        png, &out,
+        [](png_structp p, png_bytep data, png_size_t n) {
+            static_cast<std::string*>(png_get_io_ptr(p))->append(reinterpret_cast<char*>(data), n);
+        },
+        nullptr);
+    png_set_IHDR(png, info, static_cast<png_uint_32>(img.width),
+                 static_cast<png_uint_32>(img.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_compression_level(png, 1);
+    png_set_filter(png, 0, PNG_FILTER_UP);
+    png_write_info(png, info);
+    for (int y = 0; y < img.height; ++y)
+        png_write_row(png, img.data.data() + static_cast<size_t>(y) * img.width * 3);
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return out;
+}
+
 std::string encodeImage(const Film& film, ImageFormat format) {
     const int w = film.width(), h = film.height();
     std::string out;
@@ -66,13 +99,7 @@ std::string encodeImage(const Film& film, ImageFormat format) {
         out.append(reinterpret_cast<const char*>(img.data.data()), img.data.size());
         return out;
     }
-    auto append = [](void* ctx, void* data, int size) {
-        static_cast<std::string*>(ctx)->append(static_cast<const char*>(data),
-                                               static_cast<size_t>(size));
-    };
-    if (!stbi_write_png_to_func(append, &out, w, h, 3, img.data.data(), w * 3))
-        throw RenderError("PNG encoding failed");
-    return out;
+    return encodePng(img);
 }
 
 void writeImage(const std::string& path, const Film& film) {
