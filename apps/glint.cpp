@@ -10,6 +10,7 @@
 #include <string>
 
 #include "demo_scene.h"
+#include "glint/accel/bvh.h"
 #include "glint/core/error.h"
 #include "glint/io/hw3_loader.h"
 #include "glint/io/image_io.h"
@@ -235,7 +236,10 @@ int main(int argc, char** argv) {
         ->group(info);
     app.add_flag("-q,--quiet", opt.quiet, "No progress or messages; warnings and errors only")
         ->group(info);
-    app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION)->group(info);
+    app.set_version_flag("--version",
+                         std::string("glint ") + GLINT_VERSION + " (traversal kernels: " +
+                             glint::Bvh::isa() + ")")
+        ->group(info);
     app.set_help_flag("-h,--help", "Print this help and exit")->group(info);
 
     try {

@@ -377,10 +377,13 @@ TEST(Cli, ProgressOnANonTerminalIsPlainLinesEndingWithRendered) {
 
 // ---- Information and usage errors ----
 
-TEST(Cli, VersionPrintsTheVersionAndExitsZero) {
+TEST(Cli, VersionPrintsTheVersionAndTraversalKernelsAndExitsZero) {
     CommandResult r = runGlint("--version", freshDir("version"));
     EXPECT_EQ(r.exitCode, 0);
-    EXPECT_TRUE(std::regex_match(r.out, std::regex("glint [0-9]+\\.[0-9]+\\.[0-9]+\n"))) << r.out;
+    EXPECT_TRUE(std::regex_match(
+        r.out,
+        std::regex("glint [0-9]+\\.[0-9]+\\.[0-9]+ \\(traversal kernels: (avx2|portable)\\)\n")))
+        << r.out;
 }
 
 TEST(Cli, HelpShowsOptionGroupsAndExitsZero) {

@@ -45,6 +45,7 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
 #endif
     int threads = options.threads > 0 ? options.threads : hardwareThreads();
     bvh::BuildSummary s = bvh::build(prims, threads, data_);
+    bounds_ = s.bounds;
     stats_ = {};
     stats_.nodes = static_cast<uint32_t>(data_.nodes.size());
     stats_.leaves = s.leaves;
@@ -54,6 +55,8 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
     stats_.buildSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+Bounds3f Bvh::bounds() const { return bounds_; }
 
 bool Bvh::intersect(const TraversalRay& ray, Hit& hit) const {
 #if GLINT_HAVE_AVX2

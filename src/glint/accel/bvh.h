@@ -45,6 +45,8 @@ class Bvh {
     void intersect8(const RayPacket8& rays, HitPacket8& hits) const;
 
     const BvhStats& stats() const { return stats_; }
+    /// Bounds of everything in the BVH (empty if nothing).
+    Bounds3f bounds() const;
     const bvh::BvhData& data() const { return data_; }
     /// The kernels this BVH traverses with.
     Isa kernels() const { return isa_; }
@@ -58,6 +60,7 @@ class Bvh {
   private:
     bvh::BvhData data_;
     BvhStats stats_;
+    Bounds3f bounds_;
     Isa isa_ = Isa::Portable;
 };
 

@@ -249,6 +249,7 @@ class Builder {
     /// Builds the tree over all refs; returns the root.
     ChildRef buildAll() {
         Range all = makeRange(0, static_cast<uint32_t>(refs_.size()));
+        rootBounds_ = all.bounds.bounds3();
         ChildRef root;
         if (pool_) {
             pool_->push([&] { root = subtree(all, 0); });
@@ -260,6 +261,7 @@ class Builder {
     }
 
     NodePool& nodes() { return nodes_; }
+    Bounds3f rootBounds() const { return rootBounds_; }
 
   private:
     /// Bounds, centroid bounds and sphere count of refs [begin, end).
@@ -532,6 +534,7 @@ class Builder {
     }
 
     LargeArray<PrimRef>& refs_;
+    Bounds3f rootBounds_;
     NodePool nodes_;
     int threads_;
     std::unique_ptr<TaskPool> pool_;
@@ -694,6 +697,7 @@ BuildSummary build(const Primitives& prims, int threads, BvhData& out) {
 
     Builder builder(refs, std::max(1, threads));
     ChildRef root = builder.buildAll();
+    summary.bounds = builder.rootBounds();
 
     Flattener flattener(builder, refs, prims, out);
     out.root = flattener.flattenAll(root, std::max(1, threads), summary);

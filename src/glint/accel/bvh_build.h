@@ -12,6 +12,7 @@ struct BuildSummary {
     uint32_t leaves = 0;
     uint32_t maxDepth = 0;     ///< Levels of 8-wide nodes below the root.
     uint32_t maxLeafSize = 0;  ///< Primitives in the largest leaf.
+    Bounds3f bounds;           ///< Of all primitives.
 };
 
 /// Deepest tree the builder makes (levels of 8-wide nodes). Traversal stacks hold

@@ -9,9 +9,11 @@ bool Primitives::addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const 
     triangles_.push_back(tri);
     triangleMaterial_.push_back(material);
     if (normals) {
+        // The per-triangle index exists only once some triangle has vertex normals.
+        if (triangleNormals_.empty()) triangleNormals_.assign(triangles_.size() - 1, kFlat);
         triangleNormals_.push_back(static_cast<uint32_t>(vertexNormals_.size()));
         vertexNormals_.push_back({normals[0], normals[1], normals[2]});
-    } else {
+    } else if (!triangleNormals_.empty()) {
         triangleNormals_.push_back(kFlat);
     }
     return true;
@@ -26,7 +28,6 @@ void Primitives::addSphere(const Sphere& sphere, uint32_t material) {
 void Primitives::reserve(size_t triangles, size_t spheres) {
     triangles_.reserve(triangles_.size() + triangles);
     triangleMaterial_.reserve(triangleMaterial_.size() + triangles);
-    triangleNormals_.reserve(triangleNormals_.size() + triangles);
     spheres_.reserve(spheres_.size() + spheres);
     sphereSearch_.reserve(sphereSearch_.size() + spheres);
     sphereMaterial_.reserve(sphereMaterial_.size() + spheres);
@@ -47,7 +48,8 @@ SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const
         si.ng = normalize(tri.normalDirection());
         si.n = si.ng;
         si.material = triangleMaterial_[hit.primId];
-        if (uint32_t ni = triangleNormals_[hit.primId]; ni != kFlat) {
+        uint32_t ni = triangleNormals_.empty() ? kFlat : triangleNormals_[hit.primId];
+        if (ni != kFlat) {
             const auto& vn = vertexNormals_[ni];
             Vec3 n = vn[0] * (1 - th.b1 - th.b2) + vn[1] * th.b1 + vn[2] * th.b2;
             double len = length(n);

@@ -72,7 +72,8 @@ class Primitives {
     // Large arrays in huge pages: scenes of millions of triangles fill them in one go.
     LargeVector<Triangle> triangles_;
     LargeVector<uint32_t> triangleMaterial_;
-    LargeVector<uint32_t> triangleNormals_;  ///< Index into vertexNormals_, or kFlat.
+    /// Index into vertexNormals_, or kFlat; empty while no triangle has vertex normals.
+    LargeVector<uint32_t> triangleNormals_;
     LargeVector<std::array<Vec3, 3>> vertexNormals_;
     LargeVector<Sphere> spheres_;
     LargeVector<SphereSearch> sphereSearch_;

@@ -11,7 +11,7 @@ uint32_t Scene::addMaterial(const Material& m) {
 
 void Scene::prepare() {
     bvh_.build(primitives);
-    Bounds3f b = primitives.bounds();
+    Bounds3f b = bvh_.bounds();
     spawnOffset_ =
         sceneSpawnOffset(b.empty() ? 1.0 : static_cast<double>(maxComponent(b.diagonal())));
     prepared_ = true;
