@@ -62,6 +62,22 @@ std::string parseSize(const std::string& s, int& w, int& h) {
     return {};
 }
 
+/// An integer option within [lo, hi], with plain messages for anything else.
+CLI::Validator integerIn(long long lo, long long hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            long long v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size())
+                return "expected an integer, got '" + text + "'";
+            if (v < lo || v > hi)
+                return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+                       text;
+            return {};
+        },
+        "", "");
+}
+
 /// "1 light", "2 lights".
 std::string count(unsigned long long n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
@@ -203,26 +219,25 @@ int main(int argc, char** argv) {
         ->type_name("FILE");
 
     const char* render = "Rendering";
-    app.add_option("-t,--threads", opt.threads, "Worker threads (default: all hardware threads)")
+    app.add_option("-t,--threads", opt.threads,
+                   "Worker threads, 1 to 4096 (default: all hardware threads)")
         ->group(render)
-        ->check(CLI::Number)
-        ->check(CLI::Range(1, 4096))
+        ->check(integerIn(1, 4096))
         ->type_name("N");
     app.add_option("--size", opt.size, "Image size, overriding the scene's 'size'")
         ->group(render)
         ->type_name("WxH");
-    app.add_option("--maxdepth", opt.maxDepth, "Maximum reflection depth, overriding the scene's")
+    app.add_option("--maxdepth", opt.maxDepth,
+                   "Maximum reflection depth, 0 to 64, overriding the scene's")
         ->group(render)
-        ->check(CLI::Number)
-        ->check(CLI::Range(0, glint::kMaxDepthLimit))
+        ->check(integerIn(0, glint::kMaxDepthLimit))
         ->type_name("N");
 
     app.add_option("--spp", opt.spp,
-                   "Camera rays per pixel: stratified, jittered, averaged (default 1, the "
-                   "pixel centre)")
+                   "Camera rays per pixel, 1 to 65536: stratified, jittered, averaged "
+                   "(default 1, the pixel centre)")
         ->group(render)
-        ->check(CLI::Number)
-        ->check(CLI::Range(1, 65536))
+        ->check(integerIn(1, 65536))
         ->type_name("N");
     app.add_option("--seed", opt.seed, "Seed of the sub-pixel jitter (default 0)")
         ->group(render)
@@ -236,9 +251,8 @@ int main(int argc, char** argv) {
         ->group(info);
     app.add_flag("-q,--quiet", opt.quiet, "No progress or messages; warnings and errors only")
         ->group(info);
-    app.set_version_flag("--version",
-                         std::string("glint ") + GLINT_VERSION + " (traversal kernels: " +
-                             glint::Bvh::isa() + ")")
+    app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION +
+                                          " (traversal kernels: " + glint::Bvh::isa() + ")")
         ->group(info);
     app.set_help_flag("-h,--help", "Print this help and exit")->group(info);
 

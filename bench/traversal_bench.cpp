@@ -951,8 +951,8 @@ int main(int argc, char** argv) {
         std::printf(
             "\nNotes: Glint and Embree were measured in this run, on this machine, on identical "
             "float rays\n"
-            "(built before timing) and the same float triangles (%zu zero-area ones Glint drops "
-            "left out of both).\n"
+            "(Glint's per-ray set-up timed, as Embree's is) and the same float triangles (%zu "
+            "zero-area ones Glint drops left out of both).\n"
             "Build time: wall clock of Bvh::build and of rtcCommitScene (Embree device made with "
             "threads=N).\n"
             "Memory: Glint Bvh::stats().bytes; Embree the net bytes its memory monitor reported "
