@@ -23,7 +23,10 @@ BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libem
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: deps build demo test clean bench
+FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-dev libpng-dev
+FUZZ_SECONDS ?= 60
+
+.PHONY: deps build demo test test-sanitize fuzz clean bench
 
 deps:
 	@missing=""; \
@@ -51,8 +54,24 @@ test: deps
 	@$(MAKE) --no-print-directory build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
+# The unit, golden and CLI tests again, built with AddressSanitizer and UndefinedBehaviorSanitizer.
+test-sanitize: deps
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGLINT_SANITIZE=address,undefined \
+	  -DGLINT_WERROR=$(GLINT_WERROR)
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS)
+
+# Every libFuzzer harness for FUZZ_SECONDS (default 60) from the seed corpus (docs/robustness.md).
+fuzz:
+	@$(MAKE) --no-print-directory deps DEPS="$(FUZZ_DEPS)"
+	cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DGLINT_BUILD_FUZZERS=ON -DGLINT_BUILD_TESTS=OFF -DGLINT_AVX2=OFF
+	cmake --build build-fuzz -j $(JOBS)
+	fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+
 clean:
-	rm -rf $(BUILD_DIR)
+	rm -rf $(BUILD_DIR) build-asan build-fuzz
 
 bench:
 	@$(MAKE) --no-print-directory deps DEPS="$(BENCH_DEPS)"

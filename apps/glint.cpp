@@ -1,10 +1,13 @@
 // glint: the command-line renderer. Usage errors exit 2, scene and render errors exit 1.
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <charconv>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -12,6 +15,8 @@
 #include "demo_scene.h"
 #include "glint/accel/bvh.h"
 #include "glint/core/error.h"
+#include "glint/core/system.h"
+#include "glint/io/atomic_file.h"
 #include "glint/io/hw3_loader.h"
 #include "glint/io/image_io.h"
 #include "glint/render/progress.h"
@@ -34,6 +39,32 @@ struct Options {
     bool stats = false;
     bool quiet = false;
 };
+
+// Interrupts. The first SIGINT or SIGTERM asks the render to stop: workers finish their
+// current block, what is done is written (atomically) and marked partial, and glint exits
+// with 128 + the signal (130, 143). A second one leaves at once, removing any half-written
+// temporary file; the output file itself is never touched then.
+std::atomic<bool> gStop{false};
+volatile std::sig_atomic_t gSignal = 0;
+
+extern "C" void onSignal(int sig) {
+    if (gStop.load()) {
+        if (const char* tmp = glint::pendingTempFile()) ::unlink(tmp);
+        ::_exit(128 + sig);
+    }
+    gSignal = sig;
+    gStop.store(true);
+}
+
+void installSignalHandlers() {
+    struct sigaction sa {};
+    sa.sa_handler = onSignal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+const char* signalName(int sig) { return sig == SIGTERM ? "SIGTERM" : "SIGINT"; }
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -165,6 +196,22 @@ int run(const Options& opt) {
         return 0;
     }
 
+    if (gStop.load()) {
+        std::fprintf(stderr, "glint: %s before rendering: nothing written\n", signalName(gSignal));
+        return 128 + gSignal;
+    }
+
+    // The image is the one large allocation left: refuse what the machine cannot hold.
+    double filmBytes = static_cast<double>(scene->width) * scene->height * sizeof(glint::Vec3);
+    if (size_t available = glint::availableMemoryBytes();
+        available > 0 && filmBytes > static_cast<double>(available)) {
+        std::fprintf(stderr,
+                     "glint: error: a %dx%d image needs %s of memory, more than the %s available\n",
+                     scene->width, scene->height, glint::formatBytes(filmBytes).c_str(),
+                     glint::formatBytes(static_cast<double>(available)).c_str());
+        return kExitSceneError;
+    }
+
     // Build.
     auto t1 = Clock::now();
     scene->prepare();
@@ -176,6 +223,7 @@ int run(const Options& opt) {
     ro.threads = opt.threads;
     ro.spp = opt.spp;
     ro.seed = opt.seed;
+    ro.cancel = &gStop;
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
     glint::RenderResult result = glint::render(*scene, ro);
     if (!opt.quiet) progress.finish({0, 0, result.seconds}, result.complete);
@@ -189,10 +237,19 @@ int run(const Options& opt) {
         return kExitSceneError;
     }
     double writeSeconds = secondsSince(t2);
+    if (!result.complete) {
+        // Always said, even with -q: the file is not the whole image.
+        std::fprintf(stderr,
+                     "glint: %s: stopped early; wrote the partial image (%d of %d tiles, the rest "
+                     "black) to %s\n",
+                     signalName(gSignal), result.tilesDone, result.tilesTotal, output.c_str());
+        return 128 + gSignal;
+    }
     if (!opt.quiet)
         std::fprintf(stderr, "glint: wrote %s (%dx%d)\n", output.c_str(), scene->width,
                      scene->height);
     if (opt.stats) printStats(*scene, parseSeconds, buildSeconds, result, writeSeconds);
+    if (gStop.load()) return 128 + gSignal;  // arrived while writing: the image is complete
     return 0;
 }
 
@@ -262,6 +319,7 @@ int main(int argc, char** argv) {
         int code = app.exit(e);
         return code == 0 ? 0 : kExitUsage;
     }
+    installSignalHandlers();
     try {
         return run(opt);
     } catch (const std::exception& e) {

@@ -7,3 +7,12 @@ target_compile_options(glint_options INTERFACE
 if(GLINT_WERROR)
     target_compile_options(glint_options INTERFACE -Werror)
 endif()
+
+# Sanitizers (make test-sanitize): applied to every target through glint_options, and to the
+# libraries' own objects through the global flags so that nothing is left uninstrumented.
+if(GLINT_SANITIZE)
+    message(STATUS "Sanitizers: ${GLINT_SANITIZE}")
+    add_compile_options(-fsanitize=${GLINT_SANITIZE} -fno-omit-frame-pointer
+                        -fno-sanitize-recover=all)
+    add_link_options(-fsanitize=${GLINT_SANITIZE})
+endif()

@@ -12,6 +12,18 @@
 
 namespace glint {
 
+namespace {
+std::atomic<const char*> pending{nullptr};
+
+/// Publishes the temporary's name while it exists.
+struct Pending {
+    explicit Pending(const std::string& tmp) { pending.store(tmp.c_str()); }
+    ~Pending() { pending.store(nullptr); }
+};
+}  // namespace
+
+const char* pendingTempFile() { return pending.load(); }
+
 void writeFileAtomically(const std::string& path, std::string_view bytes) {
     static std::atomic<unsigned> counter{0};
     std::string tmp = path + ".glint-tmp-" + std::to_string(::getpid()) + "-" +
@@ -20,6 +32,7 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
         throw RenderError("cannot write '" + path + "': " + what + ": " + std::strerror(err));
     };
 
+    Pending published(tmp);
     int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0) fail("cannot create file", errno);
     const char* p = bytes.data();

@@ -11,4 +11,8 @@ namespace glint {
 /// temporary is removed and any existing `path` is left untouched.
 void writeFileAtomically(const std::string& path, std::string_view bytes);
 
+/// The temporary file a writeFileAtomically call is writing right now, or null. For signal
+/// handlers that must leave at once: reading it and unlink() are async-signal-safe.
+const char* pendingTempFile();
+
 }  // namespace glint

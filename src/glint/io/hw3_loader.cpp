@@ -13,6 +13,7 @@
 #include <limits>
 #include <system_error>
 
+#include "glint/core/system.h"
 #include "glint/io/image_io.h"
 #include "glint/io/mapped_file.h"
 #include "glint/io/numbers.h"
@@ -42,8 +43,13 @@ constexpr long long kMaxVertexReserve = 1 << 20;
 
 class Parser {
   public:
-    Parser(std::string_view text, const std::string& file, std::vector<Diagnostic>& warnings)
-        : text_(text), file_(file), warnings_(warnings), scene_(std::make_unique<Scene>()) {}
+    Parser(std::string_view text, const std::string& file, std::vector<Diagnostic>& warnings,
+           const LoadLimits& limits)
+        : text_(text),
+          file_(file),
+          warnings_(warnings),
+          limits_(limits),
+          scene_(std::make_unique<Scene>()) {}
 
     std::unique_ptr<Scene> run();
     static const std::vector<Command>& commands();
@@ -146,6 +152,7 @@ class Parser {
     std::string_view text_;
     const std::string& file_;
     std::vector<Diagnostic>& warnings_;
+    LoadLimits limits_;
     std::unique_ptr<Scene> scene_;
 
     int line_ = 0;
@@ -221,6 +228,15 @@ Counts countLines(std::string_view text) {
 
 std::unique_ptr<Scene> Parser::run() {
     Counts counts = countLines(text_);
+    size_t needed = Scene::estimateBytes(counts.triangles, counts.spheres) +
+                    counts.vertices * (sizeof(Vec3) + sizeof(std::array<Vec3, 2>));
+    size_t available = limits_.memoryBytes ? limits_.memoryBytes : availableMemoryBytes();
+    if (available > 0 && needed > available)
+        throw SceneError({file_, 0, 0},
+                         "the scene needs about " + formatBytes(static_cast<double>(needed)) +
+                             " of memory (" + std::to_string(counts.triangles) + " triangles, " +
+                             std::to_string(counts.spheres) + " spheres), more than the " +
+                             formatBytes(static_cast<double>(available)) + " available");
     scene_->primitives.reserve(counts.triangles, counts.spheres);
     vertices_.reserve(counts.vertices);
     size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
@@ -577,11 +593,12 @@ void Parser::cmdBackground() {
 }  // namespace
 
 std::unique_ptr<Scene> parseHw3Scene(std::string_view text, const std::string& fileName,
-                                     std::vector<Diagnostic>& warnings) {
-    return Parser(text, fileName, warnings).run();
+                                     std::vector<Diagnostic>& warnings, const LoadLimits& limits) {
+    return Parser(text, fileName, warnings, limits).run();
 }
 
-std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings) {
+std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings,
+                                    const LoadLimits& limits) {
     auto cannot = [&](const std::string& why) {
         throw SceneError({path, 0, 0}, "cannot read scene: " + why);
     };
@@ -594,7 +611,7 @@ std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnos
                std::to_string(kMaxSceneFileBytes));
     try {
         MappedFile file(path);
-        return parseHw3Scene(file.text(), path, warnings);
+        return parseHw3Scene(file.text(), path, warnings, limits);
     } catch (const std::system_error& e) {
         throw SceneError({path, 0, 0},
                          std::string("cannot read scene: ") + std::strerror(e.code().value()));

@@ -15,13 +15,21 @@ namespace glint {
 /// Largest scene file Glint reads (bytes); bigger files are refused before reading.
 constexpr long long kMaxSceneFileBytes = 1LL << 30;
 
-/// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error;
-/// appends warnings to `warnings`. The scene is not yet prepared (see Scene::prepare).
+/// Resources a scene may take, checked before anything is allocated.
+struct LoadLimits {
+    size_t memoryBytes = 0;  ///< 0: the memory the machine has available now.
+};
+
+/// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error, or if
+/// the scene would need more memory than `limits` allow; appends warnings to `warnings`. The
+/// scene is not yet prepared (see Scene::prepare).
 std::unique_ptr<Scene> parseHw3Scene(std::string_view text, const std::string& fileName,
-                                     std::vector<Diagnostic>& warnings);
+                                     std::vector<Diagnostic>& warnings,
+                                     const LoadLimits& limits = {});
 
 /// Reads and parses the file at `path`. Throws SceneError if it cannot be read or is malformed.
-std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings);
+std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings,
+                                    const LoadLimits& limits = {});
 
 /// Every command name the loader accepts.
 std::vector<std::string_view> hw3CommandNames();

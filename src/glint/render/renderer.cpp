@@ -85,8 +85,17 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             if (t >= tilesTotal) break;
             int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
             int x1 = std::min(x0 + tile, scene.width), y1 = std::min(y0 + tile, scene.height);
-            for (int by = y0; by < y1; by += 2)
-                for (int bx = x0; bx < x1; bx += 4) renderBlock(bx, by, x1, y1, samples, counts);
+            bool stopped = false;
+            for (int by = y0; by < y1 && !stopped; by += 2)
+                for (int bx = x0; bx < x1; bx += 4) {
+                    // Checked per block too: a tile at many samples per pixel can take long.
+                    if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+                        stopped = true;
+                        break;
+                    }
+                    renderBlock(bx, by, x1, y1, samples, counts);
+                }
+            if (stopped) break;
             tilesDone.fetch_add(1, std::memory_order_relaxed);
         }
         std::lock_guard lock(mutex);
@@ -115,7 +124,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     for (auto& t : pool) t.join();
 
     result.seconds = elapsed();
-    result.complete = tilesDone.load() == tilesTotal;
+    result.tilesDone = tilesDone.load();
+    result.tilesTotal = tilesTotal;
+    result.complete = result.tilesDone == tilesTotal;
     if (options.onProgress) options.onProgress({tilesDone.load(), tilesTotal, result.seconds});
     return result;
 }

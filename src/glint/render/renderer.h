@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "glint/core/parallel.h"
+#include "glint/core/system.h"
 #include "glint/render/film.h"
 #include "glint/render/whitted.h"
 
@@ -34,6 +34,7 @@ struct RenderResult {
     RayCounts rays;
     double seconds = 0;
     bool complete = true;  ///< False if cancelled before every tile was rendered.
+    int tilesDone = 0, tilesTotal = 0;
 };
 
 /// Renders `scene` (prepared, with a camera) at its width and height.

@@ -7,11 +7,14 @@
 namespace glint {
 namespace {
 
-/// One light's Blinn-Phong term at a point it reaches (N.L > 0, unblocked).
+/// One light's Blinn-Phong term at a point it reaches (N.L > 0, unblocked). When the light is
+/// exactly opposite the viewer (seen through a back face), L + V is zero and has no direction:
+/// there is no highlight then.
 Vec3 lightTerm(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
                const LightSample& ls, double nDotL) {
-    Vec3 h = normalize(ls.wi + wo);
-    double nDotH = std::max(dot(si.n, h), 0.0);
+    Vec3 sum = ls.wi + wo;
+    double len = length(sum);
+    double nDotH = len > 0 ? std::max(dot(si.n, sum / len), 0.0) : 0.0;
     return ls.radiance * (m.diffuse * nDotL + m.specular * std::pow(nDotH, m.shininess));
 }
 
@@ -49,7 +52,7 @@ Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, RayCoun
         Vec3 r = normalize(reflect(ray.dir, si.n));
         color += m.specular * li(spawnRay(si.p, r, scene_.spawnOffset()), depth + 1, counts);
     }
-    return color;
+    return finiteRadiance(color);
 }
 
 }  // namespace glint

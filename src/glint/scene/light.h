@@ -5,6 +5,19 @@
 
 namespace glint {
 
+/// The largest radiance Glint carries (per channel): far above anything a pixel shows, small
+/// enough that products of two stay finite, so no Inf (and no 0 * Inf = NaN) ever arises.
+constexpr double kMaxRadiance = 1e30;
+
+/// `c` with each channel clamped to +-kMaxRadiance (NaN, which should never occur, to 0).
+inline Vec3 finiteRadiance(const Vec3& c) {
+    auto clamp = [](double v) {
+        return v > -kMaxRadiance ? (v < kMaxRadiance ? v : kMaxRadiance)
+                                 : (v == v ? -kMaxRadiance : 0.0);
+    };
+    return {clamp(c.x), clamp(c.y), clamp(c.z)};
+}
+
 /// What a light delivers at a shading point.
 struct LightSample {
     Vec3 wi;          ///< Unit direction from the point towards the light.
@@ -21,12 +34,15 @@ struct Light {
     Vec3 color;
     Vec3 attenuation{1, 0, 0};  ///< Constant, linear, quadratic; point lights only.
 
+    /// What reaches `p`. A point light exactly at `p` has no direction and gives nothing
+    /// (wi = 0, so N.L = 0); an attenuation that rounds to 0 gives the brightest finite light.
     LightSample sample(const Vec3& p) const {
         if (kind == Kind::Directional) return {direction, kInfinity, color};
         Vec3 toLight = position - p;
         double d = length(toLight);
+        if (!(d > 0)) return {Vec3(0), 0, Vec3(0)};
         double att = attenuation.x + attenuation.y * d + attenuation.z * d * d;
-        return {toLight / d, d, color / att};
+        return {toLight / d, d, finiteRadiance(color / att)};
     }
 };
 

@@ -49,6 +49,11 @@ class Scene {
     std::vector<Material> materials;
     Primitives primitives;
 
+    /// Bytes a scene of this many triangles and spheres needs at most once prepared: the
+    /// primitives, the BVH (allowing for partly filled leaf blocks) and the build's temporary
+    /// arrays. Loaders compare it with the memory available before allocating anything.
+    static size_t estimateBytes(size_t triangles, size_t spheres);
+
     /// Id of `m`, reusing the last material when it is equal (materials change rarely).
     uint32_t addMaterial(const Material& m);
 

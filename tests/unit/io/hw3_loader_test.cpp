@@ -527,6 +527,32 @@ TEST(Hw3Loader, DegenerateTrianglesAreSkippedWithOneWarning) {
     EXPECT_EQ(scene->primitives.triangleCount(), 1u);
 }
 
+TEST(Hw3Loader, ScenesNeedingMoreMemoryThanAvailableAreRefusedBeforeAllocating) {
+    // 20,000 spheres need several megabytes; allow one.
+    std::string text = kCamera;
+    for (int i = 0; i < 20000; ++i) text += "sphere 0 0 0 1\n";
+    std::vector<Diagnostic> warnings;
+    try {
+        parseHw3Scene(text, "t.test", warnings, LoadLimits{1 << 20});
+        ADD_FAILURE() << "no SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.diagnostic().loc.line, 0);
+        EXPECT_THAT(e.diagnostic().message, HasSubstr("needs about"));
+        EXPECT_THAT(e.diagnostic().message, HasSubstr("20000 spheres"));
+        EXPECT_THAT(e.diagnostic().message, HasSubstr("1 MiB available"));
+    }
+    // With room enough it loads.
+    auto scene = parseHw3Scene(text, "t.test", warnings, LoadLimits{size_t{1} << 30});
+    EXPECT_EQ(scene->primitives.sphereCount(), 20000u);
+}
+
+TEST(Hw3Loader, MemoryEstimateGrowsWithThePrimitives) {
+    EXPECT_GT(Scene::estimateBytes(1000, 0), Scene::estimateBytes(100, 0));
+    EXPECT_GT(Scene::estimateBytes(0, 10), Scene::estimateBytes(0, 1));
+    // At least what the primitives and a BVH of the measured 57 bytes per triangle take.
+    EXPECT_GE(Scene::estimateBytes(1000000, 0), size_t{1000000} * (36 + 57));
+}
+
 TEST(Hw3Loader, Utf8ByteOrderMarkIsSkipped) {
     auto scene = parseOk("\xEF\xBB\xBFsize 32 16\n");
     EXPECT_EQ(scene->width, 32);
