@@ -1,0 +1,59 @@
+// libFuzzer harness for the CSE167x scene format (docs/scene-format.md).
+//
+// Every input is parsed as a scene file. A SceneError is the expected answer to bad input;
+// any other exception escapes and libFuzzer reports it. A scene that parses is rendered
+// small (clamped below so that each input stays fast), and a pixel that is NaN or infinite
+// aborts: whatever the scene, no NaN or Inf may reach the film (issue 4).
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "glint/core/error.h"
+#include "glint/io/hw3_loader.h"
+#include "glint/render/renderer.h"
+
+namespace {
+
+constexpr int kMaxSide = 8;                // image at most 8 x 8 pixels
+constexpr int kMaxDepth = 3;               // at most 3 mirror bounces
+constexpr uint32_t kMaxPrimitives = 4096;  // larger scenes are parsed but not rendered
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    std::string_view text(reinterpret_cast<const char*>(data), size);
+    std::vector<glint::Diagnostic> warnings;
+    std::unique_ptr<glint::Scene> scene;
+    try {
+        scene = glint::parseHw3Scene(text, "fuzz.test", warnings);
+    } catch (const glint::SceneError& e) {
+        (void)e.diagnostic().format("error");  // formatting the message must not fail either
+        return 0;
+    }
+    for (const glint::Diagnostic& w : warnings) (void)w.format("warning");
+
+    scene->width = std::min(scene->width, kMaxSide);
+    scene->height = std::min(scene->height, kMaxSide);
+    scene->maxDepth = std::min(scene->maxDepth, kMaxDepth);
+    if (scene->primitives.size() > kMaxPrimitives) return 0;
+    scene->prepare();
+
+    glint::RenderOptions options;
+    options.threads = 1;
+    glint::RenderResult result = glint::render(*scene, options);
+    for (int y = 0; y < result.film.height(); ++y)
+        for (int x = 0; x < result.film.width(); ++x) {
+            const glint::Vec3& c = result.film.at(x, y);
+            if (!glint::isFinite(c)) {
+                std::fprintf(stderr, "glint_fuzz_hw3: non-finite pixel (%d, %d) = (%g, %g, %g)\n",
+                             x, y, c.x, c.y, c.z);
+                std::abort();
+            }
+        }
+    return 0;
+}
