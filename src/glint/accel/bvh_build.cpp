@@ -4,6 +4,7 @@
 #include <array>
 #include <atomic>
 #include <bit>
+#include <cmath>
 #include <condition_variable>
 #include <functional>
 #include <limits>
@@ -293,8 +294,12 @@ class Builder {
             Bounds3f c = r.centroids.bounds3();
             Vec3f extent = c.diagonal();
             float s[3];
-            for (int a = 0; a < 3; ++a)
-                s[a] = extent[a] > 0 ? static_cast<float>(count) / extent[a] : 0;
+            for (int a = 0; a < 3; ++a) {
+                // An extent of a few denormals overflows count / extent to inf, and then
+                // (c - lo) * inf is NaN for the lowest centroid: treat such an axis as flat.
+                float sa = extent[a] > 0 ? static_cast<float>(count) / extent[a] : 0;
+                s[a] = std::isfinite(sa) ? sa : 0;
+            }
             lo = V4::of(c.lo.x, c.lo.y, c.lo.z);
             scale = V4::of(s[0], s[1], s[2]);
             for (int a = 0; a < 3; ++a) loAxis[a] = c.lo[a], scaleAxis[a] = s[a];
