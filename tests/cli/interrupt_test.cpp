@@ -49,6 +49,21 @@ class Running {
 
     void signal(int sig) { ::kill(pid_, sig); }
 
+    /// Waits until glint catches `sig` (its handler is installed), as /proc shows: a signal
+    /// sent earlier would kill it by the default action. Start-up is slow under sanitizers.
+    bool waitForHandler(int sig) {
+        auto start = Clock::now();
+        while (Clock::now() - start < std::chrono::seconds(10)) {
+            std::ifstream status("/proc/" + std::to_string(pid_) + "/status");
+            for (std::string line; std::getline(status, line);)
+                if (line.starts_with("SigCgt:") &&
+                    (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1) & 1))
+                    return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        return false;
+    }
+
     /// Waits up to `limit` for the exit; returns the exit code, or -1 if it did not exit
     /// (then it is killed).
     int wait(std::chrono::duration<double> limit) {
@@ -92,6 +107,7 @@ void expectStopsAndWritesPartial(int sig, int expectedExit) {
     std::string dir = freshDir("interrupt" + std::to_string(sig));
     std::string out = dir + "/out.png";
     Running glint(longRender(out), dir);
+    ASSERT_TRUE(glint.waitForHandler(sig));
     std::this_thread::sleep_for(std::chrono::milliseconds(700));
     auto sent = Clock::now();
     glint.signal(sig);
@@ -131,6 +147,7 @@ TEST(Interrupt, ASecondSigintLeavesAtOnceAndNeverLeavesABrokenFile) {
     std::string out = dir + "/out.png";
     writeFile(out, "previous image");
     Running glint({scene, "-o", out}, dir);
+    ASSERT_TRUE(glint.waitForHandler(SIGINT));
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     glint.signal(SIGINT);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
