@@ -21,6 +21,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const Camera camera(*scene.camera, scene.width, scene.height);
     const WhittedIntegrator integrator(scene, options.spp);
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
+    // Per-sample random numbers only where something draws them.
+    const bool seeded = camera.hasLens() || integrator.usesRandomNumbers();
     const double weight = 1.0 / sampler.samplesPerPixel();
 
     const int tile = std::max(1, options.tileSize);
@@ -45,14 +47,21 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                            RayCounts& counts) {
         samples.clear();
         int w = std::min(4, x1 - bx), h = std::min(2, y1 - by);
+        static constexpr Rng kUnseeded{};
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
+                if (!seeded) {
+                    sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
+                        samples.push_back({y * 4 + x, camera.generateRay(px, py), kUnseeded});
+                    });
+                    continue;
+                }
                 int index = 0;
                 sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
                     Rng rng(sampler.sampleSeed(bx + x, by + y, index++));
-                    Ray ray = camera.hasLens() ? camera.generateRay(px, py, rng.uniform(),
-                                                                    rng.uniform())
-                                               : camera.generateRay(px, py);
+                    Ray ray = camera.hasLens()
+                                  ? camera.generateRay(px, py, rng.uniform(), rng.uniform())
+                                  : camera.generateRay(px, py);
                     samples.push_back({y * 4 + x, ray, rng});
                 });
             }

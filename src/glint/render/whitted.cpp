@@ -13,25 +13,29 @@ namespace {
 /// cannot move an 8-bit pixel by more than about a quarter of a level.
 constexpr double kMinBranchWeight = 1e-3;
 
-/// One light's specular and diffuse term at a point it reaches (N.L > 0, unblocked).
-/// Blinn-Phong as the course has it; for rough materials the GGX lobe instead, scaled by pi
-/// like the course's diffuse term (which is kd N.L without the 1/pi of a Lambertian BRDF).
-Vec3 lightTerm(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
-               const LightSample& ls, double nDotL) {
+/// The GGX lobe's share of lightTerm(), scaled by pi like the course's diffuse term (which is
+/// kd N.L without the 1/pi of a Lambertian BRDF): pi D G2 / (4 N.V).
+[[gnu::noinline]] double ggxSpecular(const SurfaceInteraction& si, const Vec3& wo,
+                                     const Vec3& wi, double roughness) {
+    double nDotV = dot(si.n, wo);
+    Vec3 sum = wi + wo;
+    double len = length(sum);
+    if (!(nDotV > 0 && len > 0)) return 0;
+    Ggx ggx{roughness};
+    Frame f(si.n);
+    Vec3 h = f.toLocal(sum / len);
+    return std::numbers::pi * ggx.d(h) * ggx.g2(f.toLocal(wo), f.toLocal(wi)) / (4 * nDotV);
+}
+
+/// One light's specular and diffuse term at a point it reaches (N.L > 0, unblocked):
+/// Blinn-Phong as the course has it, or the GGX lobe for rough materials.
+inline Vec3 lightTerm(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
+                      const LightSample& ls, double nDotL) {
+    if (m.roughness > 0)
+        return ls.radiance *
+               (m.diffuse * nDotL + m.specular * ggxSpecular(si, wo, ls.wi, m.roughness));
     Vec3 sum = ls.wi + wo;
     double len = length(sum);
-    if (m.roughness > 0) {
-        double nDotV = dot(si.n, wo);
-        double spec = 0;
-        if (nDotV > 0 && len > 0) {
-            Ggx ggx{m.roughness};
-            Frame f(si.n);
-            Vec3 h = f.toLocal(sum / len);
-            spec = std::numbers::pi * ggx.d(h) * ggx.g2(f.toLocal(wo), f.toLocal(ls.wi)) /
-                   (4 * nDotV);
-        }
-        return ls.radiance * (m.diffuse * nDotL + m.specular * spec);
-    }
     // When the light is exactly opposite the viewer (seen through a back face), L + V is zero
     // and has no direction: there is no highlight then.
     double nDotH = len > 0 ? std::max(dot(si.n, sum / len), 0.0) : 0.0;
@@ -49,7 +53,11 @@ int areaLightGrid(const Scene& scene, int spp) {
 
 WhittedIntegrator::WhittedIntegrator(const Scene& scene, int spp)
     : scene_(scene), areaGrid_(areaLightGrid(scene, spp)) {
-    for (const Material& m : scene.materials) anyTransmissive_ = anyTransmissive_ || m.transmissive();
+    for (const Material& m : scene.materials) {
+        anyTransmissive_ = anyTransmissive_ || m.transmissive();
+        usesRandomNumbers_ = usesRandomNumbers_ || m.roughness > 0;
+    }
+    for (const Light& l : scene.lights) usesRandomNumbers_ = usesRandomNumbers_ || l.isArea();
 }
 
 Vec3 WhittedIntegrator::trace(const Ray& ray, int depth, double weight, PathContext& ctx) const {
@@ -86,7 +94,7 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
     return Vec3(0);
 }
 
-void WhittedIntegrator::directLight(const SurfaceInteraction& si, const Vec3& wo,
+[[gnu::always_inline]] inline void WhittedIntegrator::directLight(const SurfaceInteraction& si, const Vec3& wo,
                                     const Material& m, Vec3& color, PathContext& ctx) const {
     for (const Light& light : scene_.lights) {
         if (!light.isArea()) {
@@ -94,10 +102,17 @@ void WhittedIntegrator::directLight(const SurfaceInteraction& si, const Vec3& wo
             double nDotL = dot(si.n, ls.wi);
             // A light behind the surface contributes nothing, specular included.
             if (!(nDotL > 0)) continue;
+            if (!anyTransmissive_) {  // the course's case, kept lean
+                ctx.counts.shadow++;
+                if (scene_.bvh().occluded(
+                        spawnRay(si.p, ls.wi, scene_.spawnOffset(), ls.distance)))
+                    continue;
+                color += lightTerm(si, wo, m, ls, nDotL);
+                continue;
+            }
             Vec3 t = transmittance(si.p, ls.wi, ls.distance, ctx.counts);
             if (t == Vec3(0)) continue;
-            Vec3 term = lightTerm(si, wo, m, ls, nDotL);
-            color += t == Vec3(1) ? term : term * t;
+            color += lightTerm(si, wo, m, ls, nDotL) * t;
             continue;
         }
         // An n x n stratified, jittered grid over the parallelogram.
@@ -175,7 +190,8 @@ Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double 
     bool emits = !m.frontEmissionOnly || dot(ray.dir, si.ng) < 0;
     Vec3 color = emits ? m.ambient + m.emission : m.ambient;
     directLight(si, -ray.dir, m, color, ctx);
-    if (depth < scene_.maxDepth) color += indirect(ray, si, m, depth, weight, ctx);
+    if (depth < scene_.maxDepth && (!(m.specular == Vec3(0)) || m.transmissive()))
+        color += indirect(ray, si, m, depth, weight, ctx);
     return finiteRadiance(color);
 }
 

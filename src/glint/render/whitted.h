@@ -63,6 +63,10 @@ class WhittedIntegrator {
     /// of transmission x (1 - Fresnel reflectance), 0 at total internal reflection.
     Vec3 transmittance(const Vec3& p, const Vec3& wi, double distance, RayCounts& counts) const;
 
+    /// Whether shading draws random numbers (area lights, rough materials); if not, paths
+    /// need no seeded PathContext::rng.
+    bool usesRandomNumbers() const { return usesRandomNumbers_; }
+
   private:
     Vec3 trace(const Ray& ray, int depth, double weight, PathContext& ctx) const;
     /// `weight`: the largest channel of the product of ray weights down to this ray, for
@@ -77,6 +81,7 @@ class WhittedIntegrator {
 
     const Scene& scene_;
     bool anyTransmissive_ = false;
+    bool usesRandomNumbers_ = false;
     int areaGrid_ = 1;
 };
 
