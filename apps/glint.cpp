@@ -33,7 +33,7 @@ struct Options {
     int threads = 0;
     std::string size;
     int maxDepth = -1;
-    int spp = 1;
+    int spp = 0;  ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;
     bool check = false;
     bool stats = false;
@@ -221,7 +221,7 @@ int run(const Options& opt) {
     glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
     glint::RenderOptions ro;
     ro.threads = opt.threads;
-    ro.spp = opt.spp;
+    ro.spp = opt.spp > 0 ? opt.spp : (scene->spp > 0 ? scene->spp : 1);
     ro.seed = opt.seed;
     ro.cancel = &gStop;
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
@@ -291,12 +291,13 @@ int main(int argc, char** argv) {
         ->type_name("N");
 
     app.add_option("--spp", opt.spp,
-                   "Camera rays per pixel, 1 to 65536: stratified, jittered, averaged "
-                   "(default 1, the pixel centre)")
+                   "Camera rays per pixel, 1 to 65536: stratified, jittered, filtered "
+                   "(default: the scene's spp, else 1, the pixel centre)")
         ->group(render)
         ->check(integerIn(1, 65536))
         ->type_name("N");
-    app.add_option("--seed", opt.seed, "Seed of the sub-pixel jitter (default 0)")
+    app.add_option("--seed", opt.seed, "Seed of every random choice: sub-pixel jitter, lens, area lights, "
+                   "glossy rays (default 0)")
         ->group(render)
         ->type_name("N");
 

@@ -37,7 +37,7 @@ struct Command {
 };
 
 /// Lines hold at most this many tokens; more is always an argument-count error.
-constexpr int kMaxTokens = 12;
+constexpr int kMaxTokens = 16;
 /// A `maxverts` bound is only a hint: never reserve more than this many vertices from it.
 constexpr long long kMaxVertexReserve = 1 << 20;
 
@@ -135,6 +135,18 @@ class Parser {
     }
     void cmdShininess();
     void cmdBackground();
+    // Extensions beyond Whitted (docs/scene-format.md).
+    void cmdTransmission() {
+        material_.transmission = colour(1);
+        materialChanged_ = true;
+    }
+    void cmdIor();
+    void cmdRoughness();
+    void cmdQuadLight();
+    void cmdLightSamples() { scene_->lightSamples = static_cast<int>(integer(1, 1, 64)); }
+    void cmdSpp() { scene_->spp = static_cast<int>(integer(1, 1, 65536)); }
+    void cmdFilter();
+    void cmdLens();
 
     void addTriangle(const Vec3 (&p)[3], const Vec3* normals) {
         if (!scene_->primitives.addTriangle(p[0], p[1], p[2], normals, material()) &&
@@ -171,6 +183,7 @@ class Parser {
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
+    double apertureRadius_ = 0, focusDistance_ = 0;  ///< From `lens`, applied to the camera.
 };
 
 const std::vector<Command>& Parser::commands() {
@@ -201,6 +214,14 @@ const std::vector<Command>& Parser::commands() {
         {"point", 6, 6, "x y z r g b", &Parser::cmdPoint},
         {"attenuation", 3, 3, "constant linear quadratic", &Parser::cmdAttenuation},
         {"background", 3, 6, "r g b [r2 g2 b2]", &Parser::cmdBackground},
+        {"transmission", 3, 3, "r g b", &Parser::cmdTransmission},
+        {"ior", 1, 1, "index", &Parser::cmdIor},
+        {"roughness", 1, 1, "alpha", &Parser::cmdRoughness},
+        {"quadLight", 12, 12, "x y z e1x e1y e1z e2x e2y e2z r g b", &Parser::cmdQuadLight},
+        {"lightsamples", 1, 1, "n", &Parser::cmdLightSamples},
+        {"spp", 1, 1, "samples", &Parser::cmdSpp},
+        {"filter", 1, 2, "box|gaussian [radius]", &Parser::cmdFilter},
+        {"lens", 1, 2, "aperture-radius [focus-distance]", &Parser::cmdLens},
     };
     return table;
 }
@@ -279,6 +300,8 @@ std::unique_ptr<Scene> Parser::run() {
                          "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
                          "upx upy upz fovy')");
     }
+    scene_->camera->apertureRadius = apertureRadius_;
+    scene_->camera->focusDistance = focusDistance_;
     return std::move(scene_);
 }
 
@@ -588,6 +611,76 @@ void Parser::cmdShininess() {
 void Parser::cmdBackground() {
     scene_->background.down = colour(1);
     scene_->background.up = ntok_ == 7 ? colour(4) : scene_->background.down;
+}
+
+void Parser::cmdIor() {
+    double n = real(1);
+    if (!(n > 0)) fail(1, "ior must be positive, got " + quoted(1));
+    material_.ior = n;
+    materialChanged_ = true;
+}
+
+void Parser::cmdRoughness() {
+    double a = real(1);
+    if (!(a >= 0 && a <= 1)) fail(1, "roughness must be between 0 and 1, got " + quoted(1));
+    // Below this the GGX lobe is a mirror in all but round-off: treat it as one.
+    material_.roughness = a < 1e-4 ? 0 : a;
+    materialChanged_ = true;
+}
+
+void Parser::cmdQuadLight() {
+    const Transform& t = transform();
+    Light l;
+    l.kind = Light::Kind::Quad;
+    l.position = checkedVertex(t.point(vec3(1)), 1);
+    l.edge1 = t.vector(vec3(4));
+    l.edge2 = t.vector(vec3(7));
+    l.color = colour(10);
+    Vec3 corners[4] = {l.position, l.position + l.edge1, l.position + l.edge1 + l.edge2,
+                       l.position + l.edge2};
+    for (int k = 1; k < 4; ++k)
+        if (!inRange(corners[k]))
+            fail(4, "the light reaches beyond the supported coordinate range (1e18)");
+    double area = l.quadArea();
+    if (!(area > 0) || !std::isfinite(area) ||
+        !(area > 1e-12 * length(l.edge1) * length(l.edge2)))
+        fail(4, "quadLight edges must not be zero or parallel");
+    scene_->lights.push_back(l);
+    // Its surface, visible to camera and reflected rays: emission only, from the front.
+    Material m;
+    m.ambient = Vec3(0);
+    m.emission = l.color;
+    m.frontEmissionOnly = true;
+    uint32_t id = scene_->addMaterial(m);
+    scene_->primitives.addTriangle(corners[0], corners[1], corners[2], nullptr, id);
+    scene_->primitives.addTriangle(corners[0], corners[2], corners[3], nullptr, id);
+    materialChanged_ = true;  // the current material must be added again after this one
+}
+
+void Parser::cmdFilter() {
+    FilterSpec f;
+    if (tok_[1].text == "box")
+        f.kind = FilterSpec::Kind::Box;
+    else if (tok_[1].text == "gaussian")
+        f.kind = FilterSpec::Kind::Gaussian;
+    else
+        fail(1, "unknown filter " + quoted(1) + " (box or gaussian)");
+    f.radius = FilterSpec::defaultRadius(f.kind);
+    if (ntok_ == 3) {
+        f.radius = real(2);
+        if (!(f.radius >= 0.5 && f.radius <= 4))
+            fail(2, "filter radius must be 0.5 to 4 pixels, got " + quoted(2));
+    }
+    scene_->filter = f;
+}
+
+void Parser::cmdLens() {
+    double r = real(1);
+    if (!(r >= 0)) fail(1, "aperture radius must not be negative, got " + quoted(1));
+    double d = ntok_ == 3 ? real(2) : 0;
+    if (ntok_ == 3 && !(d > 0)) fail(2, "focus distance must be positive, got " + quoted(2));
+    apertureRadius_ = r;
+    focusDistance_ = d;
 }
 
 }  // namespace

@@ -7,7 +7,8 @@ namespace glint {
 
 class Rng {
   public:
-    explicit Rng(uint64_t seed = 0x853c49e6748fea9bULL, uint64_t stream = 0xda3e39cb94b95bdbULL) {
+    constexpr explicit Rng(uint64_t seed = 0x853c49e6748fea9bULL,
+                           uint64_t stream = 0xda3e39cb94b95bdbULL) {
         inc_ = (stream << 1u) | 1u;
         state_ = 0;
         next();
@@ -16,7 +17,7 @@ class Rng {
     }
 
     /// Uniform 32-bit integer.
-    uint32_t next() {
+    constexpr uint32_t next() {
         uint64_t old = state_;
         state_ = old * 6364136223846793005ULL + inc_;
         auto xorshifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
@@ -28,8 +29,8 @@ class Rng {
     float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; }
 
   private:
-    uint64_t state_;
-    uint64_t inc_;
+    uint64_t state_ = 0;
+    uint64_t inc_ = 0;
 };
 
 }  // namespace glint

@@ -19,8 +19,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     RenderResult result;
     result.film = Film(scene.width, scene.height);
     const Camera camera(*scene.camera, scene.width, scene.height);
-    const WhittedIntegrator integrator(scene);
-    const PixelSampler sampler(options.spp, options.seed);
+    const WhittedIntegrator integrator(scene, options.spp);
+    const PixelSampler sampler(options.spp, options.seed, scene.filter);
+    // Per-sample random numbers only where something draws them.
+    const bool seeded = camera.hasLens() || integrator.usesRandomNumbers();
     const double weight = 1.0 / sampler.samplesPerPixel();
 
     const int tile = std::max(1, options.tileSize);
@@ -39,16 +41,30 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     struct Sample {
         int pixel;  ///< Index within the block.
         Ray ray;
+        Rng rng;  ///< The sample's own random numbers, after the lens's.
     };
     auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
                            RayCounts& counts) {
         samples.clear();
         int w = std::min(4, x1 - bx), h = std::min(2, y1 - by);
+        static constexpr Rng kUnseeded{};
         for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x)
+            for (int x = 0; x < w; ++x) {
+                if (!seeded) {
+                    sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
+                        samples.push_back({y * 4 + x, camera.generateRay(px, py), kUnseeded});
+                    });
+                    continue;
+                }
+                int index = 0;
                 sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
-                    samples.push_back({y * 4 + x, camera.generateRay(px, py)});
+                    Rng rng(sampler.sampleSeed(bx + x, by + y, index++));
+                    Ray ray = camera.hasLens()
+                                  ? camera.generateRay(px, py, rng.uniform(), rng.uniform())
+                                  : camera.generateRay(px, py);
+                    samples.push_back({y * 4 + x, ray, rng});
                 });
+            }
         Vec3 sum[8];
         for (size_t i = 0; i < samples.size(); i += 8) {
             int n = static_cast<int>(std::min<size_t>(8, samples.size() - i));
@@ -65,8 +81,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             for (int k = 0; k < n; ++k) {
                 Hit hit = hits[k];
                 bool found = hit.t < std::numeric_limits<float>::infinity();
+                PathContext ctx{samples[i + k].rng, counts};
                 sum[samples[i + k].pixel] +=
-                    integrator.shade(rays[k], found ? &hit : nullptr, 0, counts);
+                    integrator.shade(rays[k], found ? &hit : nullptr, 0, ctx);
             }
         }
         for (int y = 0; y < h; ++y)

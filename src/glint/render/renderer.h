@@ -21,7 +21,7 @@ struct RenderProgress {
 struct RenderOptions {
     int threads = 0;    ///< Worker threads; 0 means all hardware threads.
     int tileSize = 16;  ///< Tile side in pixels.
-    int spp = 1;        ///< Camera rays per pixel (stratified, jittered; box filter).
+    int spp = 1;        ///< Camera rays per pixel (stratified, jittered, the scene's filter).
     uint64_t seed = 0;  ///< Seed of the sub-pixel jitter.
     /// Called on the calling thread about ten times a second, and once at the end.
     std::function<void(const RenderProgress&)> onProgress;

@@ -5,11 +5,16 @@
 /// divisor of spp not above its square root), one uniformly jittered position per cell. With
 /// one sample per pixel the position is the pixel centre, exactly as the course's renderer.
 /// The jitter depends only on (pixel, seed), never on the thread that renders the pixel.
+///
+/// With a reconstruction filter other than the one-pixel box, each jittered position u in the
+/// pixel's unit square is mapped through the filter's inverse CDF per axis (filter.h), so the
+/// samples spread over the filter's support, still stratified.
 
 #include <cmath>
 #include <cstdint>
 
 #include "glint/math/rng.h"
+#include "glint/render/filter.h"
 
 namespace glint {
 
@@ -25,7 +30,11 @@ constexpr uint64_t mixBits(uint64_t v) {
 
 class PixelSampler {
   public:
-    PixelSampler(int spp, uint64_t seed) : spp_(spp < 1 ? 1 : spp), seed_(seed) {
+    PixelSampler(int spp, uint64_t seed, const FilterSpec& filter = {})
+        : spp_(spp < 1 ? 1 : spp),
+          seed_(seed),
+          pixelBox_(filter == FilterSpec{}),
+          filter_(filter) {
         cols_ = 1;
         for (int a = 1; a * a <= spp_; ++a)
             if (spp_ % a == 0) cols_ = a;
@@ -48,13 +57,26 @@ class PixelSampler {
             for (int i = 0; i < cols_; ++i) {
                 double u = (i + static_cast<double>(rng.uniform())) / cols_;
                 double v = (j + static_cast<double>(rng.uniform())) / rows_;
-                f(x + u, y + v);
+                if (pixelBox_)
+                    f(x + u, y + v);
+                else
+                    f(x + 0.5 + filter_.sample(u), y + 0.5 + filter_.sample(v));
             }
+    }
+
+    /// Seed of the random numbers that sample `index` of pixel (x, y) uses beyond its position
+    /// (lens, lights, glossy reflection): a function of (pixel, sample, seed) only.
+    uint64_t sampleSeed(int x, int y, int index) const {
+        uint64_t pixel = (static_cast<uint64_t>(y) << 32) | static_cast<uint32_t>(x);
+        return mixBits(mixBits(seed_ ^ 0x9e3779b97f4a7c15ULL) ^ mixBits(pixel) ^
+                       static_cast<uint64_t>(index));
     }
 
   private:
     int spp_, cols_ = 1, rows_ = 1;
     uint64_t seed_;
+    bool pixelBox_;  ///< The one-pixel box filter: positions stay in the pixel.
+    FilterSampler filter_;
 };
 
 }  // namespace glint

@@ -1,9 +1,12 @@
 #pragma once
 /// The course's recursive (Whitted) ray tracer: OpenGL-style local lighting with shadow rays,
-/// plus one mirror ray weighted by the specular colour, to the scene's maximum depth.
+/// plus one mirror ray weighted by the specular colour, to the scene's maximum depth; and
+/// Glint's extensions of it, following the lecture: refraction with Fresnel weighting, soft
+/// shadows from area lights, and a rough (GGX) specular lobe. See docs/scene-format.md.
 
 #include <cstdint>
 
+#include "glint/math/rng.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
@@ -21,21 +24,65 @@ struct RayCounts {
     }
 };
 
+/// What one camera sample carries through its tree of rays: its own random numbers (seeded
+/// from pixel, sample and seed, so images do not depend on threads) and its ray counts.
+struct PathContext {
+    Rng rng;
+    RayCounts& counts;
+    /// Refracted and reflected rays a sample may still spawn at transmissive surfaces, where
+    /// every hit splits in two: bounds the work of any scene at any depth.
+    int branchRaysLeft = 4096;
+};
+
+/// n of the n x n grid of shadow rays per area light and shading point: the scene's
+/// `lightsamples`, else about 16 shadow rays per pixel spread over the pixel's samples.
+int areaLightGrid(const Scene& scene, int spp);
+
 class WhittedIntegrator {
   public:
-    /// The scene must be prepared and outlive the integrator.
-    explicit WhittedIntegrator(const Scene& scene) : scene_(scene) {}
+    /// The scene must be prepared and outlive the integrator. `spp` is the number of camera
+    /// samples per pixel (it sets the default area-light grid).
+    explicit WhittedIntegrator(const Scene& scene, int spp = 1);
 
     /// Radiance along `ray`, which is at recursion `depth` (0 for camera rays). Counts the
     /// rays it traces into `counts`, `ray` itself included.
-    Vec3 li(const Ray& ray, int depth, RayCounts& counts) const;
+    Vec3 li(const Ray& ray, int depth, RayCounts& counts) const {
+        PathContext ctx{Rng(), counts};
+        return li(ray, depth, ctx);
+    }
+    Vec3 li(const Ray& ray, int depth, PathContext& ctx) const { return trace(ray, depth, 1, ctx); }
 
     /// Radiance along `ray` given its closest hit (null: it hits nothing), found by the caller,
     /// e.g. for a whole packet at once. Does not count `ray` itself.
-    Vec3 shade(const Ray& ray, const Hit* hit, int depth, RayCounts& counts) const;
+    Vec3 shade(const Ray& ray, const Hit* hit, int depth, PathContext& ctx) const {
+        return shade(ray, hit, depth, 1, ctx);
+    }
+
+    /// The fraction of light that travels from `p` along unit `wi` for `distance`: 0 or 1
+    /// past opaque surfaces; through transmissive ones, the product over the surfaces crossed
+    /// of transmission x (1 - Fresnel reflectance), 0 at total internal reflection.
+    Vec3 transmittance(const Vec3& p, const Vec3& wi, double distance, RayCounts& counts) const;
+
+    /// Whether shading draws random numbers (area lights, rough materials); if not, paths
+    /// need no seeded PathContext::rng.
+    bool usesRandomNumbers() const { return usesRandomNumbers_; }
 
   private:
+    Vec3 trace(const Ray& ray, int depth, double weight, PathContext& ctx) const;
+    /// `weight`: the largest channel of the product of ray weights down to this ray, for
+    /// cutting off negligible branches at transmissive surfaces.
+    Vec3 shade(const Ray& ray, const Hit* hit, int depth, double weight, PathContext& ctx) const;
+    /// Adds every light's contribution at the hit to `color`.
+    void directLight(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
+                     Vec3& color, PathContext& ctx) const;
+    /// Specular reflection and transmission at a hit, recursively traced.
+    Vec3 indirect(const Ray& ray, const SurfaceInteraction& si, const Material& m, int depth,
+                  double weight, PathContext& ctx) const;
+
     const Scene& scene_;
+    bool anyTransmissive_ = false;
+    bool usesRandomNumbers_ = false;
+    int areaGrid_ = 1;
 };
 
 }  // namespace glint

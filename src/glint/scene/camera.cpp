@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "glint/math/sampling.h"
+
 namespace glint {
 
 Camera::Camera(const CameraSpec& spec, int width, int height) : eye_(spec.eye) {
@@ -14,12 +16,30 @@ Camera::Camera(const CameraSpec& spec, int width, int height) : eye_(spec.eye) {
     halfHeight_ = static_cast<double>(height) / 2;
     tanHalfY_ = std::tan(spec.fovyDegrees * std::numbers::pi / 360);
     tanHalfX_ = tanHalfY_ * static_cast<double>(width) / static_cast<double>(height);
+    apertureRadius_ = spec.apertureRadius;
+    focusDistance_ =
+        spec.focusDistance > 0 ? spec.focusDistance : length(spec.center - spec.eye);
 }
 
 Ray Camera::generateRay(double x, double y) const {
     double alpha = tanHalfX_ * (x - halfWidth_) / halfWidth_;
     double beta = tanHalfY_ * (halfHeight_ - y) / halfHeight_;
     return Ray{eye_, normalize(u_ * alpha + v_ * beta - w_), 0, kInfinity};
+}
+
+}  // namespace glint
+
+namespace glint {
+
+Ray Camera::generateRay(double x, double y, double lensU, double lensV) const {
+    Ray pinhole = generateRay(x, y);
+    if (!hasLens()) return pinhole;
+    // Every ray through pixel (x, y) meets the pinhole ray on the plane in focus, which lies
+    // focusDistance in front of the eye along -w.
+    Vec3 focus = pinhole.at(focusDistance_ / dot(pinhole.dir, -w_));
+    auto [lx, ly] = sampleUniformDisk(lensU, lensV);
+    Vec3 origin = eye_ + (u_ * lx + v_ * ly) * apertureRadius_;
+    return Ray{origin, normalize(focus - origin), 0, kInfinity};
 }
 
 }  // namespace glint

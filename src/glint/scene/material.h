@@ -1,5 +1,6 @@
 #pragma once
-/// The course's material: OpenGL-style terms plus the mirror weight (= specular).
+/// The course's material: OpenGL-style terms plus the mirror weight (= specular), and Glint's
+/// extensions: transmission with refraction, and a rough (GGX) specular lobe.
 
 #include "glint/math/vec3.h"
 
@@ -11,6 +12,17 @@ struct Material {
     Vec3 specular;  ///< Blinn-Phong colour and the weight of the mirror ray.
     Vec3 emission;
     double shininess = 0;
+    /// Weight of the light carried through the surface (refracted), split with the reflected
+    /// ray by Fresnel. Zero (the default) for opaque materials.
+    Vec3 transmission;
+    double ior = 1.5;  ///< Index of refraction inside the object (outside is 1).
+    /// GGX roughness alpha in [0, 1]: 0 (the default) is the course's perfect mirror and
+    /// Blinn-Phong highlight; above 0 the specular term is a GGX microfacet lobe.
+    double roughness = 0;
+    /// Emission only towards the front face (the geometry of area lights).
+    bool frontEmissionOnly = false;
+
+    bool transmissive() const { return !(transmission == Vec3(0)); }
 
     bool operator==(const Material&) const = default;
 };

@@ -8,6 +8,7 @@
 #include "glint/accel/bvh.h"
 #include "glint/geometry/primitives.h"
 #include "glint/scene/camera.h"
+#include "glint/scene/filter_spec.h"
 #include "glint/scene/light.h"
 #include "glint/scene/material.h"
 
@@ -46,6 +47,12 @@ class Scene {
     std::optional<CameraSpec> camera;
     Background background;  ///< Black by default, as the course expects.
     std::vector<Light> lights;
+    /// Camera rays per pixel the scene asks for (`spp`); 0: not given (the CLI decides).
+    int spp = 0;
+    FilterSpec filter;  ///< Reconstruction filter (`filter`); the one-pixel box by default.
+    /// Area lights are sampled with an n x n jittered grid per shading point (`lightsamples`);
+    /// 0: not given (see areaLightGrid()).
+    int lightSamples = 0;
     std::vector<Material> materials;
     Primitives primitives;
 

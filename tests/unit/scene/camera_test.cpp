@@ -118,3 +118,58 @@ TEST(Camera, PixelCentresAreHalfAPixelIn) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(ThinLens, AllRaysThroughAPixelMeetOnThePlaneInFocus) {
+    CameraSpec spec{{0, 1, 8}, {0, 0, 0}, {0, 1, 0}, 40};
+    spec.apertureRadius = 0.3;
+    spec.focusDistance = 5;
+    Camera lens(spec, 64, 48);
+    Camera pinhole(CameraSpec{spec.eye, spec.center, spec.up, 40}, 64, 48);
+    Vec3 w = normalize(spec.eye - spec.center);
+    for (auto [x, y] : {std::pair{10.5, 7.25}, std::pair{32.0, 24.0}, std::pair{60.1, 40.9}}) {
+        Ray p = pinhole.generateRay(x, y);
+        Vec3 focus = p.at(5 / dot(p.dir, -w));
+        double spread = 0;
+        for (double u : {0.05, 0.5, 0.95})
+            for (double v : {0.1, 0.6, 0.99}) {
+                Ray r = lens.generateRay(x, y, u, v);
+                EXPECT_NEAR(length(r.dir), 1, 1e-12);
+                // The ray starts on the aperture disk, in the lens plane...
+                Vec3 offset = r.origin - spec.eye;
+                EXPECT_NEAR(dot(offset, w), 0, 1e-12);
+                EXPECT_LE(length(offset), 0.3 + 1e-12);
+                spread = std::max(spread, length(offset));
+                // ...and passes through the pinhole ray's point on the plane in focus.
+                Vec3 q = r.at(dot(focus - r.origin, r.dir));
+                EXPECT_NEAR(length(q - focus), 0, 1e-9);
+            }
+        EXPECT_GT(spread, 0.2);  // the aperture is really used
+    }
+}
+
+TEST(ThinLens, ZeroApertureIsThePinhole) {
+    CameraSpec spec{{1, 2, 3}, {0, 0, 0}, {0, 1, 0}, 50};
+    Camera c(spec, 20, 10);
+    EXPECT_FALSE(c.hasLens());
+    Ray a = c.generateRay(3.5, 4.5), b = c.generateRay(3.5, 4.5, 0.9, 0.1);
+    EXPECT_EQ(a.origin, b.origin);
+    EXPECT_EQ(a.dir, b.dir);
+}
+
+TEST(ThinLens, DefaultFocusIsTheDistanceFromEyeToCenter) {
+    CameraSpec spec{{0, 0, 6}, {0, 0, 0}, {0, 1, 0}, 30};
+    spec.apertureRadius = 0.5;
+    Camera c(spec, 9, 9);
+    // The centre pixel's rays all pass through the look-at point.
+    for (double u : {0.1, 0.7}) {
+        Ray r = c.generateRay(4.5, 4.5, u, 0.3);
+        Vec3 q = r.at(dot(Vec3(0, 0, 0) - r.origin, r.dir));
+        EXPECT_NEAR(length(q), 0, 1e-9);
+    }
+}
+
+}  // namespace
+}  // namespace glint

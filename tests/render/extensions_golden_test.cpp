@@ -1,0 +1,53 @@
+// Golden images of the extension example scenes (scenes/*.test, shown in
+// docs/scene-format.md): each rendered small, with seed 0, and compared with the image Glint
+// made when the feature was accepted (tests/data/extensions/, regenerated only deliberately,
+// with `tests/data/extensions/regenerate.sh`). Renders are deterministic, so differences come
+// only from a change in behaviour, or from floating-point differences on another CPU: a few
+// pixels one level off are tolerated, no more.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "glint/io/hw3_loader.h"
+#include "glint/io/image_io.h"
+#include "glint/render/image_diff.h"
+#include "glint/render/renderer.h"
+
+namespace glint {
+namespace {
+
+constexpr int kWidth = 160, kHeight = 90;
+
+class ExtensionScene : public testing::TestWithParam<const char*> {};
+
+TEST_P(ExtensionScene, MatchesItsAcceptedImage) {
+    std::string name = GetParam();
+    std::vector<Diagnostic> warnings;
+    auto scene = loadHw3Scene(std::string(GLINT_SCENES_DIR) + "/" + name + ".test", warnings);
+    EXPECT_TRUE(warnings.empty());
+    scene->width = kWidth;
+    scene->height = kHeight;
+    scene->prepare();
+    RenderOptions o;
+    o.spp = scene->spp > 0 ? scene->spp : 1;
+    RenderResult result = render(*scene, o);
+    Image8 ours = toImage8(result.film);
+    Image8 reference =
+        readImage8(std::string(GLINT_TEST_DATA_DIR) + "/extensions/" + name + ".png", 3);
+    ASSERT_EQ(ours.width, reference.width);
+    ASSERT_EQ(ours.height, reference.height);
+    long long hot1 = countHotPixels(ours, reference, 1);
+    long long hot0 = countHotPixels(ours, reference, 0);
+    std::printf("%s: pixels differing by more than 0 / 1 levels: %lld / %lld\n", name.c_str(),
+                hot0, hot1);
+    EXPECT_LE(hot1, 5) << "the image changed";
+    EXPECT_LE(hot0, kWidth * kHeight / 100);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ExtensionScene,
+                         testing::Values("glass", "arealight", "dof", "antialias"),
+                         [](const auto& p) { return std::string(p.param); });
+
+}  // namespace
+}  // namespace glint
