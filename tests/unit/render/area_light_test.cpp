@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "glint/math/rng.h"
@@ -72,6 +73,9 @@ TEST_P(QuadIrradiance, MeanOfEstimatesIsWithinFourStandardErrorsOfTheAnalyticVal
         }
         double mean = sum / runs;
         double se = std::sqrt(std::max(0.0, sum2 / runs - mean * mean) / runs);
+        std::printf("%s, %dx%d grid: exact %.6f, mean of %d estimates %.6f, error %+.2e (%.2f "
+                    "standard errors of %.2e)\n",
+                    c.name, grid, grid, exact, runs, mean, mean - exact, (mean - exact) / se, se);
         EXPECT_NEAR(mean, exact, 4 * se + 1e-12)
             << c.name << ", grid " << grid << ": exact " << exact << ", standard error " << se;
         // The 4 x 4 grid's estimates are usable ones (the 1 x 1 grid of a large, close light

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -147,6 +148,7 @@ TEST(Antialiasing, EdgePixelsConvergeToTheCoveredFraction) {
         // 4096 = 64 x 64 strata: the column the edge crosses errs by at most 1/64 of its
         // share, so a few thousandths at most.
         Film f = renderText(halfPlane(edge), 4096);
+        std::printf("edge at %.2f: covered %.4f, pixel %.4f\n", edge, covered, f.at(0, 0).x);
         EXPECT_NEAR(f.at(0, 0).x, covered, 0.004) << "edge at " << edge;
     }
     // One sample per pixel sees only the centre.
@@ -164,6 +166,8 @@ TEST(Antialiasing, GaussianFilterConvergesToTheFilterWeightedCoverage) {
         if (x > 0.2) beyond += g.profile(x);
     }
     Film f = renderText(halfPlane(0.4, "filter gaussian 1.5\n"), 4096);
+    std::printf("gaussian: filter-weighted coverage %.4f, pixel %.4f\n", beyond / total,
+                f.at(0, 0).x);
     EXPECT_NEAR(f.at(0, 0).x, beyond / total, 0.004);
     EXPECT_LT(beyond / total, 0.40);  // unlike the box's 0.3 ... the two must differ
     EXPECT_GT(beyond / total, 0.30);
