@@ -163,22 +163,18 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si,
         return color;
     }
     if (m.specular == Vec3(0)) return Vec3(0);
-    if (m.roughness > 0) {
-        // One direction from the GGX lobe per visit: the pixel's samples average the lobe.
-        Vec3 wo = -ray.dir;
-        Frame f(dot(si.n, wo) >= 0 ? si.n : -si.n);
-        Ggx ggx{m.roughness};
-        Vec3 woL = f.toLocal(wo);
-        double u1 = ctx.rng.uniform(), u2 = ctx.rng.uniform();
-        Vec3 h = ggx.sampleVisibleNormal(woL, u1, u2);
-        Vec3 wiL = h * (2 * dot(woL, h)) - woL;
-        double g = ggx.g1(wiL);
-        if (!(g > 0)) return Vec3(0);
-        Vec3 wi = normalize(f.toWorld(wiL));
-        return m.specular * g * trace(spawnRay(si.p, wi, offset), depth + 1, weight, ctx);
-    }
-    Vec3 r = normalize(reflect(ray.dir, si.n));
-    return m.specular * trace(spawnRay(si.p, r, offset), depth + 1, weight, ctx);
+    // One direction from the GGX lobe per visit: the pixel's samples average the lobe.
+    Vec3 wo = -ray.dir;
+    Frame f(dot(si.n, wo) >= 0 ? si.n : -si.n);
+    Ggx ggx{m.roughness};
+    Vec3 woL = f.toLocal(wo);
+    double u1 = ctx.rng.uniform(), u2 = ctx.rng.uniform();
+    Vec3 h = ggx.sampleVisibleNormal(woL, u1, u2);
+    Vec3 wiL = h * (2 * dot(woL, h)) - woL;
+    double g = ggx.g1(wiL);
+    if (!(g > 0)) return Vec3(0);
+    Vec3 wi = normalize(f.toWorld(wiL));
+    return m.specular * g * trace(spawnRay(si.p, wi, offset), depth + 1, weight, ctx);
 }
 
 Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double weight,
@@ -190,8 +186,16 @@ Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double 
     bool emits = !m.frontEmissionOnly || dot(ray.dir, si.ng) < 0;
     Vec3 color = emits ? m.ambient + m.emission : m.ambient;
     directLight(si, -ray.dir, m, color, ctx);
-    if (depth < scene_.maxDepth && (!(m.specular == Vec3(0)) || m.transmissive()))
-        color += indirect(ray, si, m, depth, weight, ctx);
+    if (depth < scene_.maxDepth) {
+        if (m.transmissive() || m.roughness > 0) {
+            color += indirect(ray, si, m, depth, weight, ctx);
+        } else if (!(m.specular == Vec3(0))) {
+            // The course's mirror, inline: the common case.
+            Vec3 r = normalize(reflect(ray.dir, si.n));
+            color += m.specular *
+                     trace(spawnRay(si.p, r, scene_.spawnOffset()), depth + 1, weight, ctx);
+        }
+    }
     return finiteRadiance(color);
 }
 
