@@ -3,6 +3,11 @@
 namespace glint {
 namespace {
 
+/// Bounds are widened by this fraction of the shape's size and coordinates (16 float ulps): the
+/// float shape search and the float box test round differently, and a hit that the one finds
+/// at a silhouette must not lie outside the box that the other tests.
+constexpr double kBoundsPadding = 0x1p-20;
+
 /// A matrix with columns x, y, z and translation t.
 Mat4 columns(const Vec3& x, const Vec3& y, const Vec3& z, const Vec3& t) {
     Mat4 m;
@@ -95,8 +100,8 @@ Bounds3f Shape::bounds() const {
             circle(0, 1);
             break;
     }
-    double pad =
-        1e-5 * (maxComponent(hi - lo) + std::max(maxComponent(abs(lo)), maxComponent(abs(hi))));
+    double size = maxComponent(hi - lo) + std::max(maxComponent(abs(lo)), maxComponent(abs(hi)));
+    double pad = kBoundsPadding * size;
     return Bounds3f::enclosing(lo - Vec3(pad), hi + Vec3(pad));
 }
 
