@@ -114,6 +114,25 @@ std::string count(unsigned long long n, const char* one, const char* many) {
     return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+/// "2 triangles, 1 sphere", then the other kinds the scene has: "1 box, 2 planes". Polygons
+/// are counted as the triangles they became.
+std::string primitiveSummary(const glint::Primitives& prims) {
+    using glint::ShapeKind;
+    std::string s = count(prims.triangleCount(), "triangle", "triangles") + ", " +
+                    count(prims.sphereCount(), "sphere", "spheres");
+    const struct {
+        unsigned long long n;
+        const char *one, *many;
+    } kinds[] = {{prims.shapeCount(ShapeKind::Box), "box", "boxes"},
+                 {prims.shapeCount(ShapeKind::Cylinder), "cylinder", "cylinders"},
+                 {prims.shapeCount(ShapeKind::Cone), "cone", "cones"},
+                 {prims.shapeCount(ShapeKind::Disk), "disk", "disks"},
+                 {prims.planeCount(), "plane", "planes"}};
+    for (const auto& k : kinds)
+        if (k.n > 0) s += ", " + count(k.n, k.one, k.many);
+    return s;
+}
+
 int usageError(const std::string& message) {
     std::fprintf(stderr, "glint: error: %s\nRun 'glint --help' for usage.\n", message.c_str());
     return kExitUsage;
@@ -123,9 +142,7 @@ void printStats(const glint::Scene& scene, double parse, double build, const gli
                 double write) {
     const auto& bvh = scene.bvh().stats();
     double mrays = r.seconds > 0 ? static_cast<double>(r.rays.total()) / r.seconds / 1e6 : 0;
-    std::printf("Scene       %s, %s, %s, %s\n",
-                count(scene.primitives.triangleCount(), "triangle", "triangles").c_str(),
-                count(scene.primitives.sphereCount(), "sphere", "spheres").c_str(),
+    std::printf("Scene       %s, %s, %s\n", primitiveSummary(scene.primitives).c_str(),
                 count(scene.lights.size(), "light", "lights").c_str(),
                 count(scene.materials.size(), "material", "materials").c_str());
     std::printf("BVH         %u nodes, %u leaves, depth %u, %.2f MB\n", bvh.nodes, bvh.leaves,
@@ -187,10 +204,9 @@ int run(const Options& opt) {
     }
     if (opt.check) {
         const auto& prims = scene->primitives;
-        std::printf("%s: ok: %dx%d, %s, %s, %s, maxdepth %d, output %s\n",
+        std::printf("%s: ok: %dx%d, %s, %s, maxdepth %d, output %s\n",
                     demo ? "demo.test" : opt.scene.c_str(), scene->width, scene->height,
-                    count(prims.triangleCount(), "triangle", "triangles").c_str(),
-                    count(prims.sphereCount(), "sphere", "spheres").c_str(),
+                    primitiveSummary(prims).c_str(),
                     count(scene->lights.size(), "light", "lights").c_str(), scene->maxDepth,
                     output.c_str());
         return 0;

@@ -312,6 +312,20 @@ TEST(Cli, CheckPrintsAOneLineSummaryAndWritesNoImage) {
     EXPECT_TRUE(contains(r.out, "output x.pfm\n")) << r.out;
 }
 
+TEST(Cli, CheckCountsTheShapeExtensionsByKind) {
+    std::string dir = freshDir("checkshapes");
+    writeFile(dir + "/s.test",
+              "size 64 48\ncamera 0 0 5 0 0 0 0 1 0 45\nsphere 0 0 0 1\nbox 0 0 0 1 1 1\n"
+              "box 2 2 2 3 3 3\ncylinder 0 0 0 0 1 0 1\ncone 0 0 0 1 0 1 0 0\n"
+              "disk 0 0 0 0 0 1 1\nplane 0 -1 0 0 1 0\nvertex 0 0 0\nvertex 1 0 0\n"
+              "vertex 1 1 0\nvertex 0 1 0\npolygon 0 1 2 3\n");
+    CommandResult r = runGlint("--check s.test", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out,
+              "s.test: ok: 64x48, 2 triangles, 1 sphere, 2 boxes, 1 cylinder, 1 cone, 1 disk, "
+              "1 plane, 0 lights, maxdepth 5, output s.png\n");
+}
+
 TEST(Cli, CheckExitsOneOnABadScene) {
     std::string dir = freshDir("checkbad");
     writeFile(dir + "/bad.test", "size 64 48\ncamera 0 0 5 0 0 0 0 1 0 45\nsphere 0 0 0\n");

@@ -107,6 +107,19 @@ const ErrorCase kErrorCases[] = {
     {"CrlfLinesReportTheSameColumns",
      "size 64 48\r\ncamera 0 0 5 0 0 0 0 1 0 45\r\nsphere 0 0 x 1\r\n",
      "e.test:3:12: error: expected a number, got 'x'"},
+    // The shape extensions.
+    {"MisspelledShapeSuggestsIt", kHead + "cylindre 0 0 0 0 0 1 1\n",
+     "e.test:3:1: error: unknown command 'cylindre'; did you mean 'cylinder'?"},
+    {"BoxWithZeroExtent", kHead + "box 0 0 0 1 0 1\n",
+     "e.test:3:13: error: box has zero extent along y: both corners have y = '0'"},
+    {"ConeWithBothRadiiZero", kHead + "cone 0 0 0 0 0 0 1 0\n",
+     "e.test:3:12: error: cone radii must not both be zero"},
+    {"PlaneWithZeroNormal", kHead + "plane 0 0 0 0 0 0\n",
+     "e.test:3:13: error: plane normal must not be zero"},
+    {"PolygonWithCrossingEdges",
+     kHead + "vertex 0 0 0\nvertex 2 2 0\nvertex 2 0 0\nvertex 0 1 0\npolygon 0 1 2 3\n",
+     "e.test:7:13: error: the polygon's edges cross: the edge from vertex '2' to '3' meets the "
+     "edge from vertex '0' to '1'"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Cli, SceneErrorMessage, testing::ValuesIn(kErrorCases),

@@ -10,6 +10,39 @@
 #include "glint/core/system.h"
 
 namespace glint {
+namespace {
+
+/// Planes have no finite bounds, so they are not in the tree: every query tests them here,
+/// beside it, by the same closerHit rule. Scalar code, the same whatever the kernels.
+bool hitPlanes(const bvh::BvhData& d, const TraversalRay& ray, Hit& hit) {
+    bool found = false;
+    for (size_t i = 0; i < d.planes.size(); ++i) {
+        float t;
+        if (intersectPlane(d.planes[i], ray, t) && closerHit(t, d.planeIds[i], hit))
+            hit = {t, d.planeIds[i]}, found = true;
+    }
+    return found;
+}
+
+/// hitPlanes for each active ray of a packet (out of line: packets without planes do not pay
+/// for its registers).
+[[gnu::noinline]] void hitPlanes8(const bvh::BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
+    for (int i = 0; i < 8; ++i) {
+        if (!(rays.active >> i & 1)) continue;
+        Hit h{hits.t[i], hits.primId[i]};
+        if (hitPlanes(d, rays.rays[i], h)) hits.t[i] = h.t, hits.primId[i] = h.primId;
+    }
+}
+
+bool planeOccludes(const bvh::BvhData& d, const TraversalRay& ray) {
+    for (const PlaneSearch& p : d.planes) {
+        float t;
+        if (intersectPlane(p, ray, t)) return true;
+    }
+    return false;
+}
+
+}  // namespace
 
 Isa Bvh::bestIsa() {
     static const Isa best = [] {
@@ -45,6 +78,11 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
 #endif
     int threads = options.threads > 0 ? options.threads : hardwareThreads();
     bvh::BuildSummary s = bvh::build(prims, threads, data_);
+    for (uint32_t id = prims.boundedCount(); id < prims.size(); ++id) {
+        data_.planes.push_back(prims.planeSearch(id));
+        data_.planeIds.push_back(id);
+    }
+    route_ = data_.planes.empty() ? isa_ : Isa::Auto;
     bounds_ = s.bounds;
     stats_ = {};
     stats_.nodes = static_cast<uint32_t>(data_.nodes.size());
@@ -60,23 +98,43 @@ Bounds3f Bvh::bounds() const { return bounds_; }
 
 bool Bvh::intersect(const TraversalRay& ray, Hit& hit) const {
 #if GLINT_HAVE_AVX2
-    if (isa_ == Isa::Avx2) return bvh::avx2::intersect(data_, ray, hit);
+    if (route_ == Isa::Avx2) return bvh::avx2::intersect(data_, ray, hit);
 #endif
-    return bvh::portable::intersect(data_, ray, hit);
+    if (route_ == Isa::Portable) return bvh::portable::intersect(data_, ray, hit);
+    return intersectWithPlanes(ray, hit);
 }
 
 bool Bvh::occluded(const TraversalRay& ray) const {
 #if GLINT_HAVE_AVX2
-    if (isa_ == Isa::Avx2) return bvh::avx2::occluded(data_, ray);
+    if (route_ == Isa::Avx2) return bvh::avx2::occluded(data_, ray);
 #endif
-    return bvh::portable::occluded(data_, ray);
+    if (route_ == Isa::Portable) return bvh::portable::occluded(data_, ray);
+    return occludedWithPlanes(ray);
 }
 
 void Bvh::intersect8(const RayPacket8& rays, HitPacket8& hits) const {
+    if (route_ == Isa::Auto) hitPlanes8(data_, rays, hits);
 #if GLINT_HAVE_AVX2
     if (isa_ == Isa::Avx2) return bvh::avx2::intersect8(data_, rays, hits);
 #endif
     bvh::portable::intersect8(data_, rays, hits);
+}
+
+bool Bvh::intersectWithPlanes(const TraversalRay& ray, Hit& hit) const {
+    // Planes first: a hit on one bounds the search of the tree.
+    bool found = hitPlanes(data_, ray, hit);
+#if GLINT_HAVE_AVX2
+    if (isa_ == Isa::Avx2) return bvh::avx2::intersect(data_, ray, hit) || found;
+#endif
+    return bvh::portable::intersect(data_, ray, hit) || found;
+}
+
+bool Bvh::occludedWithPlanes(const TraversalRay& ray) const {
+    if (planeOccludes(data_, ray)) return true;
+#if GLINT_HAVE_AVX2
+    if (isa_ == Isa::Avx2) return bvh::avx2::occluded(data_, ray);
+#endif
+    return bvh::portable::occluded(data_, ray);
 }
 
 }  // namespace glint

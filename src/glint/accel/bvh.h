@@ -1,6 +1,9 @@
 #pragma once
 /// Glint's acceleration structure: an 8-wide BVH over triangles and (transformed) spheres,
-/// built with binned SAH on several threads, traversed by SIMD kernels chosen for the CPU.
+/// boxes, cylinders, cones and disks, built with binned SAH on several threads, traversed by
+/// SIMD kernels chosen for the CPU. Infinite planes cannot have finite bounds: they are kept
+/// in a short list beside the tree, and intersect, occluded and intersect8 test them too, so
+/// every caller gets them; they are not part of bounds().
 /// Layout: bvh_layout.h; build: bvh_build.cpp; kernels: bvh_isa_*.cpp, bvh_traverse.inl.
 
 #include <cstdint>
@@ -45,7 +48,7 @@ class Bvh {
     void intersect8(const RayPacket8& rays, HitPacket8& hits) const;
 
     const BvhStats& stats() const { return stats_; }
-    /// Bounds of everything in the BVH (empty if nothing).
+    /// Bounds of everything in the tree (empty if nothing): planes are not included.
     Bounds3f bounds() const;
     const bvh::BvhData& data() const { return data_; }
     /// The kernels this BVH traverses with.
@@ -58,10 +61,17 @@ class Bvh {
     static const char* name(Isa isa);
 
   private:
+    /// intersect and occluded for scenes with planes, out of line: the plane-free calls stay
+    /// plain tail calls into the kernels.
+    [[gnu::noinline]] bool intersectWithPlanes(const TraversalRay& ray, Hit& hit) const;
+    [[gnu::noinline]] bool occludedWithPlanes(const TraversalRay& ray) const;
+
     bvh::BvhData data_;
     BvhStats stats_;
     Bounds3f bounds_;
     Isa isa_ = Isa::Portable;
+    /// The kernels to call, or Auto when the scene has planes: one comparison picks the way.
+    Isa route_ = Isa::Portable;
 };
 
 }  // namespace glint

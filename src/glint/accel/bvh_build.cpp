@@ -23,10 +23,10 @@ namespace {
 constexpr int kBins = 16;
 constexpr uint32_t kAllAxesFrom = 32;  // smaller ranges are split along their longest axis
 constexpr uint32_t kMaxLeafTriangles = 2 * kLanes;
-constexpr uint32_t kMaxLeafSpheres = 4;
-constexpr float kTraversalCost = 1;  // a node visit, relative to one triangle block or sphere
-constexpr uint32_t kMedianSplitDepth = 48;     // deeper binary splits halve by count
-constexpr uint32_t kTaskThreshold = 8192;      // subtrees at least this big may go to idle threads
+constexpr uint32_t kMaxLeafShapes = 4;
+constexpr float kTraversalCost = 1;         // a node visit, relative to one triangle block or shape
+constexpr uint32_t kMedianSplitDepth = 48;  // deeper binary splits halve by count
+constexpr uint32_t kTaskThreshold = 8192;   // subtrees at least this big may go to idle threads
 constexpr uint32_t kParallelSplit = 1u << 15;  // splits this big may run beside each other
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
@@ -109,7 +109,7 @@ struct alignas(16) PrimRef {
     float lo[3];
     uint32_t id;
     float hi[3];
-    uint32_t sphere;  ///< 1 for spheres, 0 for triangles.
+    uint32_t shape;  ///< 1 for shapes (spheres, boxes, ...), 0 for triangles.
 
     V4 lo4() const { return V4::load(lo); }
     V4 hi4() const { return V4::load(hi); }
@@ -117,21 +117,21 @@ struct alignas(16) PrimRef {
 };
 
 struct Range {
-    uint32_t begin = 0, end = 0, spheres = 0;
+    uint32_t begin = 0, end = 0, shapes = 0;
     Box4 bounds, centroids;  ///< Centroids as lo + hi.
 
     uint32_t size() const { return end - begin; }
-    uint32_t triangles() const { return size() - spheres; }
+    uint32_t triangles() const { return size() - shapes; }
 };
 
-/// Intersection cost of a leaf: one unit per triangle block and per sphere.
-float leafCost(uint32_t triangles, uint32_t spheres) {
-    return static_cast<float>((triangles + kLanes - 1) / kLanes + spheres);
+/// Intersection cost of a leaf: one unit per triangle block and per shape.
+float leafCost(uint32_t triangles, uint32_t shapes) {
+    return static_cast<float>((triangles + kLanes - 1) / kLanes + shapes);
 }
 
 bool fitsOneLeaf(const Range& r) {
-    return r.spheres == 0 ? r.size() <= kMaxLeafTriangles
-                          : (r.spheres == r.size() && r.size() <= kMaxLeafSpheres);
+    return r.shapes == 0 ? r.size() <= kMaxLeafTriangles
+                         : (r.shapes == r.size() && r.size() <= kMaxLeafShapes);
 }
 
 enum class SplitKind { Leaf, Sah, Median, Types };
@@ -145,7 +145,7 @@ struct Decision {
 struct ChildRef {
     uint32_t ref = kEmpty;
     uint32_t size = 0;
-    bool spheres = false;  ///< A leaf of spheres (leaves hold one kind).
+    bool shapes = false;  ///< A leaf of shapes (leaves hold triangles or shapes, not both).
 };
 
 /// An 8-wide node while building. Nodes are written only by the task that builds them, and
@@ -265,7 +265,7 @@ class Builder {
     Bounds3f rootBounds() const { return rootBounds_; }
 
   private:
-    /// Bounds, centroid bounds and sphere count of refs [begin, end).
+    /// Bounds, centroid bounds and shape count of refs [begin, end).
     Range makeRange(uint32_t begin, uint32_t end) const {
         Range r;
         r.begin = begin;
@@ -278,7 +278,7 @@ class Builder {
         V4 lo = p.lo4(), hi = p.hi4();
         r.bounds.extend(lo, hi);
         r.centroids.extend(lo + hi);
-        r.spheres += p.sphere;
+        r.shapes += p.shape;
     }
 
     /// Where centroids fall in the bins of `r`: bin = clamp((c - lo) * scale, 0, kBins - 1),
@@ -319,7 +319,7 @@ class Builder {
 
     struct Bin {
         Box4 bounds;
-        uint32_t triangles = 0, spheres = 0;
+        uint32_t triangles = 0, shapes = 0;
     };
     using Bins = std::array<std::array<Bin, kBins>, 3>;  // the first Binning::count are used
 
@@ -332,8 +332,8 @@ class Builder {
             for (int a = 0; a < 3; ++a) {
                 Bin& bin = bins[a][b[a]];
                 bin.bounds.extend(lo, hi);
-                bin.triangles += 1 - p.sphere;
-                bin.spheres += p.sphere;
+                bin.triangles += 1 - p.shape;
+                bin.shapes += p.shape;
             }
         }
     }
@@ -362,7 +362,7 @@ class Builder {
                 for (int k = 0; k < binning.count; ++k) {
                     bins[a][k].bounds.extend(p[a][k].bounds);
                     bins[a][k].triangles += p[a][k].triangles;
-                    bins[a][k].spheres += p[a][k].spheres;
+                    bins[a][k].shapes += p[a][k].shapes;
                 }
     }
 
@@ -370,8 +370,8 @@ class Builder {
     Decision decide(const Range& r, uint32_t depth) const {
         uint32_t n = r.size();
         // One block of triangles: any split costs a node visit plus two blocks' worth of area.
-        if (n <= 1 || (r.spheres == 0 && n <= kLanes)) return {};
-        bool mixed = r.spheres != 0 && r.spheres != n;
+        if (n <= 1 || (r.shapes == 0 && n <= kLanes)) return {};
+        bool mixed = r.shapes != 0 && r.shapes != n;
         Bounds3f centroids = r.centroids.bounds3();
         if (depth >= kMedianSplitDepth) {
             if (fitsOneLeaf(r)) return {};
@@ -393,29 +393,29 @@ class Builder {
             if (!(extent[a] > 0) || (n < kAllAxesFrom && a != longest)) continue;
             std::array<float, kBins> right{};
             Box4 acc;
-            uint32_t tris = 0, sph = 0;
+            uint32_t tris = 0, shp = 0;
             for (int b = nb - 1; b > 0; --b) {
                 acc.extend(bins[a][b].bounds);
                 tris += bins[a][b].triangles;
-                sph += bins[a][b].spheres;
-                right[b] = tris + sph ? acc.area() * leafCost(tris, sph) : 0;
+                shp += bins[a][b].shapes;
+                right[b] = tris + shp ? acc.area() * leafCost(tris, shp) : 0;
             }
             acc = {};
-            tris = sph = 0;
+            tris = shp = 0;
             for (int b = 0; b < nb - 1; ++b) {
                 acc.extend(bins[a][b].bounds);
                 tris += bins[a][b].triangles;
-                sph += bins[a][b].spheres;
-                uint32_t left = tris + sph;
+                shp += bins[a][b].shapes;
+                uint32_t left = tris + shp;
                 if (left == 0 || left == n) continue;
-                float cost = acc.area() * leafCost(tris, sph) + right[b + 1];
+                float cost = acc.area() * leafCost(tris, shp) + right[b + 1];
                 if (cost < bestCost) bestCost = cost, bestAxis = a, bestBin = b;
             }
         }
 
         float area = r.bounds.area();
         float splitCost = bestAxis < 0 ? kInf : kTraversalCost + bestCost / area;
-        if (fitsOneLeaf(r) && !(splitCost < leafCost(r.triangles(), r.spheres))) return {};
+        if (fitsOneLeaf(r) && !(splitCost < leafCost(r.triangles(), r.shapes))) return {};
         if (bestAxis >= 0) return {SplitKind::Sah, bestAxis, bestBin};
         // All centroids coincide (or the areas are degenerate): halve, separating types first.
         if (mixed) return {SplitKind::Types, 0, 0};
@@ -449,7 +449,7 @@ class Builder {
             int axis = d.axis, bin = d.bin;
             parts = partitionBy(r, [&](const PrimRef& p) { return binning.bin(p, axis) <= bin; });
         } else if (d.kind == SplitKind::Types) {
-            parts = partitionBy(r, [](const PrimRef& p) { return p.sphere == 0; });
+            parts = partitionBy(r, [](const PrimRef& p) { return p.shape == 0; });
         }
         if (parts.first.size() == 0 || parts.second.size() == 0) {
             // Median (or a safety net for a split that separated nothing): halve by count.
@@ -465,7 +465,7 @@ class Builder {
     }
 
     static ChildRef makeLeaf(const Range& r) {
-        return {kLeafBit | r.begin, r.size(), r.spheres != 0};
+        return {kLeafBit | r.begin, r.size(), r.shapes != 0};
     }
 
     struct Slot {
@@ -547,10 +547,10 @@ class Builder {
 
 /// Sizes of a laid-out subtree, and a place to write one.
 struct Layout {
-    uint32_t nodes = 0, tris = 0, spheres = 0;
+    uint32_t nodes = 0, tris = 0, shapes = 0, runs = 0;
 
     Layout& operator+=(const Layout& o) {
-        nodes += o.nodes, tris += o.tris, spheres += o.spheres;
+        nodes += o.nodes, tris += o.tris, shapes += o.shapes, runs += o.runs;
         return *this;
     }
 };
@@ -565,9 +565,11 @@ class Flattener {
 
     /// What `c` occupies once laid out.
     Layout size(const ChildRef& c) {
-        if (c.ref & kLeafBit)
-            return c.spheres ? Layout{0, 0, c.size} : Layout{0, (c.size + kLanes - 1) / kLanes, 0};
-        Layout l{1, 0, 0};
+        if (c.ref & kLeafBit) {
+            if (!c.shapes) return Layout{0, (c.size + kLanes - 1) / kLanes, 0, 0};
+            return Layout{0, 0, c.size, spheresOnly(c) ? 0u : 1u};
+        }
+        Layout l{1, 0, 0, 0};
         const TmpNode& tmp = b_.nodes()[c.ref];
         for (uint32_t i = 0; i < tmp.count; ++i) l += size(tmp.child[i]);
         return l;
@@ -592,8 +594,9 @@ class Flattener {
         Layout total = size(root);
         out_.nodes.resize(total.nodes);
         out_.tris.resize(total.tris);
-        out_.spheres.resize(total.spheres);
-        out_.sphereIds.resize(total.spheres);
+        out_.shapes.resize(total.shapes);
+        out_.shapeIds.resize(total.shapes);
+        out_.shapeRuns.resize(total.runs);
         Layout at;
         if ((root.ref & kLeafBit) || threads <= 1) return flatten(root, at, 0, summary);
 
@@ -641,15 +644,19 @@ class Flattener {
         const uint32_t begin = c.ref & ~kLeafBit, n = c.size, end = begin + n;
         summary.leaves++;
         summary.maxLeafSize = std::max(summary.maxLeafSize, n);
-        if (c.spheres) {
-            uint32_t first = at.spheres;
+        if (c.shapes) {
+            uint32_t first = at.shapes;
             check(first, n);
-            for (uint32_t i = begin; i < end; ++i, ++at.spheres) {
+            for (uint32_t i = begin; i < end; ++i, ++at.shapes) {
                 uint32_t id = refs_[i].id;
-                out_.spheres[at.spheres] = prims_.sphereSearch(id - prims_.triangleCount());
-                out_.sphereIds[at.spheres] = id;
+                out_.shapes[at.shapes] = prims_.shapeSearch(id);
+                out_.shapeIds[at.shapes] = id;
             }
-            return makeLeaf(true, first, n);
+            if (spheresOnly(c)) return makeSphereLeaf(first, n);
+            uint32_t run = at.runs++;
+            check(run, 1);
+            out_.shapeRuns[run] = {first, n};
+            return makeShapeRunLeaf(run);
         }
         uint32_t first = at.tris;
         uint32_t blocks = (n + kLanes - 1) / kLanes;
@@ -669,7 +676,15 @@ class Flattener {
                 t.id[lane] = used ? refs_[i].id : kEmpty;
             }
         }
-        return makeLeaf(false, first, blocks);
+        return makeTriangleLeaf(first, blocks);
+    }
+
+    /// A leaf of shapes that holds spheres only (traversal calls the sphere test directly).
+    bool spheresOnly(const ChildRef& c) const {
+        const uint32_t begin = c.ref & ~kLeafBit;
+        for (uint32_t i = begin; i < begin + c.size; ++i)
+            if (!prims_.isSphere(refs_[i].id)) return false;
+        return true;
     }
 
     static void check(uint32_t first, uint32_t count) {
@@ -688,7 +703,7 @@ class Flattener {
 BuildSummary build(const Primitives& prims, int threads, BvhData& out) {
     out = BvhData{};
     BuildSummary summary;
-    uint32_t n = prims.size();
+    uint32_t n = prims.boundedCount();  // planes are not in the tree (Bvh keeps them)
     if (n == 0) return summary;
 
     LargeArray<PrimRef> refs(n);

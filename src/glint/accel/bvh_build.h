@@ -12,15 +12,16 @@ struct BuildSummary {
     uint32_t leaves = 0;
     uint32_t maxDepth = 0;     ///< Levels of 8-wide nodes below the root.
     uint32_t maxLeafSize = 0;  ///< Primitives in the largest leaf.
-    Bounds3f bounds;           ///< Of all primitives.
+    Bounds3f bounds;           ///< Of all bounded primitives (planes are not in the tree).
 };
 
 /// Deepest tree the builder makes (levels of 8-wide nodes). Traversal stacks hold
 /// 7 * kMaxDepth + 1 entries: at most seven pushes per level.
 constexpr uint32_t kMaxDepth = 80;
 
-/// Builds over all primitives of `prims` with binned SAH on `threads` threads (>= 1).
-/// Replaces `out`. Throws std::length_error past the layout's limits (2^26 leaf items).
+/// Builds over the bounded primitives of `prims` (all but planes, which it leaves to Bvh)
+/// with binned SAH on `threads` threads (>= 1). Replaces `out`. Throws std::length_error past the
+/// layout's limits (2^26 leaf items).
 BuildSummary build(const Primitives& prims, int threads, BvhData& out);
 
 }  // namespace glint::bvh

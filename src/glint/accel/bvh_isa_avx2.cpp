@@ -12,6 +12,7 @@
 #include "glint/accel/bvh_build.h"
 #include "glint/accel/bvh_kernels.h"
 #include "glint/accel/bvh_packet.h"
+#include "glint/geometry/shapes.h"
 #include "glint/geometry/sphere.h"
 #include "glint/geometry/triangle.h"
 

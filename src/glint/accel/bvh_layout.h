@@ -4,23 +4,33 @@
 /// An 8-wide tree: each node holds the boxes of up to eight children, stored per axis and per
 /// child so that one SIMD instruction tests a ray against all eight. Leaves hold blocks of
 /// four triangles, vertex coordinates again stored per component and per lane, or a short
-/// run of spheres. Everything is in flat arrays in depth-first order; children are 32-bit
-/// references.
+/// run of shapes (spheres, boxes, cylinders, cones, disks: their float search records).
+/// Everything is in flat arrays in depth-first order; children are 32-bit references.
+/// Planes are unbounded: they are not in the tree but in a list beside it.
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "glint/core/huge_pages.h"
-#include "glint/geometry/sphere.h"
+#include "glint/geometry/plane.h"
+#include "glint/geometry/shape_search.h"
 
 namespace glint::bvh {
 
 constexpr int kWidth = 8;  ///< Children per node.
 constexpr int kLanes = 4;  ///< Triangles per leaf block.
 
-/// A child reference. Interior: the node index (bit 31 clear). Leaf: bit 31 set, bit 30 set
-/// for spheres, bits 26-29 the number of items (triangle blocks or spheres, 1 to 15), bits 0-25
-/// the index of the first item.
+/// A child reference. Interior: the node index (bit 31 clear). Leaf: bit 31 set, bits 26-29
+/// a count (0 to 15), bits 0-25 an index `first`, and
+///
+///   bit 30 set    a sphere leaf: `count` spheres, records shapes[first, first + count)
+///   bit 30 clear  count >= 1: `count` blocks of four triangles, tris[first, first + count);
+///                 count 0: a leaf of other shapes (boxes, cylinders, cones, disks, perhaps
+///                 spheres among them): shapeRuns[first] names its records
+///
+/// Traversal tests bit 30 first, so sphere leaves cost one test as they always did; triangle
+/// leaves are told from shape runs by their count, a test their loop over blocks makes anyway.
 using NodeRef = uint32_t;
 constexpr NodeRef kEmpty = 0xffffffffu;  ///< An unused child slot (its box is empty).
 constexpr uint32_t kLeafBit = 1u << 31;
@@ -33,9 +43,20 @@ constexpr bool isLeaf(NodeRef r) { return (r & kLeafBit) != 0; }
 constexpr bool isSphereLeaf(NodeRef r) { return (r & kSphereBit) != 0; }
 constexpr uint32_t leafFirst(NodeRef r) { return r & kMaxItemIndex; }
 constexpr uint32_t leafCount(NodeRef r) { return (r >> kCountShift) & 15u; }
-constexpr NodeRef makeLeaf(bool spheres, uint32_t first, uint32_t count) {
-    return kLeafBit | (spheres ? kSphereBit : 0u) | (count << kCountShift) | first;
+/// A leaf of shapes other than only spheres (a leaf, not a sphere leaf, of count 0).
+constexpr bool isShapeRunLeaf(NodeRef r) { return !isSphereLeaf(r) && leafCount(r) == 0; }
+constexpr NodeRef makeTriangleLeaf(uint32_t first, uint32_t blocks) {
+    return kLeafBit | (blocks << kCountShift) | first;
 }
+constexpr NodeRef makeSphereLeaf(uint32_t first, uint32_t count) {
+    return kLeafBit | kSphereBit | (count << kCountShift) | first;
+}
+constexpr NodeRef makeShapeRunLeaf(uint32_t run) { return kLeafBit | run; }
+
+/// The records of a leaf of shapes: shapes[first, first + count).
+struct ShapeRun {
+    uint32_t first, count;
+};
 
 struct alignas(32) Node8 {
     float lo[3][kWidth];  ///< lo[axis][child]; empty slots hold +inf.
@@ -57,12 +78,18 @@ struct BvhData {
     NodeRef root = kEmpty;  ///< Node 0 when interior; a leaf for tiny scenes.
     LargeVector<Node8> nodes;
     LargeVector<Tri4> tris;
-    LargeVector<SphereSearch> spheres;  ///< Sphere leaf items, in leaf order.
-    LargeVector<uint32_t> sphereIds;    ///< Their primitive ids.
+    LargeVector<ShapeSearch> shapes;  ///< Sphere and shape leaf items, in leaf order.
+    LargeVector<uint32_t> shapeIds;   ///< Their primitive ids.
+    std::vector<ShapeRun> shapeRuns;  ///< Leaves of shapes other than only spheres.
+    /// Unbounded primitives, tested beside the tree by Bvh (the kernels never see them).
+    std::vector<PlaneSearch> planes;
+    std::vector<uint32_t> planeIds;
 
     size_t bytes() const {
         return nodes.size() * sizeof(Node8) + tris.size() * sizeof(Tri4) +
-               spheres.size() * sizeof(SphereSearch) + sphereIds.size() * sizeof(uint32_t);
+               shapes.size() * sizeof(ShapeSearch) + shapeIds.size() * sizeof(uint32_t) +
+               shapeRuns.size() * sizeof(ShapeRun) + planes.size() * sizeof(PlaneSearch) +
+               planeIds.size() * sizeof(uint32_t);
     }
 };
 

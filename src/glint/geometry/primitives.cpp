@@ -21,21 +21,43 @@ bool Primitives::addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const 
 
 void Primitives::addSphere(const Sphere& sphere, uint32_t material) {
     spheres_.push_back(sphere);
-    sphereSearch_.push_back(SphereSearch::from(sphere));
+    sphereSearch_.push_back(sphereSearch(sphere));
     sphereMaterial_.push_back(material);
 }
 
-void Primitives::reserve(size_t triangles, size_t spheres) {
+void Primitives::addShape(const Shape& shape, uint32_t material) {
+    shapes_.push_back(shape);
+    shapeSearch_.push_back(shape.search());
+    shapeMaterial_.push_back(material);
+}
+
+void Primitives::addPlane(const Plane& plane, uint32_t material) {
+    planes_.push_back(plane);
+    planeSearch_.push_back(PlaneSearch::from(plane));
+    planeMaterial_.push_back(material);
+}
+
+uint32_t Primitives::shapeCount(ShapeKind kind) const {
+    if (kind == ShapeKind::Sphere) return sphereCount();
+    uint32_t n = 0;
+    for (const Shape& s : shapes_) n += s.kind == kind;
+    return n;
+}
+
+void Primitives::reserve(size_t triangles, size_t spheres, size_t shapes) {
     triangles_.reserve(triangles_.size() + triangles);
     triangleMaterial_.reserve(triangleMaterial_.size() + triangles);
     spheres_.reserve(spheres_.size() + spheres);
     sphereSearch_.reserve(sphereSearch_.size() + spheres);
     sphereMaterial_.reserve(sphereMaterial_.size() + spheres);
+    shapes_.reserve(shapes_.size() + shapes);
+    shapeSearch_.reserve(shapeSearch_.size() + shapes);
+    shapeMaterial_.reserve(shapeMaterial_.size() + shapes);
 }
 
 Bounds3f Primitives::bounds() const {
     Bounds3f b;
-    for (uint32_t i = 0; i < size(); ++i) b.extend(bounds(i));
+    for (uint32_t i = 0; i < boundedCount(); ++i) b.extend(bounds(i));
     return b;
 }
 
@@ -56,14 +78,38 @@ SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const
             // Opposed or zero vertex normals can cancel: keep the geometric normal then.
             if (len > 0 && std::isfinite(len)) si.n = n / len;
         }
-    } else {
-        const Sphere& s = spheres_[hit.primId - triangleCount()];
+    } else if (uint32_t i = hit.primId - triangleCount(); i < sphereCount()) {
+        const Sphere& s = spheres_[i];
         Vec3 local;
         double t = refineSphereHit(s, ray, hit.t, local);
         si.p = ray.at(t);
         si.ng = normalize(s.worldFromObject.normal(local));
         si.n = si.ng;
-        si.material = sphereMaterial_[hit.primId - triangleCount()];
+        si.material = sphereMaterial_[i];
+    } else {
+        // Shapes and planes out of line: the triangle and sphere paths stay lean.
+        return shapeInteraction(ray, hit);
+    }
+    return si;
+}
+
+SurfaceInteraction Primitives::shapeInteraction(const Ray& ray, const Hit& hit) const {
+    SurfaceInteraction si;
+    if (hit.primId < boundedCount()) {
+        uint32_t i = hit.primId - triangleCount() - sphereCount();
+        const Shape& s = shapes_[i];
+        Vec3 local;
+        double t = refineShapeHit(s, ray, hit.t, local);
+        si.p = ray.at(t);
+        si.ng = normalize(s.worldFromCanonical.normal(canonicalNormal(s.kind, s.k, local)));
+        si.n = si.ng;
+        si.material = shapeMaterial_[i];
+    } else {
+        uint32_t i = hit.primId - boundedCount();
+        si.p = ray.at(refinePlaneHit(planes_[i], ray, hit.t));
+        si.ng = planes_[i].normal;
+        si.n = si.ng;
+        si.material = planeMaterial_[i];
     }
     return si;
 }

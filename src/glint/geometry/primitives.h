@@ -1,14 +1,18 @@
 #pragma once
 /// The scene's geometry as one indexed set of primitives that accelerators are built over.
 ///
-/// Primitive ids run over triangles first, then spheres: id < triangleCount() is a triangle.
-/// Each primitive carries a material id; triangles may carry per-vertex shading normals.
+/// Primitive ids run over triangles first, then spheres, then the other bounded shapes (boxes,
+/// cylinders, cones, disks), then planes: id < triangleCount() is a triangle, and ids below
+/// boundedCount() have finite bounds (planes do not: accelerators test them beside their
+/// tree). Each primitive carries a material id; triangles may carry per-vertex shading normals.
 
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "glint/core/huge_pages.h"
+#include "glint/geometry/plane.h"
+#include "glint/geometry/shapes.h"
 #include "glint/geometry/sphere.h"
 #include "glint/geometry/triangle.h"
 
@@ -30,44 +34,71 @@ class Primitives {
     bool addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
                      uint32_t material);
     void addSphere(const Sphere& sphere, uint32_t material);
-    /// Room for this many more triangles and spheres, so that adding them does not reallocate.
-    void reserve(size_t triangles, size_t spheres);
+    /// Adds a box, cylinder, cone or disk.
+    void addShape(const Shape& shape, uint32_t material);
+    void addPlane(const Plane& plane, uint32_t material);
+    /// Room for this many more triangles, spheres and other shapes, so that adding them does
+    /// not reallocate.
+    void reserve(size_t triangles, size_t spheres, size_t shapes = 0);
 
-    uint32_t size() const { return static_cast<uint32_t>(triangles_.size() + spheres_.size()); }
+    uint32_t size() const { return boundedCount() + planeCount(); }
+    /// Primitives with finite bounds: triangles, spheres and shapes (ids 0 to this - 1).
+    uint32_t boundedCount() const {
+        return static_cast<uint32_t>(triangles_.size() + spheres_.size() + shapes_.size());
+    }
     uint32_t triangleCount() const { return static_cast<uint32_t>(triangles_.size()); }
     uint32_t sphereCount() const { return static_cast<uint32_t>(spheres_.size()); }
+    /// Boxes, cylinders, cones and disks.
+    uint32_t shapeCount() const { return static_cast<uint32_t>(shapes_.size()); }
+    uint32_t shapeCount(ShapeKind kind) const;
+    uint32_t planeCount() const { return static_cast<uint32_t>(planes_.size()); }
 
+    /// Bounds of bounded primitive `id` (< boundedCount()).
     Bounds3f bounds(uint32_t id) const {
-        return id < triangleCount() ? triangles_[id].bounds()
-                                    : spheres_[id - triangleCount()].bounds();
+        if (id < triangleCount()) return triangles_[id].bounds();
+        id -= triangleCount();
+        return id < sphereCount() ? spheres_[id].bounds() : shapes_[id - sphereCount()].bounds();
     }
     /// The stored (float) vertices A, B, C of triangle `id`, world space.
     std::array<Vec3f, 3> triangleVertices(uint32_t id) const {
         const Triangle& t = triangles_[id];
         return {t.v0, t.v1, t.v2};
     }
-    /// Bounds of everything.
+    /// Bounds of every bounded primitive (planes excluded).
     Bounds3f bounds() const;
 
     /// Tests primitive `id` in float; if it is hit within the ray's range and closer than
     /// `hit` (closerHit), fills `hit` and returns true.
     bool intersect(uint32_t id, const TraversalRay& ray, Hit& hit) const {
         float t;
-        bool found = id < triangleCount()
-                         ? intersectTriangle(triangles_[id], ray, t)
-                         : intersectSphere(sphereSearch_[id - triangleCount()], ray, t);
+        bool found = id < triangleCount()  ? intersectTriangle(triangles_[id], ray, t)
+                     : id < boundedCount() ? intersectShape(shapeSearch(id), ray, t)
+                                           : intersectPlane(planeSearch(id), ray, t);
         if (!found || !closerHit(t, id, hit)) return false;
         hit = {t, id};
         return true;
     }
     const Triangle& triangle(uint32_t id) const { return triangles_[id]; }
-    const SphereSearch& sphereSearch(uint32_t sphere) const { return sphereSearch_[sphere]; }
+    /// Whether `id` is a sphere.
+    bool isSphere(uint32_t id) const {
+        return id >= triangleCount() && id - triangleCount() < sphereCount();
+    }
+    /// The float search record of sphere or shape `id` (triangleCount() <= id < boundedCount()).
+    const ShapeSearch& shapeSearch(uint32_t id) const {
+        id -= triangleCount();
+        return id < sphereCount() ? sphereSearch_[id] : shapeSearch_[id - sphereCount()];
+    }
+    /// The float search record of plane `id` (boundedCount() <= id < size()).
+    const PlaneSearch& planeSearch(uint32_t id) const { return planeSearch_[id - boundedCount()]; }
 
     /// Shading data for a hit that traversal returned for `ray`, refined in double.
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 
   private:
     static constexpr uint32_t kFlat = UINT32_MAX;
+
+    /// interaction() for boxes, cylinders, cones, disks and planes.
+    [[gnu::noinline]] SurfaceInteraction shapeInteraction(const Ray& ray, const Hit& hit) const;
 
     // Large arrays in huge pages: scenes of millions of triangles fill them in one go.
     LargeVector<Triangle> triangles_;
@@ -76,8 +107,14 @@ class Primitives {
     LargeVector<uint32_t> triangleNormals_;
     LargeVector<std::array<Vec3, 3>> vertexNormals_;
     LargeVector<Sphere> spheres_;
-    LargeVector<SphereSearch> sphereSearch_;
+    LargeVector<ShapeSearch> sphereSearch_;
     LargeVector<uint32_t> sphereMaterial_;
+    LargeVector<Shape> shapes_;
+    LargeVector<ShapeSearch> shapeSearch_;
+    LargeVector<uint32_t> shapeMaterial_;
+    std::vector<Plane> planes_;  // few: a scene has a floor, perhaps a wall or two
+    std::vector<PlaneSearch> planeSearch_;
+    std::vector<uint32_t> planeMaterial_;
 };
 
 }  // namespace glint

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "glint/core/ray.h"
+#include "glint/geometry/shape_search.h"
 #include "glint/math/transform.h"
 
 namespace glint {
@@ -24,12 +25,8 @@ struct Sphere {
 };
 
 /// What the float search needs: the map from world space to the space where the sphere is
-/// the unit sphere at the origin, rows of a 3x4 matrix.
-struct SphereSearch {
-    float m[3][4];
-
-    static SphereSearch from(const Sphere& s);
-};
+/// the unit sphere at the origin.
+ShapeSearch sphereSearch(const Sphere& s);
 
 namespace detail {
 /// Roots t0 <= t1 of |o + t d|^2 = r^2, or false. Robust against cancellation.
@@ -53,7 +50,8 @@ inline bool sphereRoots(const Vec3T<T>& o, const Vec3T<T>& d, T r2, T& t0, T& t1
 
 /// On a hit with tMin < t < tMax sets `t` (the nearer such root) and returns true. `t` is the
 /// world-ray parameter: the mapped direction is not renormalised.
-inline bool intersectSphere(const SphereSearch& s, const TraversalRay& ray, float& t) {
+/// `s` must be a sphere's record (its kind is not looked at).
+inline bool intersectSphere(const ShapeSearch& s, const TraversalRay& ray, float& t) {
     const auto& m = s.m;
     Vec3f o(m[0][0] * ray.origin.x + m[0][1] * ray.origin.y + m[0][2] * ray.origin.z + m[0][3],
             m[1][0] * ray.origin.x + m[1][1] * ray.origin.y + m[1][2] * ray.origin.z + m[1][3],

@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "glint/core/system.h"
+#include "glint/geometry/polygon.h"
 #include "glint/io/image_io.h"
 #include "glint/io/mapped_file.h"
 #include "glint/io/numbers.h"
@@ -36,8 +37,11 @@ struct Command {
     Handler handler;
 };
 
-/// Lines hold at most this many tokens; more is always an argument-count error.
-constexpr int kMaxTokens = 16;
+/// Most vertices a `polygon` takes (ear clipping takes time quadratic in the count).
+constexpr int kMaxPolygonVertices = 1024;
+/// Lines hold at most this many tokens (a polygon and one more, to point at the first extra
+/// argument); more is always an argument-count error.
+constexpr int kMaxTokens = kMaxPolygonVertices + 2;
 /// A `maxverts` bound is only a hint: never reserve more than this many vertices from it.
 constexpr long long kMaxVertexReserve = 1 << 20;
 
@@ -76,7 +80,13 @@ class Parser {
     long long integer(int i, long long lo, long long hi) const;
     Vec3 vec3(int i) const { return {real(i), real(i + 1), real(i + 2)}; }
     Vec3 colour(int i) const { return vec3(i); }
-    const Transform& transform();
+    /// The current transform, baked; fails at the command if it is singular. The common case,
+    /// already baked, stays inline (tri lines call it millions of times).
+    const Transform& transform() {
+        if (transformValid_ && transform_) return *transform_;
+        return bakeTransform();
+    }
+    const Transform& bakeTransform();
     /// The id of the current material, added to the scene when it changed since last asked.
     uint32_t material() {
         if (materialChanged_)
@@ -147,6 +157,16 @@ class Parser {
     void cmdSpp() { scene_->spp = static_cast<int>(integer(1, 1, 65536)); }
     void cmdFilter();
     void cmdLens();
+    // The shape extensions (docs/scene-format.md).
+    void cmdPlane();
+    void cmdBox();
+    void cmdCylinder();
+    void cmdCone();
+    void cmdDisk();
+    void cmdPolygon();
+    /// Adds a box, cylinder, cone or disk placed by `objectFromCanonical` under the current
+    /// transform, after checking it against the coordinate limits.
+    void addShape(ShapeKind kind, const Mat4& objectFromCanonical, double k, const char* name);
 
     void addTriangle(const Vec3 (&p)[3], const Vec3* normals) {
         if (!scene_->primitives.addTriangle(p[0], p[1], p[2], normals, material()) &&
@@ -222,6 +242,12 @@ const std::vector<Command>& Parser::commands() {
         {"spp", 1, 1, "samples", &Parser::cmdSpp},
         {"filter", 1, 2, "box|gaussian [radius]", &Parser::cmdFilter},
         {"lens", 1, 2, "aperture-radius [focus-distance]", &Parser::cmdLens},
+        {"plane", 6, 6, "px py pz nx ny nz", &Parser::cmdPlane},
+        {"box", 6, 6, "x0 y0 z0 x1 y1 z1", &Parser::cmdBox},
+        {"cylinder", 7, 7, "x0 y0 z0 x1 y1 z1 radius", &Parser::cmdCylinder},
+        {"cone", 8, 8, "x0 y0 z0 r0 x1 y1 z1 r1", &Parser::cmdCone},
+        {"disk", 7, 7, "cx cy cz nx ny nz radius", &Parser::cmdDisk},
+        {"polygon", 3, kMaxPolygonVertices, "v1 v2 v3 ...", &Parser::cmdPolygon},
     };
     return table;
 }
@@ -229,8 +255,36 @@ const std::vector<Command>& Parser::commands() {
 /// Upper bounds of the primitives and vertices a scene text creates, from its lines' first
 /// words: enough to reserve storage once instead of growing it (and copying) many times.
 struct Counts {
-    size_t triangles = 0, spheres = 0, vertices = 0;
+    size_t triangles = 0, spheres = 0, shapes = 0, vertices = 0;
+    size_t polygonTriangles = 0;  ///< Part of `triangles`; these carry shading normals.
 };
+
+/// Blank-separated words on the line from `p` to `end`, up to a comment.
+size_t wordsOnLine(const char* p, const char* end) {
+    size_t n = 0;
+    bool inWord = false;
+    for (; p < end && *p != '\n' && *p != '#'; ++p) {
+        bool blank = *p == ' ' || *p == '\t' || *p == '\r' || *p == '\v' || *p == '\f';
+        n += !blank && !inWord;
+        inWord = !blank;
+    }
+    return n;
+}
+
+/// Adds what a line starting at `p` with b, c, d or p creates: a box, cylinder, cone, disk or
+/// plane, or a polygon's triangles.
+void countShapeLine(const char* p, const char* end, Counts& c) {
+    auto starts = [&](char a, char b, char d) { return p[0] == a && p[1] == b && p[2] == d; };
+    if (starts('b', 'o', 'x') || starts('c', 'y', 'l') || starts('c', 'o', 'n') ||
+        starts('d', 'i', 's') || starts('p', 'l', 'a'))
+        ++c.shapes;
+    if (starts('p', 'o', 'l')) {  // polygon: n vertices make n - 2 triangles
+        size_t words = wordsOnLine(p, end);
+        size_t tris = words >= 4 ? words - 3 : 0;
+        c.triangles += tris;
+        c.polygonTriangles += tris;
+    }
+}
 
 Counts countLines(std::string_view text) {
     Counts c;
@@ -241,6 +295,8 @@ Counts countLines(std::string_view text) {
         if (end - p >= 3 && p[0] == 't' && p[1] == 'r' && p[2] == 'i') ++c.triangles;
         if (end - p >= 6 && p[0] == 's' && p[1] == 'p' && p[2] == 'h') ++c.spheres;
         if (end - p >= 6 && p[0] == 'v' && p[1] == 'e' && p[2] == 'r') ++c.vertices;
+        if (end - p >= 3 && (static_cast<unsigned char>(p[0] - 'b') <= 'd' - 'b' || p[0] == 'p'))
+            countShapeLine(p, end, c);
         const void* nl = std::memchr(p, '\n', static_cast<size_t>(end - p));
         p = nl ? static_cast<const char*>(nl) + 1 : end;
     }
@@ -249,16 +305,20 @@ Counts countLines(std::string_view text) {
 
 std::unique_ptr<Scene> Parser::run() {
     Counts counts = countLines(text_);
-    size_t needed = Scene::estimateBytes(counts.triangles, counts.spheres) +
+    size_t needed = Scene::estimateBytes(counts.triangles, counts.spheres, counts.shapes,
+                                         counts.polygonTriangles) +
                     counts.vertices * (sizeof(Vec3) + sizeof(std::array<Vec3, 2>));
     size_t available = limits_.memoryBytes ? limits_.memoryBytes : availableMemoryBytes();
     if (available > 0 && needed > available)
         throw SceneError({file_, 0, 0},
                          "the scene needs about " + formatBytes(static_cast<double>(needed)) +
                              " of memory (" + std::to_string(counts.triangles) + " triangles, " +
-                             std::to_string(counts.spheres) + " spheres), more than the " +
-                             formatBytes(static_cast<double>(available)) + " available");
-    scene_->primitives.reserve(counts.triangles, counts.spheres);
+                             std::to_string(counts.spheres) + " spheres" +
+                             (counts.shapes ? ", " + std::to_string(counts.shapes) + " other shapes"
+                                            : std::string()) +
+                             "), more than the " + formatBytes(static_cast<double>(available)) +
+                             " available");
+    scene_->primitives.reserve(counts.triangles, counts.spheres, counts.shapes);
     vertices_.reserve(counts.vertices);
     size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
     while (pos < text_.size()) {
@@ -278,10 +338,12 @@ std::unique_ptr<Scene> Parser::run() {
         if (!cmd) unknownCommand();
         int args = ntok_ - 1;
         if (args < cmd->minArgs || args > cmd->maxArgs) {
-            std::string expect =
-                cmd->minArgs == cmd->maxArgs
-                    ? std::to_string(cmd->minArgs)
-                    : std::to_string(cmd->minArgs) + " or " + std::to_string(cmd->maxArgs);
+            // "1 or 2" for filter and lens, "3 or 6" for background, "3 to 1024" for polygon.
+            bool twoCounts = cmd->name == "background" || cmd->maxArgs == cmd->minArgs + 1;
+            std::string expect = cmd->minArgs == cmd->maxArgs
+                                     ? std::to_string(cmd->minArgs)
+                                     : std::to_string(cmd->minArgs) + (twoCounts ? " or " : " to ") +
+                                           std::to_string(cmd->maxArgs);
             std::string msg = std::string(cmd->name) + " expects " + expect +
                               (cmd->maxArgs == 1 ? " argument" : " arguments");
             if (!cmd->usage.empty()) msg += " (" + std::string(cmd->usage) + ")";
@@ -364,7 +426,7 @@ long long Parser::integer(int i, long long lo, long long hi) const {
     return v;
 }
 
-const Transform& Parser::transform() {
+const Transform& Parser::bakeTransform() {
     if (!transformValid_) {
         transform_ = Transform::fromMatrix(stack_.back());
         transformValid_ = true;
@@ -476,11 +538,8 @@ void Parser::cmdSphere() {
     Bounds3f b = s.bounds();
     if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
         fail(0, "the sphere reaches beyond the supported coordinate range (1e18)");
-    SphereSearch search = SphereSearch::from(s);
-    for (const auto& row : search.m)
-        for (float v : row)
-            if (!(std::abs(v) <= kMaxCoordinate))
-                fail(0, "the sphere is too thin: a semi-axis is below 1e-18 after the transform");
+    if (!(sphereSearch(s).largestEntry() <= kMaxCoordinate))
+        fail(0, "the sphere is too thin: a semi-axis is below 1e-18 after the transform");
     scene_->primitives.addSphere(s, material());
 }
 
@@ -681,6 +740,127 @@ void Parser::cmdLens() {
     if (ntok_ == 3 && !(d > 0)) fail(2, "focus distance must be positive, got " + quoted(2));
     apertureRadius_ = r;
     focusDistance_ = d;
+}
+
+// ---- Shape extensions ---------------------------------------------------------------------
+
+void Parser::addShape(ShapeKind kind, const Mat4& objectFromCanonical, double k, const char* name) {
+    const Transform& current = transform();  // a singular current transform is reported first
+    std::optional<Transform> t = Transform::fromMatrix(current.matrix() * objectFromCanonical);
+    const std::string the = std::string("the ") + name;
+    if (!t) fail(0, the + " is degenerate after the transform (too thin or too large)");
+    Shape shape{kind, k, *t};
+    Bounds3f b = shape.bounds();
+    if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
+        fail(0, the + " reaches beyond the supported coordinate range (1e18)");
+    if (!(shape.search().largestEntry() <= kMaxCoordinate))
+        fail(0, the + " is too thin: a dimension is below 1e-18 after the transform");
+    scene_->primitives.addShape(shape, material());
+}
+
+void Parser::cmdPlane() {
+    Vec3 point = vec3(1), normal = vec3(4);
+    if (normal == Vec3(0)) fail(4, "plane normal must not be zero");
+    const Transform& t = transform();
+    if (!inRange(t.point(point)))
+        fail(1,
+             "the plane's point lies beyond the supported coordinate range (1e18) after the "
+             "transform");
+    std::optional<Plane> plane = Plane::make(point, normal, t);
+    if (!plane) fail(4, "the plane's normal cannot be normalised after the transform");
+    scene_->primitives.addPlane(*plane, material());
+}
+
+void Parser::cmdBox() {
+    Vec3 a = vec3(1), b = vec3(4);
+    for (int k = 0; k < 3; ++k)
+        if (a[k] == b[k])
+            fail(4 + k, std::string("box has zero extent along ") + "xyz"[k] +
+                            ": both corners have " + "xyz"[k] + " = " + quoted(4 + k));
+    addShape(ShapeKind::Box, boxPlacement(a, b), 1, "box");
+}
+
+void Parser::cmdCylinder() {
+    Vec3 a = vec3(1), b = vec3(4);
+    double r = real(7);
+    if (a == b) fail(4, "the cylinder's end points coincide: its axis has no direction");
+    if (!(r > 0)) fail(7, "cylinder radius must be positive, got " + quoted(7));
+    addShape(ShapeKind::Cylinder, cylinderPlacement(a, b, r), 1, "cylinder");
+}
+
+void Parser::cmdCone() {
+    Vec3 a = vec3(1), b = vec3(5);
+    double r0 = real(4), r1 = real(8);
+    if (r0 < 0) fail(4, "cone radius must not be negative, got " + quoted(4));
+    if (r1 < 0) fail(8, "cone radius must not be negative, got " + quoted(8));
+    if (r0 == 0 && r1 == 0) fail(4, "cone radii must not both be zero");
+    if (a == b) fail(5, "the cone's end points coincide: its axis has no direction");
+    double k = 1;
+    Mat4 placement = conePlacement(a, r0, b, r1, k);
+    addShape(ShapeKind::Cone, placement, k, "cone");
+}
+
+void Parser::cmdDisk() {
+    Vec3 c = vec3(1), n = vec3(4);
+    double r = real(7);
+    if (n == Vec3(0)) fail(4, "disk normal must not be zero");
+    if (!(r > 0)) fail(7, "disk radius must be positive, got " + quoted(7));
+    addShape(ShapeKind::Disk, diskPlacement(c, n, r), 1, "disk");
+}
+
+void Parser::cmdPolygon() {
+    const int n = ntok_ - 1;
+    std::vector<uint32_t> index(static_cast<size_t>(n));
+    std::vector<Vec3> points(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) {
+        uint32_t v = vertexIndex(k + 1, vertices_.size(), "vertex", "vertices");
+        for (int j = 0; j < k; ++j)
+            if (index[static_cast<size_t>(j)] == v)
+                fail(k + 1, "vertex index " + quoted(k + 1) + " appears twice in the polygon");
+        index[static_cast<size_t>(k)] = v;
+        points[static_cast<size_t>(k)] = vertices_[v];
+    }
+    PolygonTriangulation poly = triangulatePolygon(points);
+    using Problem = PolygonTriangulation::Problem;
+    const int at = poly.vertex + 1;  // the token of the vertex at fault
+    auto edge = [&](int from) { return quoted(from + 1) + " to " + quoted((from + 1) % n + 1); };
+    switch (poly.problem) {
+        case Problem::None:
+            break;
+        case Problem::SamePosition:
+            fail(at, "polygon vertex " + quoted(at) + " is at the same position as vertex " +
+                         quoted(poly.other + 1));
+        case Problem::ZeroArea:
+            fail(0, "the polygon has zero area: its vertices lie on one line");
+        case Problem::NonPlanar: {
+            char off[32];
+            std::snprintf(off, sizeof off, "%.2g%%", 100 * poly.offPlane);
+            fail(at, "the polygon is not planar: vertex " + quoted(at) + " lies off its plane by " +
+                         off + " of its size (at most 0.1% is allowed)");
+        }
+        case Problem::SelfIntersecting:
+            fail(at, "the polygon's edges cross: the edge from vertex " + edge(poly.vertex) +
+                         " meets the edge from vertex " + edge(poly.other));
+    }
+    const Transform& t = transform();
+    std::vector<Vec3> world(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k)
+        world[static_cast<size_t>(k)] =
+            checkedVertex(t.point(points[static_cast<size_t>(k)]), k + 1);
+    // The polygon's normal shades all its triangles. Under a mirroring transform the vertex
+    // order turns the other way, and the normal with it, as for `tri`.
+    Mat4 m = t.matrix();
+    double det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
+                 m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
+                 m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
+    Vec3 normal = t.normal(poly.normal);
+    normal = normal / maxComponent(abs(normal));  // no overflow or underflow in the length
+    normal = normalize(normal) * (det < 0 ? -1.0 : 1.0);
+    const Vec3 normals[3] = {normal, normal, normal};
+    for (const auto& tri : poly.triangles) {
+        Vec3 p[3] = {world[tri[0]], world[tri[1]], world[tri[2]]};
+        addTriangle(p, isFinite(normal) ? normals : nullptr);
+    }
 }
 
 }  // namespace

@@ -56,10 +56,13 @@ class Scene {
     std::vector<Material> materials;
     Primitives primitives;
 
-    /// Bytes a scene of this many triangles and spheres needs at most once prepared: the
-    /// primitives, the BVH (allowing for partly filled leaf blocks) and the build's temporary
-    /// arrays. Loaders compare it with the memory available before allocating anything.
-    static size_t estimateBytes(size_t triangles, size_t spheres);
+    /// Bytes a scene of this many triangles, spheres and other shapes (boxes, cylinders,
+    /// cones, disks, planes) needs at most once prepared: the primitives, the BVH (allowing
+    /// for partly filled leaf blocks) and the build's temporary arrays. `normals` of the
+    /// triangles carry shading normals. Loaders compare it with the memory available before
+    /// allocating anything.
+    static size_t estimateBytes(size_t triangles, size_t spheres, size_t shapes = 0,
+                                size_t normals = 0);
 
     /// Id of `m`, reusing the last material when it is equal (materials change rarely).
     uint32_t addMaterial(const Material& m);

@@ -58,13 +58,61 @@ void addRandomScene(Primitives& prims, Random& r, int triangles, int spheres) {
     }
 }
 
+/// A random affine map: translation within [-10, 10]^3, rotation, scale 0.3 to 2 per axis.
+Mat4 randomTransform(Random& r) {
+    Vec3 c = r.point(-10, 10), axis = r.direction();
+    return Mat4::translate(c.x, c.y, c.z) * Mat4::rotate(axis.x, axis.y, axis.z, r.uni(0, 360)) *
+           Mat4::scale(r.uni(0.3, 2), r.uni(0.3, 2), r.uni(0.3, 2));
+}
+
+/// Boxes, cylinders, cones (pointed and frustums) and disks of sizes 0.1 to 2 under random
+/// transforms (non-uniform scale and rotation), and `planes` planes below and beside it all.
+void addRandomShapes(Primitives& prims, Random& r, int shapes, int planes) {
+    for (int i = 0; i < shapes; ++i) {
+        Mat4 placement;
+        double k = 1;
+        auto kind = static_cast<ShapeKind>(1 + i % 4);
+        double size = r.uni(0.1, 2);
+        Vec3 a = r.point(-size, size), b = r.point(-size, size);
+        switch (kind) {
+            case ShapeKind::Box:
+                placement = boxPlacement(a, b);
+                break;
+            case ShapeKind::Cylinder:
+                placement = cylinderPlacement(a, b, r.uni(0.05, size));
+                break;
+            case ShapeKind::Cone:
+                placement = conePlacement(a, r.uni(0.05, size), b, i % 3 ? r.uni(0, size) : 0, k);
+                break;
+            default:
+                placement = diskPlacement(a, r.direction(), size);
+        }
+        auto t = Transform::fromMatrix(randomTransform(r) * placement);
+        ASSERT_TRUE(t);
+        prims.addShape(Shape{kind, k, *t}, 0);
+    }
+    for (int i = 0; i < planes; ++i) {
+        Vec3 normal = normalize(Vec3(0, 1, 0) + r.point(-0.3, 0.3));
+        if (i % 2) normal = normalize(Vec3(1, 0, 0) + r.point(-0.3, 0.3));
+        auto plane = Plane::make(normal * -13.0, normal, Transform{});
+        ASSERT_TRUE(plane);
+        prims.addPlane(*plane, 0);
+    }
+}
+
+/// Every kind of primitive: triangles, spheres, the other shapes and planes.
+void addAllKinds(Primitives& prims, Random& r, int triangles, int spheres, int shapes, int planes) {
+    addRandomScene(prims, r, triangles, spheres);
+    addRandomShapes(prims, r, shapes, planes);
+}
+
 /// Rays from random origins: half aimed at a random primitive, some along the axes, a third
 /// with a finite tMax, some with tMin > 0.
 Ray randomRay(const Primitives& prims, Random& r, int i) {
     Vec3 origin = r.point(-15, 15);
     Vec3 dir = r.direction();
-    if (i % 2 == 0 && prims.size() > 0) {
-        Vec3 target(prims.bounds(r.below(prims.size())).centroid());
+    if (i % 2 == 0 && prims.boundedCount() > 0) {
+        Vec3 target(prims.bounds(r.below(prims.boundedCount())).centroid());
         if (length(target - origin) > 1e-3) dir = normalize(target - origin + r.point(-0.1, 0.1));
     }
     if (i % 11 == 0) {
@@ -126,7 +174,7 @@ void expectSaneTree(const Bvh& bvh, const Primitives& prims) {
     EXPECT_LE(s.maxLeafSize, 8u);
     EXPECT_LE(s.maxDepth, bvh::kMaxDepth);
     EXPECT_EQ(s.nodes, d.nodes.size());
-    std::vector<int> seen(prims.size(), 0);
+    std::vector<int> seen(prims.boundedCount(), 0);
     uint32_t leaves = 0;
     auto inside = [](const Bounds3f& inner, const Bounds3f& outer) {
         for (int a = 0; a < 3; ++a)
@@ -140,8 +188,20 @@ void expectSaneTree(const Bvh& bvh, const Primitives& prims) {
             ++leaves;
             uint32_t first = bvh::leafFirst(ref), count = bvh::leafCount(ref);
             std::vector<uint32_t> ids;
-            if (bvh::isSphereLeaf(ref)) {
-                for (uint32_t i = first; i < first + count; ++i) ids.push_back(d.sphereIds[i]);
+            bool shapes = bvh::isSphereLeaf(ref) || bvh::isShapeRunLeaf(ref);
+            if (bvh::isShapeRunLeaf(ref)) {
+                ASSERT_LT(first, d.shapeRuns.size());
+                bvh::ShapeRun run = d.shapeRuns[first];
+                first = run.first, count = run.count;
+            }
+            if (shapes) {
+                EXPECT_GE(count, 1u);
+                for (uint32_t i = first; i < first + count; ++i) {
+                    ids.push_back(d.shapeIds[i]);
+                    if (bvh::isSphereLeaf(ref)) {
+                        EXPECT_TRUE(prims.isSphere(d.shapeIds[i]));
+                    }
+                }
             } else {
                 for (uint32_t b = first; b < first + count; ++b)
                     for (uint32_t id : d.tris[b].id)
@@ -149,9 +209,9 @@ void expectSaneTree(const Bvh& bvh, const Primitives& prims) {
             }
             EXPECT_LE(ids.size(), 8u);
             for (uint32_t id : ids) {
-                ASSERT_LT(id, prims.size());
+                ASSERT_LT(id, prims.boundedCount());
                 ++seen[id];
-                EXPECT_EQ(id >= prims.triangleCount(), bvh::isSphereLeaf(ref));
+                EXPECT_EQ(id >= prims.triangleCount(), shapes);
                 EXPECT_TRUE(inside(prims.bounds(id), box)) << "primitive " << id;
             }
             return;
@@ -174,7 +234,9 @@ void expectSaneTree(const Bvh& bvh, const Primitives& prims) {
     };
     if (d.root != bvh::kEmpty) visit(d.root, prims.bounds());
     EXPECT_EQ(leaves, s.leaves);
-    for (uint32_t id = 0; id < prims.size(); ++id) EXPECT_EQ(seen[id], 1) << "primitive " << id;
+    for (uint32_t id = 0; id < prims.boundedCount(); ++id)
+        EXPECT_EQ(seen[id], 1) << "primitive " << id;
+    EXPECT_EQ(d.planeIds.size(), prims.planeCount());  // planes beside the tree, not in it
 }
 
 /// The kernel sets this build and CPU can run: every test below runs once per set.
@@ -204,6 +266,69 @@ TEST_P(BvhKernels, AgreesWithBruteForceOnMixedRandomPrimitives) {
     EXPECT_EQ(a.mismatches, 0) << a.first;
     EXPECT_GT(a.hits, a.rays / 4);  // the comparison is not mostly misses
     EXPECT_LT(a.hits, a.rays);
+}
+
+TEST_P(BvhKernels, AgreesWithBruteForceOnEveryKindUnderRandomTransforms) {
+    Primitives prims;
+    Random r(314);
+    addAllKinds(prims, r, 800, 150, 600, 2);
+    Bvh bvh = build(prims);
+    expectSaneTree(bvh, prims);
+    Agreement a = compareOnRandomRays(prims, 6000, 17, GetParam());
+    EXPECT_EQ(a.mismatches, 0) << a.first;
+    EXPECT_GT(a.hits, a.rays / 4);
+    EXPECT_LT(a.hits, a.rays);
+}
+
+TEST_P(BvhKernels, AgreesWithBruteForceOnShapesAlone) {
+    // Shape runs only (no triangles, no spheres), many per leaf region.
+    Primitives prims;
+    Random r(2718);
+    addRandomShapes(prims, r, 3000, 0);
+    Bvh bvh = build(prims);
+    expectSaneTree(bvh, prims);
+    EXPECT_FALSE(bvh.data().shapeRuns.empty());
+    Agreement a = compareOnRandomRays(prims, 4000, 18, GetParam());
+    EXPECT_EQ(a.mismatches, 0) << a.first;
+    EXPECT_GT(a.hits, a.rays / 2);
+}
+
+TEST_P(BvhKernels, SphereScenesUseSphereLeavesOnly) {
+    Primitives prims;
+    Random r(99);
+    addRandomScene(prims, r, 0, 500);
+    Bvh bvh = build(prims);
+    expectSaneTree(bvh, prims);
+    EXPECT_TRUE(bvh.data().shapeRuns.empty());
+}
+
+TEST_P(BvhKernels, PlanesAloneAreFoundByEveryQuery) {
+    Primitives prims;
+    prims.addPlane(*Plane::make({0, -1, 0}, {0, 1, 0}, Transform{}), 0);
+    prims.addPlane(*Plane::make({0, 0, -5}, {0, 0, 3}, Transform{}), 0);
+    Bvh bvh = build(prims);
+    EXPECT_EQ(bvh.data().root, bvh::kEmpty);
+    EXPECT_TRUE(bvh.bounds().empty());  // planes are not part of the scene bounds
+    Hit hit;
+    ASSERT_TRUE(bvh.intersect(Ray{{0, 0, 0}, normalize(Vec3(0, -1, -1)), 0, kInfinity}, hit));
+    EXPECT_EQ(hit.primId, 0u);  // both at sqrt(2): the lower id wins the tie
+    EXPECT_FLOAT_EQ(hit.t, std::sqrt(2.0f));
+    EXPECT_TRUE(bvh.occluded(Ray{{0, 0, 0}, {0, 0, -1}, 0, 5.5}));
+    EXPECT_FALSE(bvh.occluded(Ray{{0, 0, 0}, {0, 0, -1}, 0, 4.5}));
+    EXPECT_FALSE(bvh.occluded(Ray{{0, 0, 0}, {0, 1, 0}, 0, kInfinity}));
+    RayPacket8 packet;
+    for (int i = 0; i < 8; ++i)
+        packet.set(i, TraversalRay(Ray{{0, 0, 0}, normalize(Vec3(0, -1, -0.1 * i)), 0, kInfinity}));
+    packet.active = 0x7f;
+    HitPacket8 hits;
+    bvh.intersect8(packet, hits);
+    for (int i = 0; i < 7; ++i) {
+        Hit single;
+        ASSERT_TRUE(bvh.intersect(packet.ray(i), single));
+        EXPECT_EQ(hits.t[i], single.t);
+        EXPECT_EQ(hits.primId[i], single.primId);
+    }
+    EXPECT_TRUE(std::isinf(hits.t[7]));  // inactive
 }
 
 TEST_P(BvhKernels, AgreesWithBruteForceOnALargeRandomSet) {
@@ -357,7 +482,7 @@ RayPacket8 randomPacket(const Primitives& prims, Random& r, int p, Ray (&rays)[8
 TEST_P(BvhKernels, PacketsGiveTheSameHitsAsSingleRays) {
     Primitives prims;
     Random r(31);
-    addRandomScene(prims, r, 3000, 300);
+    addAllKinds(prims, r, 3000, 300, 300, 2);
     Bvh bvh = build(prims);
     int lanes = 0;
     for (int p = 0; p < 600; ++p) {
@@ -381,7 +506,7 @@ TEST_P(BvhKernels, PacketsGiveTheSameHitsAsSingleRays) {
 TEST_P(BvhKernels, TheTreeDoesNotDependOnTheBuildThreadCount) {
     Primitives prims;
     Random r(8);
-    addRandomScene(prims, r, 40000, 2000);
+    addAllKinds(prims, r, 40000, 2000, 2000, 1);
     Bvh one = build(prims, 1), four = build(prims, 4);
     const bvh::BvhData &a = one.data(), &b = four.data();
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
@@ -389,14 +514,19 @@ TEST_P(BvhKernels, TheTreeDoesNotDependOnTheBuildThreadCount) {
     EXPECT_EQ(a.root, b.root);
     EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(bvh::Node8)), 0);
     EXPECT_EQ(std::memcmp(a.tris.data(), b.tris.data(), a.tris.size() * sizeof(bvh::Tri4)), 0);
-    EXPECT_EQ(a.sphereIds, b.sphereIds);
+    EXPECT_EQ(a.shapeIds, b.shapeIds);
+    ASSERT_EQ(a.shapeRuns.size(), b.shapeRuns.size());
+    for (size_t i = 0; i < a.shapeRuns.size(); ++i) {
+        EXPECT_EQ(a.shapeRuns[i].first, b.shapeRuns[i].first);
+        EXPECT_EQ(a.shapeRuns[i].count, b.shapeRuns[i].count);
+    }
 }
 
 TEST(Bvh, KernelSetsGiveIdenticalHits) {
     // The portable kernels are the reference: every other set must match them bit for bit.
     Primitives prims;
     Random r(5);
-    addRandomScene(prims, r, 5000, 500);
+    addAllKinds(prims, r, 5000, 500, 500, 2);
     Bvh reference;
     reference.build(prims, {0, Isa::Portable});
     for (Isa isa : kernelSets()) {

@@ -28,7 +28,7 @@ Ray makeRay(const Vec3& origin, const Vec3& dir, double tMin = 0, double tMax = 
 /// The float search on one sphere: the hit distance, or nothing.
 std::optional<float> trace(const Sphere& s, const Ray& ray) {
     float t;
-    if (!intersectSphere(SphereSearch::from(s), TraversalRay(ray), t)) return std::nullopt;
+    if (!intersectSphere(sphereSearch(s), TraversalRay(ray), t)) return std::nullopt;
     return t;
 }
 

@@ -99,6 +99,73 @@ INSTANTIATE_TEST_SUITE_P(
                     "camera 0 0 5e-6 0 0 0 0 1 0 40")}),
     [](const auto& p) { return std::string(p.param.name); });
 
+/// One of each new shape, a mirror among them, lit by a point and a directional light, on a
+/// plane: about two units across around the origin.
+const std::string kShapes =
+    "point 1 3 3 1 1 1\ndirectional 0 1 1 0.3 0.3 0.3\nambient 0.1 0.1 0.1\n"
+    "diffuse 0.8 0.6 0.4\nspecular 0.3 0.3 0.3\nshininess 20\nplane 0 -1 0 0 1 0\n"
+    "box -1.5 -1 -0.5 -0.8 -0.3 0.5\ncylinder -0.4 -1 0 -0.4 0 0 0.3\n"
+    "specular 0.9 0.9 0.9\ncone 0.4 -1 0 0.4 0.4 0 0 0\nspecular 0.3 0.3 0.3\n"
+    "pushTransform\nrotate 1 1 0 30\nscale 1 0.5 2\ndisk 1.2 -0.5 0 0 0 1 0.3\n"
+    "popTransform\nvertex -1 0.3 -0.5\nvertex 1 0.3 -0.5\nvertex 1 1 -0.5\n"
+    "vertex 0 0.6 -0.5\nvertex -1 1 -0.5\npolygon 0 1 2 3 4\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Shapes, FinitePixels,
+    testing::Values(
+        Case{"shapes_at_unit_scale", framed(kShapes)},
+        Case{"shapes_a_million_units_from_the_origin",
+             framed("pushTransform\ntranslate 1e6 1e6 1e6\n" + kShapes + "popTransform\n",
+                    "camera 1000000 1000000 1000005 1e6 1e6 1e6 0 1 0 40")},
+        Case{"shapes_a_million_times_larger",
+             framed("pushTransform\nscale 1e6 1e6 1e6\n" + kShapes + "popTransform\n",
+                    "camera 0 0 5e6 0 0 0 0 1 0 40")},
+        Case{"shapes_a_ten_thousandth_of_the_size",
+             framed("pushTransform\nscale 1e-4 1e-4 1e-4\n" + kShapes + "popTransform\n",
+                    "camera 0 0 5e-4 0 0 0 0 1 0 40")},
+        Case{"camera_inside_a_box_a_cylinder_and_a_cone",
+             framed("point 0 0 0.5 1 1 1\ndiffuse 1 1 1\nspecular 0.5 0.5 0.5\n"
+                    "box -3 -3 -3 3 3 8\ncylinder 0 0 -2 0 0 7 2\n"
+                    "cone 0 0 -1 1.5 0 0 6.5 0.5\n")},
+        Case{"light_on_a_box_face_and_inside_a_cylinder",
+             framed("attenuation 0 0 1\npoint 0 0 1 1 1 1\ndiffuse 1 1 1\n"
+                    "box -1 -1 0 1 1 1\npoint 0 0 0.5 1 1 1\n"
+                    "cylinder 3 0 0 3 0 1 0.5\n")}),
+    [](const auto& p) { return std::string(p.param.name); });
+
+/// Renders `shape`, a face of which (a box side, a cap, a disk, a polygon, a plane) covers the
+/// middle of the image squarely, lit by a directional light from the camera, at `scale` times
+/// its unit size. Every middle pixel must get the full diffuse term: a darker one means the
+/// surface shadowed itself (acne). Returns the number of such pixels.
+int faceAcnePixels(const std::string& shape, double scale) {
+    const int w = 48, h = 36;
+    char text[1024];
+    std::snprintf(text, sizeof text,
+                  "size %d %d\ncamera 0 0 %.17g 0 0 0 0 1 0 30\ndirectional 0 0 1 1 1 1\n"
+                  "ambient 0.1 0.1 0.1\ndiffuse 0.5 0.5 0.5\npushTransform\nscale %.17g %.17g "
+                  "%.17g\nvertex -1 -1 0\nvertex 1 -1 0\nvertex 2 0 0\nvertex 1 1 0\n"
+                  "vertex -1 1 0\n%s\npopTransform\n",
+                  w, h, 4 * scale, scale, scale, scale, shape.c_str());
+    std::vector<Diagnostic> warnings;
+    auto scene = parseHw3Scene(text, "face.test", warnings);
+    scene->prepare();
+    RenderOptions o;
+    o.threads = 2;
+    Film f = render(*scene, o).film;
+    int acne = 0;
+    for (int y = h / 3; y < 2 * h / 3; ++y)
+        for (int x = w / 3; x < 2 * w / 3; ++x) acne += std::abs(f.at(x, y).x - 0.6) > 1e-9;
+    return acne;
+}
+
+TEST(Acne, NoneOnShapeFacesAtAnyScale) {
+    for (double scale : {1e-4, 1.0, 1e5})
+        for (const char* shape :
+             {"box -1 -1 -1 1 1 0", "cylinder 0 0 -1 0 0 0 1.5", "cone 0 0 -2 2 0 0 0 1",
+              "disk 0 0 0 0 0 1 1", "plane 0 0 0 0 0 1", "polygon 0 1 2 3 4"})
+            EXPECT_EQ(faceAcnePixels(shape, scale), 0) << shape << " at scale " << scale;
+}
+
 /// Renders a lit sphere of radius `r` at the origin, seen from 5r away with a point light
 /// beside the camera, and counts "acne": pixels that see the sphere where the light hits the
 /// surface squarely (N.L > 0.2, computed exactly here) but come out no brighter than ambient.
