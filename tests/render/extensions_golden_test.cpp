@@ -46,7 +46,7 @@ TEST_P(ExtensionScene, MatchesItsAcceptedImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ExtensionScene,
-                         testing::Values("glass", "arealight", "dof", "antialias"),
+                         testing::Values("shapes", "glass", "arealight", "dof", "antialias"),
                          [](const auto& p) { return std::string(p.param); });
 
 }  // namespace
