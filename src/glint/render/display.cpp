@@ -1,0 +1,36 @@
+#include "glint/render/display.h"
+
+#include <algorithm>
+
+namespace glint {
+
+double srgbEncode(double linear) {
+    if (!(linear > 0)) return 0;  // also NaN
+    if (linear >= 1) return 1;
+    if (linear <= 0.0031308) return 12.92 * linear;
+    return 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+}
+
+uint8_t toByteSrgb(double linear) {
+    // srgbEncode is within [0, 1], so the sum is within [0.5, 255.5]: no overflow.
+    return static_cast<uint8_t>(std::min(255.0, 255 * srgbEncode(linear) + 0.5));
+}
+
+Image8 toImage8(const Film& film, const DisplayTransform& display) {
+    if (display.isIdentity()) return toImage8(film);
+    const double scale = display.scale();
+    auto byte = display.srgb ? toByteSrgb : toByte;
+    Image8 img{film.width(), film.height(), 3, {}};
+    img.data.resize(static_cast<size_t>(img.width) * img.height * 3);
+    size_t i = 0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const Vec3& c = film.at(x, y);
+            img.data[i++] = byte(scale * c.x);
+            img.data[i++] = byte(scale * c.y);
+            img.data[i++] = byte(scale * c.z);
+        }
+    return img;
+}
+
+}  // namespace glint
