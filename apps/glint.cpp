@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "demo_scene.h"
@@ -166,8 +167,8 @@ int run(const Options& opt) {
             return usageError(problem);
     }
     if (!opt.output.empty() && !glint::imageFormatFor(opt.output))
-        return usageError("cannot write '" + opt.output +
-                          "': unknown image format (use .png, .ppm or .pfm)");
+        return usageError("cannot write '" + opt.output + "': unknown image format (use " +
+                          glint::kImageExtensions + ")");
 
     // Parse.
     auto t0 = Clock::now();
@@ -195,11 +196,12 @@ int run(const Options& opt) {
     if (output.empty()) output = std::filesystem::path(opt.scene).stem().string() + ".png";
     if (demo && opt.output.empty()) output = "glint.png";
 
-    if (!glint::imageFormatFor(output)) {
+    std::optional<glint::ImageFormat> format = glint::imageFormatFor(output);
+    if (!format) {
         std::fprintf(stderr,
-                     "glint: error: cannot write '%s': unknown image format (use .png, .ppm or "
-                     ".pfm, or choose a file with -o)\n",
-                     output.c_str());
+                     "glint: error: cannot write '%s': unknown image format (use %s, or choose a "
+                     "file with -o)\n",
+                     output.c_str(), glint::kImageExtensions);
         return kExitSceneError;
     }
     if (opt.check) {
@@ -286,8 +288,8 @@ int main(int argc, char** argv) {
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,
-                   "Image file to write; .png, .ppm or .pfm (float). Default: the scene's "
-                   "'output' line, else <scene-stem>.png")
+                   "Image file to write; .png, .ppm, .pfm or .exr (float). Default: the "
+                   "scene's 'output' line, else <scene-stem>.png")
         ->group(out)
         ->type_name("FILE");
 
@@ -312,7 +314,8 @@ int main(int argc, char** argv) {
         ->group(render)
         ->check(integerIn(1, 65536))
         ->type_name("N");
-    app.add_option("--seed", opt.seed, "Seed of every random choice: sub-pixel jitter, lens, area lights, "
+    app.add_option("--seed", opt.seed,
+                   "Seed of every random choice: sub-pixel jitter, lens, area lights, "
                    "glossy rays (default 0)")
         ->group(render)
         ->type_name("N");

@@ -8,6 +8,10 @@ find_package(CLI11 CONFIG REQUIRED)
 # libpng (libpng-dev): PNG encoding in io/ (fast settings).
 find_package(PNG REQUIRED)
 
+# OpenEXR 3.1 (libopenexr-dev, with Imath from libimath-dev): EXR reading and writing in io/.
+find_package(OpenEXR CONFIG REQUIRED)
+message(STATUS "OpenEXR ${OpenEXR_VERSION}: .exr output")
+
 # stb (libstb-dev): PNG/JPEG decoding in io/.
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 

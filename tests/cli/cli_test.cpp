@@ -134,7 +134,7 @@ TEST(Cli, UnknownOutputExtensionIsAUsageErrorAndWritesNothing) {
         CommandResult r = runGlint(std::string("scene.test -o ") + out, dir);
         EXPECT_EQ(r.exitCode, 2);
         EXPECT_TRUE(contains(r.err, std::string("glint: error: cannot write '") + out +
-                                        "': unknown image format (use .png, .ppm or .pfm)"))
+                                        "': unknown image format (use .png, .ppm, .pfm or .exr)"))
             << r.err;
     }
     EXPECT_EQ(filesIn(dir), std::vector<std::string>{"scene.test"});
@@ -175,8 +175,8 @@ TEST(Cli, OutputLineWithUnknownExtensionWarnsThenFailsUnlessOverridden) {
     std::string dir = freshDir("linejpg");
     writeFile(dir + "/s.test", std::string(kScene) + "output picture.jpg\n");
     const std::string warning =
-        "s.test:19:8: warning: Glint cannot write 'picture.jpg': use a .png, .ppm or .pfm name "
-        "here or choose one with -o";
+        "s.test:19:8: warning: Glint cannot write 'picture.jpg': use a .png, .ppm, .pfm or .exr "
+        "name here or choose one with -o";
 
     CommandResult r = runGlint("-q s.test", dir);
     EXPECT_EQ(r.exitCode, 1);

@@ -34,8 +34,8 @@ void Parser::cmdMaxDepth() {
 void Parser::cmdOutput() {
     scene_->output = std::string(tok_[1].text);
     if (!imageFormatFor(scene_->output))
-        warn(1, "Glint cannot write " + quoted(1) +
-                    ": use a .png, .ppm or .pfm name here or choose one with -o");
+        warn(1, "Glint cannot write " + quoted(1) + ": use a " + kImageExtensions +
+                    " name here or choose one with -o");
 }
 
 void Parser::cmdCamera() {

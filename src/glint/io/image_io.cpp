@@ -14,6 +14,7 @@
 
 #include "glint/core/error.h"
 #include "glint/io/atomic_file.h"
+#include "glint/io/exr.h"
 
 namespace glint {
 
@@ -26,6 +27,7 @@ std::optional<ImageFormat> imageFormatFor(const std::string& path) {
     if (ext == "png") return ImageFormat::Png;
     if (ext == "ppm") return ImageFormat::Ppm;
     if (ext == "pfm") return ImageFormat::Pfm;
+    if (ext == "exr") return ImageFormat::Exr;
     return std::nullopt;
 }
 
@@ -73,9 +75,11 @@ std::string encodePng(const Image8& img) {
     return out;
 }
 
-std::string encodeImage(const Film& film, ImageFormat format) {
+std::string encodeImage(const Film& film, ImageFormat format, const DisplayTransform& display) {
     const int w = film.width(), h = film.height();
+    const double scale = display.scale();
     std::string out;
+    if (format == ImageFormat::Exr) return encodeExr(film, scale);
     if (format == ImageFormat::Pfm) {
         // Little-endian floats (negative scale), rows from the bottom of the image up.
         out = header("PF", w, h, "-1.0");
@@ -85,15 +89,15 @@ std::string encodeImage(const Film& film, ImageFormat format) {
         for (int y = h - 1; y >= 0; --y)
             for (int x = 0; x < w; ++x) {
                 const Vec3& c = film.at(x, y);
-                float rgb[3] = {static_cast<float>(c.x), static_cast<float>(c.y),
-                                static_cast<float>(c.z)};
+                float rgb[3] = {static_cast<float>(scale * c.x), static_cast<float>(scale * c.y),
+                                static_cast<float>(scale * c.z)};
                 static_assert(std::endian::native == std::endian::little);
                 std::memcpy(p, rgb, 12);
                 p += 12;
             }
         return out;
     }
-    Image8 img = toImage8(film);
+    Image8 img = toImage8(film, display);
     if (format == ImageFormat::Ppm) {
         out = header("P6", w, h, "255");
         out.append(reinterpret_cast<const char*>(img.data.data()), img.data.size());
@@ -102,12 +106,12 @@ std::string encodeImage(const Film& film, ImageFormat format) {
     return encodePng(img);
 }
 
-void writeImage(const std::string& path, const Film& film) {
+void writeImage(const std::string& path, const Film& film, const DisplayTransform& display) {
     std::optional<ImageFormat> format = imageFormatFor(path);
     if (!format)
-        throw RenderError("cannot write '" + path +
-                          "': unknown image format (use .png, .ppm or .pfm)");
-    writeFileAtomically(path, encodeImage(film, *format));
+        throw RenderError("cannot write '" + path + "': unknown image format (use " +
+                          kImageExtensions + ")");
+    writeFileAtomically(path, encodeImage(film, *format, display));
 }
 
 Image8 readImage8(const std::string& path, int channels) {
@@ -155,6 +159,14 @@ Film readPfm(const std::string& path) {
         for (int x = 0; x < w; ++x, i += channels)
             film.at(x, y) = channels == 3 ? Vec3(data[i], data[i + 1], data[i + 2]) : Vec3(data[i]);
     return film;
+}
+
+Film readExr(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw RenderError("cannot read image '" + path + "': cannot open file");
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return decodeExr(bytes.view(), path);
 }
 
 }  // namespace glint

@@ -1,0 +1,23 @@
+#pragma once
+/// OpenEXR images through the OpenEXR library: linear RGB in 32-bit float, unclamped.
+
+#include <string>
+#include <string_view>
+
+#include "glint/render/film.h"
+
+namespace glint {
+
+/// Encodes `film` in memory as a scanline OpenEXR file: channels R, G, B as 32-bit floats,
+/// ZIP compressed (lossless), row 0 at the top, every value multiplied by `scale` first.
+/// Values are kept as they are, negative ones too; beyond the float range they become +-inf.
+std::string encodeExr(const Film& film, double scale = 1);
+
+/// Decodes an OpenEXR file held in `bytes` (scanline or tiled, half, float or uint channels):
+/// R, G and B, or Y alone for a grey image. The data window becomes the film, its top-left
+/// corner (0, 0). `name` is for messages. Throws RenderError for anything malformed or too
+/// large: the same limits as a scene's image size, and the memory available. A crafted header
+/// can still make it allocate a film within those limits before the pixel data turns out bad.
+Film decodeExr(std::string_view bytes, const std::string& name);
+
+}  // namespace glint
