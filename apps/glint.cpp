@@ -7,6 +7,7 @@
 #include <atomic>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -36,6 +37,8 @@ struct Options {
     int maxDepth = -1;
     int spp = 0;  ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;
+    double exposure = 0;  ///< EV: radiance times 2^exposure before writing.
+    bool srgb = false;    ///< sRGB curve for 8-bit outputs.
     bool check = false;
     bool stats = false;
     bool quiet = false;
@@ -105,6 +108,24 @@ CLI::Validator integerIn(long long lo, long long hi) {
             if (v < lo || v > hi)
                 return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
                        text;
+            return {};
+        },
+        "", "");
+}
+
+/// A finite real number within [lo, hi], with plain messages for anything else.
+CLI::Validator numberIn(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            double v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
+                return "expected a number, got '" + text + "'";
+            auto str = [](double d) {
+                char buf[32];
+                return std::string(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
+            };
+            if (v < lo || v > hi) return "must be " + str(lo) + " to " + str(hi) + ", got " + text;
             return {};
         },
         "", "");
@@ -204,6 +225,12 @@ int run(const Options& opt) {
                      output.c_str(), glint::kImageExtensions);
         return kExitSceneError;
     }
+    // Float files hold linear radiance: the sRGB curve is for 8-bit files only.
+    if (opt.srgb && glint::isFloatFormat(*format))
+        std::fprintf(stderr,
+                     "glint: warning: --srgb applies to 8-bit outputs (.png, .ppm) only; '%s' is "
+                     "written linear\n",
+                     output.c_str());
     if (opt.check) {
         const auto& prims = scene->primitives;
         std::printf("%s: ok: %dx%d, %s, %s, maxdepth %d, output %s\n",
@@ -249,7 +276,7 @@ int run(const Options& opt) {
     // Write.
     auto t2 = Clock::now();
     try {
-        glint::writeImage(output, result.film);
+        glint::writeImage(output, result.film, {opt.exposure, opt.srgb});
     } catch (const glint::RenderError& e) {
         std::fprintf(stderr, "glint: error: %s\n", e.what());
         return kExitSceneError;
@@ -292,6 +319,16 @@ int main(int argc, char** argv) {
                    "scene's 'output' line, else <scene-stem>.png")
         ->group(out)
         ->type_name("FILE");
+    app.add_option("--exposure", opt.exposure,
+                   "Multiply radiance by 2^EV before writing, -64 to 64, every format "
+                   "(default 0: unchanged)")
+        ->group(out)
+        ->check(numberIn(-64, 64))
+        ->type_name("EV");
+    app.add_flag("--srgb", opt.srgb,
+                 "Encode 8-bit outputs (.png, .ppm) with the sRGB curve, rounded (default: the "
+                 "course's clamp and floor(255 c)); float outputs stay linear")
+        ->group(out);
 
     const char* render = "Rendering";
     app.add_option("-t,--threads", opt.threads,
