@@ -9,6 +9,8 @@ find_package(CLI11 CONFIG REQUIRED)
 find_package(PNG REQUIRED)
 
 # OpenEXR 3.1 (libopenexr-dev, with Imath from libimath-dev): EXR reading and writing in io/.
+# Debian's Imath config notes that the Python binding's library (python3-imath) is missing:
+# a status line only, Glint does not use it.
 find_package(OpenEXR CONFIG REQUIRED)
 message(STATUS "OpenEXR ${OpenEXR_VERSION}: .exr output")
 
