@@ -8,8 +8,12 @@ find_package(CLI11 CONFIG REQUIRED)
 # libpng (libpng-dev): PNG encoding in io/ (fast settings).
 find_package(PNG REQUIRED)
 
-# stb (libstb-dev): PNG/JPEG decoding in io/.
+# stb (libstb-dev): PNG/JPEG decoding in io/ (reference images, textures).
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+
+# tinyobjloader 2.0rc10 (libtinyobjloader-dev): Wavefront OBJ and MTL parsing in io/, the
+# float build (its geometry is stored in float anyway).
+find_package(tinyobjloader CONFIG REQUIRED)
 
 if(GLINT_BUILD_TESTS)
     # GoogleTest (libgtest-dev, libgmock-dev).
