@@ -1,7 +1,5 @@
 #include "glint/io/hw3_loader.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -129,7 +127,7 @@ std::unique_ptr<Scene> Parser::run() {
     size_t needed = Scene::estimateBytes(counts.triangles, counts.spheres, counts.shapes,
                                          counts.polygonTriangles) +
                     counts.vertices * (sizeof(Vec3) + sizeof(std::array<Vec3, 2>));
-    size_t available = limits_.memoryBytes ? limits_.memoryBytes : availableMemoryBytes();
+    size_t available = memoryAvailable(limits_);
     if (available > 0 && needed > available)
         throw SceneError({file_, 0, 0},
                          "the scene needs about " + formatBytes(static_cast<double>(needed)) +
@@ -317,16 +315,8 @@ std::unique_ptr<Scene> parseHw3Scene(std::string_view text, const std::string& f
 
 std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings,
                                     const LoadLimits& limits) {
-    auto cannot = [&](const std::string& why) {
-        throw SceneError({path, 0, 0}, "cannot read scene: " + why);
-    };
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) cannot(std::strerror(errno));
-    if (S_ISDIR(st.st_mode)) cannot("it is a directory");
-    if (!S_ISREG(st.st_mode)) cannot("not a regular file");
-    if (st.st_size > kMaxSceneFileBytes)
-        cannot("the file has " + std::to_string(st.st_size) + " bytes, more than the limit of " +
-               std::to_string(kMaxSceneFileBytes));
+    if (std::string problem = inputFileProblem(path); !problem.empty())
+        throw SceneError({path, 0, 0}, "cannot read scene: " + problem);
     try {
         MappedFile file(path);
         return parseHw3Scene(file.text(), path, warnings, limits);
