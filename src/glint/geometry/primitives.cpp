@@ -80,6 +80,15 @@ void Primitives::reserve(size_t triangles, size_t spheres, size_t shapes) {
     shapeMaterial_.reserve(shapeMaterial_.size() + shapes);
 }
 
+uint32_t Primitives::materialOf(uint32_t id) const {
+    if (id < triangleCount()) return triangleMaterial_[id];
+    id -= triangleCount();
+    if (id < sphereCount()) return sphereMaterial_[id];
+    id -= sphereCount();
+    if (id < shapeCount()) return shapeMaterial_[id];
+    return planeMaterial_[id - shapeCount()];
+}
+
 Bounds3f Primitives::bounds() const {
     Bounds3f b;
     for (uint32_t i = 0; i < boundedCount(); ++i) b.extend(bounds(i));

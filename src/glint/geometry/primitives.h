@@ -76,6 +76,12 @@ class Primitives {
     uint32_t planeCount() const { return static_cast<uint32_t>(planes_.size()); }
     /// Triangles with per-corner texture coordinates.
     uint32_t texturedTriangleCount() const { return static_cast<uint32_t>(cornerUvs_.size()); }
+    /// Whether primitive `id` has texture coordinates (only triangles can).
+    bool hasTexCoords(uint32_t id) const {
+        return id < triangleCount() && !triangleUvs_.empty() && triangleUvs_[id] != kFlat;
+    }
+    /// The material id of primitive `id` (< size()).
+    uint32_t materialOf(uint32_t id) const;
 
     /// Bounds of bounded primitive `id` (< boundedCount()).
     Bounds3f bounds(uint32_t id) const {

@@ -63,6 +63,9 @@ const std::vector<Command>& Parser::commands() {
         {"cone", 8, 8, "x0 y0 z0 r0 x1 y1 z1 r1", &Parser::cmdCone},
         {"disk", 7, 7, "cx cy cz nx ny nz radius", &Parser::cmdDisk},
         {"polygon", 3, kMaxPolygonVertices, "v1 v2 v3 ...", &Parser::cmdPolygon},
+        {"mesh", 1, 1, "file.obj", &Parser::cmdMesh},
+        {"texture", 1, 2, "file [repeat|clamp], or none", &Parser::cmdTexture},
+        {"checker", 7, 7, "r1 g1 b1 r2 g2 b2 scale", &Parser::cmdChecker},
     };
     return table;
 }
@@ -181,6 +184,7 @@ std::unique_ptr<Scene> Parser::run() {
                          "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
                          "upx upy upz fovy')");
     }
+    if (!imageTextures_.empty()) checkTextureCoordinates();
     scene_->camera->apertureRadius = apertureRadius_;
     scene_->camera->focusDistance = focusDistance_;
     return std::move(scene_);
