@@ -40,25 +40,9 @@ bool isModelFile(const std::string& path) {
     return ext == ".obj";
 }
 
-ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
-                          int height, const LoadLimits& limits) {
-    ModelScene out;
-    out.scene = std::make_unique<Scene>();
-    Scene& scene = *out.scene;
-    scene.width = width;
-    scene.height = height;
-    {
-        ObjOptions options;
-        options.limits = limits;
-        MeshData mesh = loadObj(path, warnings, options);  // freed before the BVH is built
-        // Faces without an MTL material: a light grey, lit like MTL materials without Ka.
-        Material grey;
-        grey.diffuse = Vec3(0.7);
-        grey.ambient = grey.diffuse * kMtlAmbientLight;
-        addMesh(scene, mesh, Transform(), scene.addMaterial(grey));
-    }
+std::string frameModel(Scene& scene, const std::string& name) {
     Bounds3f b = scene.primitives.bounds();
-    if (b.empty()) throw SceneError({path, 0, 0}, "the model has no faces of non-zero area");
+    if (b.empty()) throw SceneError({name, 0, 0}, "the model has no faces of non-zero area");
     Vec3 lo(b.lo), hi(b.hi);
     Vec3 center = (lo + hi) * 0.5;
     double radius = 0.5 * length(hi - lo);
@@ -67,7 +51,7 @@ ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warn
     // The sphere fits when the camera is radius / sin(half angle) away, for the narrower of the
     // vertical and horizontal fields of view.
     double halfV = kFovyDegrees * std::numbers::pi / 360;
-    double halfH = std::atan(std::tan(halfV) * width / height);
+    double halfH = std::atan(std::tan(halfV) * scene.width / scene.height);
     double half = std::min(halfV, halfH);
     double distance = radius / (kFill * std::sin(half));
     Vec3 eye = center + normalize(Vec3{0, 0.5, 1}) * distance;
@@ -89,10 +73,29 @@ ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warn
 
     char floorText[64];
     std::snprintf(floorText, sizeof floorText, "%.4g", floorY);
-    out.assumptions =
-        "a camera at " + format(eye) + " looking at " + format(center) +
-        " (fovy 40), a key and a fill directional light, a grey floor at y = " + floorText +
-        " and a light grey material where the model has none";
+    return "a camera at " + format(eye) + " looking at " + format(center) +
+           " (fovy 40), a key and a fill directional light, a grey floor at y = " + floorText +
+           " and a light grey material where the model has none";
+}
+
+ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
+                          int height, const LoadLimits& limits) {
+    ModelScene out;
+    out.scene = std::make_unique<Scene>();
+    Scene& scene = *out.scene;
+    scene.width = width;
+    scene.height = height;
+    {
+        ObjOptions options;
+        options.limits = limits;
+        MeshData mesh = loadObj(path, warnings, options);  // freed before the BVH is built
+        // Faces without an MTL material: a light grey, lit like MTL materials without Ka.
+        Material grey;
+        grey.diffuse = Vec3(0.7);
+        grey.ambient = grey.diffuse * kMtlAmbientLight;
+        addMesh(scene, mesh, Transform(), scene.addMaterial(grey));
+    }
+    out.assumptions = frameModel(scene, path);
     return out;
 }
 

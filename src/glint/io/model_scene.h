@@ -21,6 +21,11 @@ struct ModelScene {
     std::string assumptions;
 };
 
+/// Adds to `scene`, which holds a model's geometry, what a bare model lacks (see
+/// loadModelScene): camera, lights, floor, background, for an image of the scene's size.
+/// Returns what it assumed, for the user. Throws SceneError if the scene has no geometry.
+std::string frameModel(Scene& scene, const std::string& name);
+
 /// Loads the OBJ model at `path` (with its MTL materials; a light grey elsewhere) and frames
 /// it for a `width` x `height` image: a camera on the +z/+y diagonal (elevation about 27
 /// degrees) whose 40-degree vertical field of view holds the model's bounding sphere with a
