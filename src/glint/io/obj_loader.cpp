@@ -122,6 +122,7 @@ class Reader : public tinyobj::MaterialReader {
     std::map<std::string, uint32_t> materialIds_;
     uint32_t material_ = MeshData::kNone;
     TextureCache textures_;
+    std::vector<MeshData::Corner> corners_;   ///< Of the face being read.
     std::vector<Vec3> polygon_;               ///< Positions of the face being triangulated.
     std::set<std::string> unknownMaterials_;  ///< Named by usemtl and warned about.
     bool warnedNormal_ = false, warnedMixed_ = false, warnedFan_ = false;
@@ -198,7 +199,8 @@ void Reader::onFace(void* p, tinyobj::index_t* indices, int count) {
 void Reader::addFace(const tinyobj::index_t* indices, int count) {
     if (count < 3)
         fail("a face needs at least 3 vertices, got " + std::to_string(count), count > 0 ? 1 : 0);
-    std::vector<MeshData::Corner> corners(static_cast<size_t>(count));
+    std::vector<MeshData::Corner>& corners = corners_;  // reused: no allocation per face
+    corners.assign(static_cast<size_t>(count), MeshData::Corner{});
     int withNormal = 0, withUv = 0;
     for (int k = 0; k < count; ++k) {
         const tinyobj::index_t& ix = indices[k];

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "glint/core/error.h"
@@ -136,7 +137,9 @@ MeshMaterial mapMtlMaterial(const tinyobj::material_t& m, const MtlEntry& entry,
         if (ni > 0) {
             g.ior = ni;
         } else {
-            warnings.push_back({at, "material " + quotedName + " has Ni " + std::to_string(ni) +
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", ni);
+            warnings.push_back({at, "material " + quotedName + " has Ni " + value +
                                         ", not an index of refraction; using 1"});
             g.ior = 1;
         }
