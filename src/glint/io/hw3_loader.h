@@ -13,7 +13,6 @@
 
 namespace glint {
 
-
 /// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error, or if
 /// the scene would need more memory than `limits` allow; appends warnings to `warnings`. The
 /// scene is not yet prepared (see Scene::prepare).
