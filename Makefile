@@ -14,19 +14,19 @@ GLINT_WERROR ?= OFF
 JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 
 # Debian packages: compiler and build tools, then libraries (see docs/dependencies in README).
-DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev libgtest-dev \
-        libgmock-dev
+DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+        libtinyobjloader-dev libgtest-dev libgmock-dev
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
 # the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh).
 BENCH_DIR  ?= build-bench
 BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
-              libembree-dev povray bc
+              libtinyobjloader-dev libembree-dev povray bc
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-dev libpng-dev \
-             libopenexr-dev
+             libopenexr-dev libtinyobjloader-dev
 FUZZ_SECONDS ?= 60
 
 .PHONY: deps build demo test test-sanitize fuzz clean bench

@@ -21,6 +21,7 @@
 #include "glint/io/atomic_file.h"
 #include "glint/io/hw3_loader.h"
 #include "glint/io/image_io.h"
+#include "glint/io/model_scene.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
 
@@ -195,9 +196,18 @@ int run(const Options& opt) {
     auto t0 = Clock::now();
     std::vector<glint::Diagnostic> warnings;
     std::unique_ptr<glint::Scene> scene;
+    std::string assumed;  // for a bare model: the camera, lights and floor Glint chose
     try {
-        scene = demo ? glint::parseHw3Scene(glint::kDemoScene, "demo.test", warnings)
-                     : glint::loadHw3Scene(opt.scene, warnings);
+        if (demo) {
+            scene = glint::parseHw3Scene(glint::kDemoScene, "demo.test", warnings);
+        } else if (glint::isModelFile(opt.scene)) {
+            glint::ModelScene m = glint::loadModelScene(opt.scene, warnings, width ? width : 640,
+                                                        height ? height : 480);
+            scene = std::move(m.scene);
+            assumed = std::move(m.assumptions);
+        } else {
+            scene = glint::loadHw3Scene(opt.scene, warnings);
+        }
     } catch (const glint::SceneError& e) {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
         std::fprintf(stderr, "%s\n", e.what());
@@ -205,6 +215,9 @@ int run(const Options& opt) {
     }
     double parseSeconds = secondsSince(t0);
     for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
+    if (!assumed.empty() && !opt.quiet)
+        std::fprintf(stderr, "glint: %s has no camera or lights: framing it with %s\n",
+                     opt.scene.c_str(), assumed.c_str());
     if (width > 0) {
         scene->width = width;
         scene->height = height;
@@ -303,7 +316,8 @@ int run(const Options& opt) {
 int main(int argc, char** argv) {
     CLI::App app{
         "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
-        "\nWithout SCENE it renders a built-in demo scene to glint.png.",
+        "\nWithout SCENE it renders a built-in demo scene to glint.png; given an .obj model"
+        "\nit adds a camera, lights and a floor.",
         "glint"};
     app.get_formatter()->column_width(30);
     // One style for every usage error, whether CLI11 or Glint finds it.
@@ -311,7 +325,8 @@ int main(int argc, char** argv) {
         return std::string("glint: error: ") + e.what() + "\nRun 'glint --help' for usage.\n";
     });
     Options opt;
-    app.add_option("SCENE", opt.scene, "Scene file to render (CSE167x .test format)");
+    app.add_option("SCENE", opt.scene,
+                   "Scene file to render (CSE167x .test format), or an .obj model to frame");
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,

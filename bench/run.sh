@@ -3,7 +3,8 @@
 # -DGLINT_BUILD_BENCH=ON:
 #   1. BVH build and traversal against Intel Embree (bench/glint_traversal_bench, when built);
 #   2. whole renders against POV-Ray 3.7 (bench/render_compare.sh);
-#   3. --stats medians for the official course scenes (bench/course_stats.sh).
+#   3. --stats medians for the official course scenes (bench/course_stats.sh);
+#   4. loading and rendering a generated 1M-triangle OBJ model (bench/mesh_stats.sh).
 # Usage: bench/run.sh BUILD_DIR
 set -euo pipefail
 
@@ -35,3 +36,6 @@ header "2. Whole renders: Glint vs POV-Ray"
 
 header "3. Course scenes: glint --stats"
 "$here/course_stats.sh" "$build/glint" 7 2
+
+header "4. A 1M-triangle OBJ model: glint model.obj"
+"$here/mesh_stats.sh" "$build" 5 2

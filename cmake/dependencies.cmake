@@ -14,8 +14,13 @@ find_package(PNG REQUIRED)
 find_package(OpenEXR CONFIG REQUIRED)
 message(STATUS "OpenEXR ${OpenEXR_VERSION}: .exr output")
 
-# stb (libstb-dev): PNG/JPEG decoding in io/.
+# stb (libstb-dev): PNG/JPEG decoding in io/ (reference images, textures).
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+
+# tinyobjloader 2.0rc10 (libtinyobjloader-dev): Wavefront OBJ and MTL parsing in io/, in float
+# (Glint stores geometry in float anyway). Its header only: the implementation it carries is
+# compiled into glint_core (src/glint/io/tinyobj_impl.cpp).
+find_package(tinyobjloader CONFIG REQUIRED)
 
 if(GLINT_BUILD_TESTS)
     # GoogleTest (libgtest-dev, libgmock-dev).

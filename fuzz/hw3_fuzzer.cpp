@@ -30,7 +30,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::vector<glint::Diagnostic> warnings;
     std::unique_ptr<glint::Scene> scene;
     try {
-        scene = glint::parseHw3Scene(text, "fuzz.test", warnings);
+        glint::LoadLimits limits;
+        limits.readFiles = false;  // `mesh` and `texture` must not reach the disk
+        scene = glint::parseHw3Scene(text, "fuzz.test", warnings, limits);
     } catch (const glint::SceneError& e) {
         (void)e.diagnostic().format("error");  // formatting the message must not fail either
         return 0;

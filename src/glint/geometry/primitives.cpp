@@ -2,21 +2,36 @@
 
 namespace glint {
 
-bool Primitives::addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
-                             uint32_t material) {
+bool Primitives::pushTriangle(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t material) {
     Triangle tri = Triangle::fromVertices(a, b, c);
     if (tri.degenerate()) return false;
     triangles_.push_back(tri);
     triangleMaterial_.push_back(material);
+    return true;
+}
+
+void Primitives::addAttributes(const Vec3* normals, const TexCoord* uvs) {
+    // The per-triangle indices exist only once some triangle has vertex normals or texture
+    // coordinates: triangleNormals_ then (kNoNormals for a triangle with coordinates only, so
+    // that interaction() tests one index for both), triangleUvs_ once some triangle has
+    // coordinates.
+    const size_t earlier = triangles_.size() - 1;
+    if (triangleNormals_.empty()) triangleNormals_.assign(earlier, kFlat);
     if (normals) {
-        // The per-triangle index exists only once some triangle has vertex normals.
-        if (triangleNormals_.empty()) triangleNormals_.assign(triangles_.size() - 1, kFlat);
         triangleNormals_.push_back(static_cast<uint32_t>(vertexNormals_.size()));
         vertexNormals_.push_back({normals[0], normals[1], normals[2]});
-    } else if (!triangleNormals_.empty()) {
-        triangleNormals_.push_back(kFlat);
+    } else {
+        triangleNormals_.push_back(uvs ? kNoNormals : kFlat);
     }
-    return true;
+    if (uvs || !triangleUvs_.empty()) {
+        if (triangleUvs_.empty()) triangleUvs_.assign(earlier, kFlat);
+        if (uvs) {
+            triangleUvs_.push_back(static_cast<uint32_t>(cornerUvs_.size()));
+            cornerUvs_.push_back({uvs[0], uvs[1], uvs[2]});
+        } else {
+            triangleUvs_.push_back(kFlat);
+        }
+    }
 }
 
 void Primitives::addSphere(const Sphere& sphere, uint32_t material) {
@@ -44,6 +59,16 @@ uint32_t Primitives::shapeCount(ShapeKind kind) const {
     return n;
 }
 
+void Primitives::reserveAttributes(size_t normals, size_t uvs) {
+    if (normals == 0 && uvs == 0) return;
+    size_t total = triangles_.capacity();
+    triangleNormals_.reserve(total);
+    vertexNormals_.reserve(vertexNormals_.size() + normals);
+    if (uvs == 0) return;
+    triangleUvs_.reserve(total);
+    cornerUvs_.reserve(cornerUvs_.size() + uvs);
+}
+
 void Primitives::reserve(size_t triangles, size_t spheres, size_t shapes) {
     triangles_.reserve(triangles_.size() + triangles);
     triangleMaterial_.reserve(triangleMaterial_.size() + triangles);
@@ -53,6 +78,15 @@ void Primitives::reserve(size_t triangles, size_t spheres, size_t shapes) {
     shapes_.reserve(shapes_.size() + shapes);
     shapeSearch_.reserve(shapeSearch_.size() + shapes);
     shapeMaterial_.reserve(shapeMaterial_.size() + shapes);
+}
+
+uint32_t Primitives::materialOf(uint32_t id) const {
+    if (id < triangleCount()) return triangleMaterial_[id];
+    id -= triangleCount();
+    if (id < sphereCount()) return sphereMaterial_[id];
+    id -= sphereCount();
+    if (id < shapeCount()) return shapeMaterial_[id];
+    return planeMaterial_[id - shapeCount()];
 }
 
 Bounds3f Primitives::bounds() const {
@@ -70,13 +104,22 @@ SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const
         si.ng = normalize(tri.normalDirection());
         si.n = si.ng;
         si.material = triangleMaterial_[hit.primId];
-        uint32_t ni = triangleNormals_.empty() ? kFlat : triangleNormals_[hit.primId];
-        if (ni != kFlat) {
-            const auto& vn = vertexNormals_[ni];
-            Vec3 n = vn[0] * (1 - th.b1 - th.b2) + vn[1] * th.b1 + vn[2] * th.b2;
-            double len = length(n);
-            // Opposed or zero vertex normals can cancel: keep the geometric normal then.
-            if (len > 0 && std::isfinite(len)) si.n = n / len;
+        if (!triangleNormals_.empty()) {  // some triangle has vertex normals or coordinates
+            const double b0 = 1 - th.b1 - th.b2;
+            if (uint32_t ni = triangleNormals_[hit.primId]; ni != kFlat && ni != kNoNormals) {
+                const auto& vn = vertexNormals_[ni];
+                Vec3 n = vn[0] * b0 + vn[1] * th.b1 + vn[2] * th.b2;
+                double len = length(n);
+                // Opposed or zero vertex normals can cancel: keep the geometric normal then.
+                if (len > 0 && std::isfinite(len)) si.n = n / len;
+            }
+            if (uint32_t ti = triangleUvs_.empty() ? kFlat : triangleUvs_[hit.primId];
+                ti != kFlat) {
+                const auto& uv = cornerUvs_[ti];
+                si.u = uv[0][0] * b0 + uv[1][0] * th.b1 + uv[2][0] * th.b2;
+                si.v = uv[0][1] * b0 + uv[1][1] * th.b1 + uv[2][1] * th.b2;
+                si.hasUv = true;
+            }
         }
     } else if (uint32_t i = hit.primId - triangleCount(); i < sphereCount()) {
         const Sphere& s = spheres_[i];

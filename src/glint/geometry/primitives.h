@@ -4,7 +4,8 @@
 /// Primitive ids run over triangles first, then spheres, then the other bounded shapes (boxes,
 /// cylinders, cones, disks), then planes: id < triangleCount() is a triangle, and ids below
 /// boundedCount() have finite bounds (planes do not: accelerators test them beside their
-/// tree). Each primitive carries a material id; triangles may carry per-vertex shading normals.
+/// tree). Each primitive carries a material id; triangles may carry per-vertex shading normals
+/// and texture coordinates, stored only for scenes that have them.
 
 #include <array>
 #include <cstdint>
@@ -18,21 +19,40 @@
 
 namespace glint {
 
+/// Texture coordinates (u, v) of a triangle corner.
+using TexCoord = std::array<float, 2>;
+
 /// Shading data for the closest hit, computed in double once per shaded hit.
 struct SurfaceInteraction {
     Vec3 p;   ///< World-space hit point.
     Vec3 n;   ///< Unit shading normal (interpolated for triangles with vertex normals).
     Vec3 ng;  ///< Unit geometric normal.
     uint32_t material = 0;
+    bool hasUv = false;  ///< Whether the primitive has texture coordinates: u and v are set.
+    /// Texture coordinates interpolated at the hit, set only when `hasUv` (triangles with
+    /// per-corner coordinates): left unset otherwise, so that the course's hits, which have
+    /// none, pay nothing for them.
+    double u = 0, v = 0;
 };
 
 class Primitives {
   public:
     /// Adds a triangle with world-space vertices; `normals` (world space, unit or zero) may be
-    /// null for a flat triangle. A triangle of zero area as stored is dropped (it could never
-    /// be seen, and the float test cannot reject it reliably): returns false then.
+    /// null for a flat triangle, and `uvs` (texture coordinates of a, b, c) null for none. A
+    /// triangle of zero area as stored is dropped (it could never be seen, and the float test
+    /// cannot reject it reliably): returns false then.
     bool addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
-                     uint32_t material);
+                     uint32_t material) {
+        if (!pushTriangle(a, b, c, material)) return false;
+        if (normals || !triangleNormals_.empty()) addAttributes(normals, nullptr);
+        return true;
+    }
+    bool addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
+                     const TexCoord* uvs, uint32_t material) {
+        if (!pushTriangle(a, b, c, material)) return false;
+        if (normals || uvs || !triangleNormals_.empty()) addAttributes(normals, uvs);
+        return true;
+    }
     void addSphere(const Sphere& sphere, uint32_t material);
     /// Adds a box, cylinder, cone or disk.
     void addShape(const Shape& shape, uint32_t material);
@@ -40,6 +60,8 @@ class Primitives {
     /// Room for this many more triangles, spheres and other shapes, so that adding them does
     /// not reallocate.
     void reserve(size_t triangles, size_t spheres, size_t shapes = 0);
+    /// Room for this many more triangles with vertex normals and with texture coordinates.
+    void reserveAttributes(size_t normals, size_t uvs);
 
     uint32_t size() const { return boundedCount() + planeCount(); }
     /// Primitives with finite bounds: triangles, spheres and shapes (ids 0 to this - 1).
@@ -52,6 +74,14 @@ class Primitives {
     uint32_t shapeCount() const { return static_cast<uint32_t>(shapes_.size()); }
     uint32_t shapeCount(ShapeKind kind) const;
     uint32_t planeCount() const { return static_cast<uint32_t>(planes_.size()); }
+    /// Triangles with per-corner texture coordinates.
+    uint32_t texturedTriangleCount() const { return static_cast<uint32_t>(cornerUvs_.size()); }
+    /// Whether primitive `id` has texture coordinates (only triangles can).
+    bool hasTexCoords(uint32_t id) const {
+        return id < triangleCount() && !triangleUvs_.empty() && triangleUvs_[id] != kFlat;
+    }
+    /// The material id of primitive `id` (< size()).
+    uint32_t materialOf(uint32_t id) const;
 
     /// Bounds of bounded primitive `id` (< boundedCount()).
     Bounds3f bounds(uint32_t id) const {
@@ -96,16 +126,26 @@ class Primitives {
 
   private:
     static constexpr uint32_t kFlat = UINT32_MAX;
+    /// In triangleNormals_: the triangle has texture coordinates but no vertex normals.
+    static constexpr uint32_t kNoNormals = UINT32_MAX - 1;
 
     /// interaction() for boxes, cylinders, cones, disks and planes.
     [[gnu::noinline]] SurfaceInteraction shapeInteraction(const Ray& ray, const Hit& hit) const;
+    /// Stores the triangle unless it has zero area; returns whether it did.
+    bool pushTriangle(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t material);
+    /// Records the newest triangle's normals and texture coordinates (either may be null).
+    [[gnu::noinline]] void addAttributes(const Vec3* normals, const TexCoord* uvs);
 
     // Large arrays in huge pages: scenes of millions of triangles fill them in one go.
     LargeVector<Triangle> triangles_;
     LargeVector<uint32_t> triangleMaterial_;
-    /// Index into vertexNormals_, or kFlat; empty while no triangle has vertex normals.
+    /// Index into vertexNormals_, or kFlat, or kNoNormals; empty while no triangle has vertex
+    /// normals or texture coordinates (so flat, untextured scenes pay one test for both).
     LargeVector<uint32_t> triangleNormals_;
     LargeVector<std::array<Vec3, 3>> vertexNormals_;
+    /// Index into cornerUvs_, or kFlat; empty while no triangle has texture coordinates.
+    LargeVector<uint32_t> triangleUvs_;
+    LargeVector<std::array<TexCoord, 3>> cornerUvs_;
     LargeVector<Sphere> spheres_;
     LargeVector<ShapeSearch> sphereSearch_;
     LargeVector<uint32_t> sphereMaterial_;

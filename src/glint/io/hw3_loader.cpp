@@ -1,7 +1,5 @@
 #include "glint/io/hw3_loader.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -65,6 +63,9 @@ const std::vector<Command>& Parser::commands() {
         {"cone", 8, 8, "x0 y0 z0 r0 x1 y1 z1 r1", &Parser::cmdCone},
         {"disk", 7, 7, "cx cy cz nx ny nz radius", &Parser::cmdDisk},
         {"polygon", 3, kMaxPolygonVertices, "v1 v2 v3 ...", &Parser::cmdPolygon},
+        {"mesh", 1, 1, "file.obj", &Parser::cmdMesh},
+        {"texture", 1, 2, "file [repeat|clamp], or none", &Parser::cmdTexture},
+        {"checker", 7, 7, "r1 g1 b1 r2 g2 b2 scale", &Parser::cmdChecker},
     };
     return table;
 }
@@ -129,7 +130,7 @@ std::unique_ptr<Scene> Parser::run() {
     size_t needed = Scene::estimateBytes(counts.triangles, counts.spheres, counts.shapes,
                                          counts.polygonTriangles) +
                     counts.vertices * (sizeof(Vec3) + sizeof(std::array<Vec3, 2>));
-    size_t available = limits_.memoryBytes ? limits_.memoryBytes : availableMemoryBytes();
+    size_t available = memoryAvailable(limits_);
     if (available > 0 && needed > available)
         throw SceneError({file_, 0, 0},
                          "the scene needs about " + formatBytes(static_cast<double>(needed)) +
@@ -183,6 +184,7 @@ std::unique_ptr<Scene> Parser::run() {
                          "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
                          "upx upy upz fovy')");
     }
+    if (!imageTextures_.empty()) checkTextureCoordinates();
     scene_->camera->apertureRadius = apertureRadius_;
     scene_->camera->focusDistance = focusDistance_;
     return std::move(scene_);
@@ -317,16 +319,8 @@ std::unique_ptr<Scene> parseHw3Scene(std::string_view text, const std::string& f
 
 std::unique_ptr<Scene> loadHw3Scene(const std::string& path, std::vector<Diagnostic>& warnings,
                                     const LoadLimits& limits) {
-    auto cannot = [&](const std::string& why) {
-        throw SceneError({path, 0, 0}, "cannot read scene: " + why);
-    };
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) cannot(std::strerror(errno));
-    if (S_ISDIR(st.st_mode)) cannot("it is a directory");
-    if (!S_ISREG(st.st_mode)) cannot("not a regular file");
-    if (st.st_size > kMaxSceneFileBytes)
-        cannot("the file has " + std::to_string(st.st_size) + " bytes, more than the limit of " +
-               std::to_string(kMaxSceneFileBytes));
+    if (std::string problem = inputFileProblem(path); !problem.empty())
+        throw SceneError({path, 0, 0}, "cannot read scene: " + problem);
     try {
         MappedFile file(path);
         return parseHw3Scene(file.text(), path, warnings, limits);

@@ -8,17 +8,10 @@
 #include <vector>
 
 #include "glint/core/error.h"
+#include "glint/io/input_file.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
-
-/// Largest scene file Glint reads (bytes); bigger files are refused before reading.
-constexpr long long kMaxSceneFileBytes = 1LL << 30;
-
-/// Resources a scene may take, checked before anything is allocated.
-struct LoadLimits {
-    size_t memoryBytes = 0;  ///< 0: the memory the machine has available now.
-};
 
 /// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error, or if
 /// the scene would need more memory than `limits` allow; appends warnings to `warnings`. The

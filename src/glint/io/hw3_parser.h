@@ -5,6 +5,7 @@
 // use hw3_loader.h.
 
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 #include "glint/geometry/shape_search.h"
 #include "glint/io/hw3_loader.h"
 #include "glint/math/mat4.h"
+#include "glint/scene/mesh.h"
 #include "glint/scene/scene.h"
 
 namespace glint::hw3 {
@@ -161,6 +163,14 @@ class Parser {
     void cmdCone();
     void cmdDisk();
     void cmdPolygon();
+    // Meshes and textures (docs/scene-format.md, "Meshes" and "Textures").
+    void cmdMesh();
+    void cmdTexture();
+    void cmdChecker();
+    /// `name`, a file named in the scene, relative to the scene file's directory.
+    std::string scenePath(std::string_view name) const;
+    /// Warns once if surfaces without texture coordinates use an image texture.
+    void checkTextureCoordinates();
     /// Adds a box, cylinder, cone or disk placed by `objectFromCanonical` under the current
     /// transform, after checking it against the coordinate limits.
     void addShape(ShapeKind kind, const Mat4& objectFromCanonical, double k, const char* name);
@@ -200,6 +210,10 @@ class Parser {
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
+    std::map<std::string, MeshData> meshes_;  ///< Read by `mesh`, by path: each read once.
+    std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
+    std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
+    bool warnedMeshDegenerate_ = false;
     double apertureRadius_ = 0, focusDistance_ = 0;  ///< From `lens`, applied to the camera.
 };
 

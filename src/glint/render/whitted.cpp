@@ -177,14 +177,13 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si,
     return m.specular * g * trace(spawnRay(si.p, wi, offset), depth + 1, weight, ctx);
 }
 
-Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double weight,
-                              PathContext& ctx) const {
-    if (!hit) return scene_.background.eval(ray.dir);
-    SurfaceInteraction si = scene_.primitives.interaction(ray, *hit);
-    const Material& m = scene_.materials[si.material];
-    // Area lights' surfaces emit from their front face only.
-    bool emits = !m.frontEmissionOnly || dot(ray.dir, si.ng) < 0;
-    Vec3 color = emits ? m.ambient + m.emission : m.ambient;
+[[gnu::always_inline]] inline Vec3 WhittedIntegrator::shadeHit(const Ray& ray,
+                                                               const SurfaceInteraction& si,
+                                                               const Material& m, bool frontOnly,
+                                                               int depth, double weight,
+                                                               PathContext& ctx) const {
+    // Area lights' surfaces emit from their front face only (shadeSpecial's case).
+    Vec3 color = frontOnly && !(dot(ray.dir, si.ng) < 0) ? m.ambient : m.ambient + m.emission;
     directLight(si, -ray.dir, m, color, ctx);
     if (depth < scene_.maxDepth) {
         if (m.transmissive() || m.roughness > 0) {
@@ -197,6 +196,24 @@ Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double 
         }
     }
     return finiteRadiance(color);
+}
+
+Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double weight,
+                              PathContext& ctx) const {
+    if (!hit) return scene_.background.eval(ray.dir);
+    SurfaceInteraction si = scene_.primitives.interaction(ray, *hit);
+    const Material& m = scene_.materials[si.material];
+    if (m.texture != 0 || m.frontEmissionOnly) return shadeSpecial(ray, si, m, depth, weight, ctx);
+    return shadeHit(ray, si, m, false, depth, weight, ctx);
+}
+
+Vec3 WhittedIntegrator::shadeSpecial(const Ray& ray, const SurfaceInteraction& si,
+                                     const Material& m, int depth, double weight,
+                                     PathContext& ctx) const {
+    if (m.texture == 0) return shadeHit(ray, si, m, m.frontEmissionOnly, depth, weight, ctx);
+    Material textured = m;
+    textured.diffuse = scene_.texture(m.texture).eval(si.hasUv, si.u, si.v, si.p, m.diffuse);
+    return shadeHit(ray, si, textured, m.frontEmissionOnly, depth, weight, ctx);
 }
 
 }  // namespace glint

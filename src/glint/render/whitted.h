@@ -72,6 +72,16 @@ class WhittedIntegrator {
     /// `weight`: the largest channel of the product of ray weights down to this ray, for
     /// cutting off negligible branches at transmissive surfaces.
     Vec3 shade(const Ray& ray, const Hit* hit, int depth, double weight, PathContext& ctx) const;
+    /// shade() for a hit `si` on material `m`, both known; `frontOnly`: m emits from the
+    /// front face only.
+    Vec3 shadeHit(const Ray& ray, const SurfaceInteraction& si, const Material& m, bool frontOnly,
+                  int depth, double weight, PathContext& ctx) const;
+    /// shadeHit() for materials with a texture (its value at the hit replaces the diffuse
+    /// colour) or with front-only emission: out of line, so that the course's materials pay
+    /// one test for both.
+    [[gnu::noinline]] Vec3 shadeSpecial(const Ray& ray, const SurfaceInteraction& si,
+                                        const Material& m, int depth, double weight,
+                                        PathContext& ctx) const;
     /// Adds every light's contribution at the hit to `color`.
     void directLight(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
                      Vec3& color, PathContext& ctx) const;

@@ -1,6 +1,8 @@
 #pragma once
 /// The course's material: OpenGL-style terms plus the mirror weight (= specular), and Glint's
-/// extensions: transmission with refraction, and a rough (GGX) specular lobe.
+/// extensions: transmission with refraction, a rough (GGX) specular lobe and a diffuse texture.
+
+#include <cstdint>
 
 #include "glint/math/vec3.h"
 
@@ -21,6 +23,8 @@ struct Material {
     double roughness = 0;
     /// Emission only towards the front face (the geometry of area lights).
     bool frontEmissionOnly = false;
+    /// Id of the texture whose value replaces `diffuse` at each hit (Scene::texture); 0: none.
+    uint32_t texture = 0;
 
     bool transmissive() const { return !(transmission == Vec3(0)); }
 

@@ -9,17 +9,21 @@ uint32_t Scene::addMaterial(const Material& m) {
     return static_cast<uint32_t>(materials.size() - 1);
 }
 
-size_t Scene::estimateBytes(size_t triangles, size_t spheres, size_t shapes, size_t normals) {
+size_t Scene::estimateBytes(size_t triangles, size_t spheres, size_t shapes, size_t normals,
+                            size_t uvs) {
     // Measured BVH sizes are 57 bytes per triangle; 80 allows for poorly filled leaf blocks.
     constexpr size_t kBvhPerTriangle = 80, kBvhPerShape = 96;
     constexpr size_t kBuildPerPrimitive = 48;  // bounds, ids and temporary nodes
     size_t perTriangle = sizeof(Triangle) + sizeof(uint32_t) + kBvhPerTriangle + kBuildPerPrimitive;
     size_t perNormals = sizeof(std::array<Vec3, 3>) + sizeof(uint32_t);
+    // Triangles with texture coordinates also need the shading-normal index (kFlat).
+    size_t perUvs = sizeof(std::array<TexCoord, 3>) + 2 * sizeof(uint32_t);
     size_t perSphere =
         sizeof(Sphere) + sizeof(ShapeSearch) + sizeof(uint32_t) + kBvhPerShape + kBuildPerPrimitive;
     size_t perShape =
         sizeof(Shape) + sizeof(ShapeSearch) + sizeof(uint32_t) + kBvhPerShape + kBuildPerPrimitive;
-    return triangles * perTriangle + normals * perNormals + spheres * perSphere + shapes * perShape;
+    return triangles * perTriangle + normals * perNormals + uvs * perUvs + spheres * perSphere +
+           shapes * perShape;
 }
 
 void Scene::prepare() {

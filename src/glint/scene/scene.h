@@ -11,6 +11,7 @@
 #include "glint/scene/filter_spec.h"
 #include "glint/scene/light.h"
 #include "glint/scene/material.h"
+#include "glint/scene/texture.h"
 
 namespace glint {
 
@@ -54,18 +55,27 @@ class Scene {
     /// 0: not given (see areaLightGrid()).
     int lightSamples = 0;
     std::vector<Material> materials;
+    /// Textures named by Material::texture: id k is textures[k - 1].
+    std::vector<Texture> textures;
     Primitives primitives;
 
     /// Bytes a scene of this many triangles, spheres and other shapes (boxes, cylinders,
     /// cones, disks, planes) needs at most once prepared: the primitives, the BVH (allowing
     /// for partly filled leaf blocks) and the build's temporary arrays. `normals` of the
     /// triangles carry shading normals. Loaders compare it with the memory available before
-    /// allocating anything.
+    /// allocating anything. `uvs` of the triangles carry texture coordinates.
     static size_t estimateBytes(size_t triangles, size_t spheres, size_t shapes = 0,
-                                size_t normals = 0);
+                                size_t normals = 0, size_t uvs = 0);
 
     /// Id of `m`, reusing the last material when it is equal (materials change rarely).
     uint32_t addMaterial(const Material& m);
+    /// Id (from 1) of a new texture for Material::texture.
+    uint32_t addTexture(Texture t) {
+        textures.push_back(std::move(t));
+        return static_cast<uint32_t>(textures.size());
+    }
+    /// The texture of id `id` (1 to textures.size()).
+    const Texture& texture(uint32_t id) const { return textures[id - 1]; }
 
     /// Builds the acceleration structure and derived settings. Call once geometry is final.
     void prepare();

@@ -1,6 +1,7 @@
-// Every input the fuzzer starts from (fuzz/corpus/hw3) and every input it ever found a problem
-// with (fuzz/regressions/hw3) goes through what the fuzz harness does, in every normal build:
-// it parses or fails with a SceneError, and when it parses it renders with finite pixels.
+// Every input the fuzzers start from (fuzz/corpus/hw3, fuzz/corpus/obj) and every input they
+// ever found a problem with (fuzz/regressions/hw3, fuzz/regressions/obj) goes through what the fuzz
+// harness does, in every normal build: it parses or fails with a SceneError, and when it parses it
+// renders with finite pixels.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,8 @@
 #include <vector>
 
 #include "glint/io/hw3_loader.h"
+#include "glint/io/model_scene.h"
+#include "glint/io/obj_loader.h"
 #include "glint/render/renderer.h"
 
 namespace glint {
@@ -34,7 +37,9 @@ bool parsesAndRendersFinite(const std::string& text, const std::string& name) {
     std::vector<Diagnostic> warnings;
     std::unique_ptr<Scene> scene;
     try {
-        scene = parseHw3Scene(text, name, warnings);
+        LoadLimits limits;
+        limits.readFiles = false;  // as the harness: no mesh or texture file is read
+        scene = parseHw3Scene(text, name, warnings, limits);
     } catch (const SceneError&) {
         return false;
     }
@@ -71,6 +76,58 @@ TEST(FuzzInputs, EveryRegressionFromFuzzingStaysFixed) {
     auto files = inputs("regressions/hw3");
     if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
     for (const auto& f : files) parsesAndRendersFinite(read(f), f.filename().string());
+}
+
+/// What fuzz/obj_fuzzer.cpp does with one input: returns false for a clean SceneError; a mesh
+/// that loads is placed, framed and rendered tiny, and every pixel must be finite.
+bool objLoadsAndRendersFinite(const std::string& input, const std::string& name) {
+    const std::string marker = "\n#mtl\n";
+    std::string objText = input, mtl;
+    ObjOptions options;
+    options.limits.readFiles = false;
+    if (size_t at = input.find(marker); at != std::string::npos) {
+        objText = input.substr(0, at + 1);
+        mtl = input.substr(at + marker.size());
+        options.mtlText = &mtl;
+    }
+    std::vector<Diagnostic> warnings;
+    MeshData mesh;
+    try {
+        mesh = parseObj(objText, name, warnings, options);
+    } catch (const SceneError&) {
+        return false;
+    }
+    Scene scene;
+    scene.width = scene.height = 8;
+    scene.maxDepth = 2;
+    try {
+        addMesh(scene, mesh, Transform(), scene.addMaterial(Material{}));
+        frameModel(scene, name);
+    } catch (const SceneError&) {
+        return true;
+    }
+    scene.prepare();
+    RenderOptions o;
+    o.threads = 1;
+    Film f = render(scene, o).film;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x)
+            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
+    return true;
+}
+
+TEST(FuzzInputs, ObjSeedCorpusLoadsOrFailsCleanlyAndRendersFinite) {
+    auto files = inputs("corpus/obj");
+    ASSERT_GE(files.size(), 10u) << "the OBJ seed corpus is missing";
+    int loaded = 0;
+    for (const auto& f : files) loaded += objLoadsAndRendersFinite(read(f), f.filename().string());
+    EXPECT_GE(loaded, 8);
+}
+
+TEST(FuzzInputs, EveryObjRegressionFromFuzzingStaysFixed) {
+    auto files = inputs("regressions/obj");
+    if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
+    for (const auto& f : files) objLoadsAndRendersFinite(read(f), f.filename().string());
 }
 
 }  // namespace

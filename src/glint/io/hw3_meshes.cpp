@@ -1,0 +1,106 @@
+// Glint's mesh and texture commands: `mesh`, `texture`, `checker` (docs/scene-format.md,
+// "Meshes" and "Textures").
+
+#include <filesystem>
+#include <string>
+
+#include "glint/io/hw3_parser.h"
+#include "glint/io/obj_loader.h"
+#include "glint/io/texture_io.h"
+
+namespace glint::hw3 {
+
+std::string Parser::scenePath(std::string_view name) const {
+    std::filesystem::path p(name);
+    if (p.is_absolute()) return p.string();
+    return (std::filesystem::path(file_).parent_path() / p).string();
+}
+
+void Parser::cmdMesh() {
+    const Transform& t = transform();  // a singular transform is reported first
+    uint32_t material = this->material();
+    if (!limits_.readFiles) fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
+    std::string path = scenePath(tok_[1].text);
+    auto it = meshes_.find(path);
+    if (it == meshes_.end()) {
+        if (std::string problem = inputFileProblem(path); !problem.empty())
+            fail(1, "cannot read mesh " + quoted(1) + " (" + path + "): " + problem);
+        ObjOptions options;
+        options.limits = limits_;
+        // Errors inside the mesh file name that file, its line and column.
+        it = meshes_.emplace(path, loadObj(path, warnings_, options)).first;
+    }
+    MeshPlacement placed;
+    try {
+        placed = addMesh(*scene_, it->second, t, material);
+    } catch (const SceneError& e) {
+        fail(0, "mesh " + quoted(1) + ": " + e.diagnostic().message);
+    }
+    if (placed.degenerate > 0 && !warnedMeshDegenerate_) {
+        warn(1, "mesh " + quoted(1) + ": " + std::to_string(placed.degenerate) +
+                    " triangles have zero area once placed and are skipped (reported once)");
+        warnedMeshDegenerate_ = true;
+    }
+}
+
+void Parser::cmdTexture() {
+    if (tok_[1].text == "none") {
+        if (ntok_ > 2) fail(2, "'texture none' takes no other argument");
+        material_.texture = 0;
+        materialChanged_ = true;
+        return;
+    }
+    Texture texture;
+    texture.kind = Texture::Kind::Image;
+    if (ntok_ == 3) {
+        if (tok_[2].text == "clamp")
+            texture.wrap = TextureWrap::Clamp;
+        else if (tok_[2].text != "repeat")
+            fail(2, "unknown texture wrap " + quoted(2) + " (repeat or clamp)");
+    }
+    if (!limits_.readFiles) fail(1, "texture " + quoted(1) + " is not read: reading files is off");
+    std::string path = scenePath(tok_[1].text);
+    auto it = images_.find(path);
+    if (it == images_.end()) {
+        try {
+            it = images_.emplace(path, loadTextureImage(path, true, limits_)).first;
+        } catch (const RenderError& e) {
+            fail(1, e.what());
+        }
+    }
+    texture.image = it->second;
+    material_.texture = scene_->addTexture(std::move(texture));
+    materialChanged_ = true;
+    imageTextures_[material_.texture] = loc(tok_[1].column);
+}
+
+void Parser::cmdChecker() {
+    Texture texture;
+    texture.kind = Texture::Kind::Checker;
+    texture.a = colour(1);
+    texture.b = colour(4);
+    texture.scale = real(7);
+    if (!(texture.scale > 0)) fail(7, "checker scale must be positive, got " + quoted(7));
+    material_.texture = scene_->addTexture(std::move(texture));
+    materialChanged_ = true;
+}
+
+void Parser::checkTextureCoordinates() {
+    // Surfaces without coordinates show an image texture's material colour instead.
+    const Primitives& prims = scene_->primitives;
+    std::map<uint32_t, size_t> without;  // texture id -> surfaces without coordinates
+    for (uint32_t id = 0; id < prims.size(); ++id) {
+        uint32_t texture = scene_->materials[prims.materialOf(id)].texture;
+        if (texture != 0 && imageTextures_.count(texture) && !prims.hasTexCoords(id))
+            ++without[texture];
+    }
+    for (const auto& [texture, count] : without)
+        warnings_.push_back(
+            {imageTextures_[texture],
+             "this image texture needs texture coordinates, which only meshes with 'vt' "
+             "statements have: " +
+                 std::to_string(count) + (count == 1 ? " surface shows" : " surfaces show") +
+                 " the diffuse colour instead"});
+}
+
+}  // namespace glint::hw3

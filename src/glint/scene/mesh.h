@@ -1,0 +1,67 @@
+#pragma once
+/// Triangle meshes as a file describes them (io/obj_loader.h reads OBJ), independent of where
+/// they are placed, and how one is added to a scene under a transform. Loading and placing are
+/// separate steps so that one mesh can be placed several times.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "glint/core/huge_pages.h"
+#include "glint/math/transform.h"
+#include "glint/scene/scene.h"
+
+namespace glint {
+
+/// A material a mesh file defines (an MTL entry), already in Glint's model.
+struct MeshMaterial {
+    std::string name;
+    Material material;  ///< Its `texture` is 0; the texture, if any, is `texture`.
+    std::optional<Texture> texture;
+};
+
+/// A triangle mesh in its own (object) space.
+struct MeshData {
+    static constexpr uint32_t kNone = UINT32_MAX;
+
+    /// One corner of a triangle: indices into positions, normals and uvs (kNone: absent).
+    /// A triangle has normals at all three corners or at none, and likewise uvs.
+    struct Corner {
+        uint32_t position = 0, normal = kNone, uv = kNone;
+    };
+    struct Triangle {
+        std::array<Corner, 3> corners;  ///< Counter-clockwise seen from the front.
+        uint32_t material = kNone;      ///< Index into `materials`; kNone: the placing default.
+    };
+
+    std::string name;                 ///< The file it came from, for messages.
+    LargeVector<Vec3f> positions;     ///< Object space.
+    LargeVector<Vec3f> normals;       ///< Object space, unit length or zero.
+    LargeVector<TexCoord> uvs;        ///< (u, v): u to the right, v up the image.
+    LargeVector<Triangle> triangles;  ///< Polygons are already split into triangles.
+    std::vector<MeshMaterial> materials;
+    size_t normalTriangles = 0;  ///< Triangles with vertex normals.
+    size_t uvTriangles = 0;      ///< Triangles with texture coordinates.
+};
+
+/// What addMesh() did.
+struct MeshPlacement {
+    size_t added = 0;       ///< Triangles added.
+    size_t degenerate = 0;  ///< Triangles skipped for zero area once placed.
+};
+
+/// Bytes that placing a mesh of this size takes beyond the scene's own estimate
+/// (Scene::estimateBytes): the transformed vertices and normals, while it runs.
+size_t meshPlacementBytes(size_t positions, size_t normals);
+
+/// Adds `mesh`'s triangles to `scene`, placed by `worldFromObject`: positions as points,
+/// normals by the inverse transpose, renormalised (zero stays zero), texture coordinates as
+/// they are. Triangles without a mesh material take `defaultMaterial` (an id in `scene`); the
+/// mesh's materials and textures are added to the scene. Throws SceneError, naming the mesh
+/// file and the vertex, if a placed vertex lies beyond the coordinate range (kMaxCoordinate).
+MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& worldFromObject,
+                      uint32_t defaultMaterial);
+
+}  // namespace glint

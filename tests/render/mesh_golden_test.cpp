@@ -1,0 +1,40 @@
+// Golden image of meshes and textures: tests/data/meshes/textured-scene.test (OBJ meshes with
+// an MTL texture that repeats, a scene texture that clamps, vertex normals and a checker
+// floor) rendered at its 160x90 and compared with the image Glint made when the feature was
+// accepted (tests/data/meshes/textured-scene.png, regenerated only deliberately with
+// tests/data/meshes/regenerate.sh). Renders are deterministic; a few pixels one level off are
+// tolerated for floating-point differences on another CPU.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "glint/io/hw3_loader.h"
+#include "glint/io/image_io.h"
+#include "glint/render/image_diff.h"
+#include "glint/render/renderer.h"
+
+namespace glint {
+namespace {
+
+TEST(MeshGolden, TexturedSceneMatchesItsAcceptedImage) {
+    const std::string dir = std::string(GLINT_TEST_DATA_DIR) + "/meshes/";
+    std::vector<Diagnostic> warnings;
+    auto scene = loadHw3Scene(dir + "textured-scene.test", warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front().format("warning");
+    scene->prepare();
+    EXPECT_EQ(scene->textures.size(), 3u);  // the floor's checker and two images
+    Image8 ours = toImage8(render(*scene, RenderOptions{}).film);
+    Image8 reference = readImage8(dir + "textured-scene.png", 3);
+    ASSERT_EQ(ours.width, reference.width);
+    ASSERT_EQ(ours.height, reference.height);
+    long long hot1 = countHotPixels(ours, reference, 1);
+    long long hot0 = countHotPixels(ours, reference, 0);
+    std::printf("textured-scene: pixels differing by more than 0 / 1 levels: %lld / %lld\n", hot0,
+                hot1);
+    EXPECT_LE(hot1, 5) << "the image changed";
+    EXPECT_LE(hot0, ours.width * ours.height / 100);
+}
+
+}  // namespace
+}  // namespace glint
