@@ -2,6 +2,11 @@
 // Small helpers shared by the unit tests.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <set>
+#include <string>
 
 #include "glint/math/vec3.h"
 #include "glint/scene/material.h"
@@ -25,5 +30,29 @@ inline Material makeMaterial(const Vec3& ambient, const Vec3& diffuse = {},
     m.shininess = shininess;
     return m;
 }
+
+/// A fixture giving each test its own empty directory, removed afterwards.
+class TempDirTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = std::filesystem::temp_directory_path() /
+               ("glint-" + std::string(info->test_suite_name()) + "-" + std::to_string(::getpid()) +
+                "-" + info->name());
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::set<std::string> entries() const {
+        std::set<std::string> names;
+        for (const auto& e : std::filesystem::directory_iterator(dir_))
+            names.insert(e.path().filename().string());
+        return names;
+    }
+
+    std::filesystem::path dir_;
+};
 
 }  // namespace glint::test

@@ -20,17 +20,7 @@ Image8 toImage8(const Film& film, const DisplayTransform& display) {
     if (display.isIdentity()) return toImage8(film);
     const double scale = display.scale();
     auto byte = display.srgb ? toByteSrgb : toByte;
-    Image8 img{film.width(), film.height(), 3, {}};
-    img.data.resize(static_cast<size_t>(img.width) * img.height * 3);
-    size_t i = 0;
-    for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x) {
-            const Vec3& c = film.at(x, y);
-            img.data[i++] = byte(scale * c.x);
-            img.data[i++] = byte(scale * c.y);
-            img.data[i++] = byte(scale * c.z);
-        }
-    return img;
+    return toImage8With(film, [&](double c) { return byte(scale * c); });
 }
 
 }  // namespace glint

@@ -43,6 +43,23 @@ inline uint8_t toByte(double c) {
     return static_cast<uint8_t>(c * 255);
 }
 
+/// The film as 8-bit RGB, each channel converted by `byte(c)`.
+template <typename ToByte>
+Image8 toImage8With(const Film& film, ToByte byte) {
+    Image8 img{film.width(), film.height(), 3, {}};
+    img.data.resize(static_cast<size_t>(img.width) * img.height * 3);
+    size_t i = 0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const Vec3& c = film.at(x, y);
+            img.data[i++] = byte(c.x);
+            img.data[i++] = byte(c.y);
+            img.data[i++] = byte(c.z);
+        }
+    return img;
+}
+
+/// The course's conversion of the whole film (toByte per channel).
 Image8 toImage8(const Film& film);
 
 }  // namespace glint

@@ -25,6 +25,7 @@
 
 #include "glint/core/error.h"
 #include "glint/io/image_io.h"
+#include "unit/test_support.h"
 
 namespace glint {
 namespace {
@@ -73,27 +74,7 @@ Film rampFilm(int w, int h) {
     return f;
 }
 
-class Exr : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("glint-exr-" + std::to_string(::getpid()) + "-" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::set<std::string> entries() const {
-        std::set<std::string> names;
-        for (const auto& e : fs::directory_iterator(dir_))
-            names.insert(e.path().filename().string());
-        return names;
-    }
-
-    fs::path dir_;
-};
+class Exr : public test::TempDirTest {};
 
 TEST(ExrFormat, ExtensionIsRecognisedIgnoringCase) {
     EXPECT_EQ(imageFormatFor("a.exr"), ImageFormat::Exr);

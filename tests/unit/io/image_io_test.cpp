@@ -16,6 +16,7 @@
 
 #include "glint/core/error.h"
 #include "glint/io/atomic_file.h"
+#include "unit/test_support.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define GLINT_TEST_ASAN 1
@@ -64,27 +65,7 @@ void appendFloat(std::string& out, float f, bool bigEndian) {
 }
 
 /// Each test gets its own empty directory, removed afterwards.
-class ImageIo : public ::testing::Test {
-  protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("glint-image-" + std::to_string(::getpid()) + "-" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
-    std::set<std::string> entries() const {
-        std::set<std::string> names;
-        for (const auto& e : fs::directory_iterator(dir_))
-            names.insert(e.path().filename().string());
-        return names;
-    }
-
-    fs::path dir_;
-};
+class ImageIo : public test::TempDirTest {};
 
 void expectSameImage(const Image8& a, const Image8& b) {
     EXPECT_EQ(a.width, b.width);
