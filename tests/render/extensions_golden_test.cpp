@@ -39,8 +39,8 @@ TEST_P(ExtensionScene, MatchesItsAcceptedImage) {
     ASSERT_EQ(ours.height, reference.height);
     long long hot1 = countHotPixels(ours, reference, 1);
     long long hot0 = countHotPixels(ours, reference, 0);
-    std::printf("%s: pixels differing by more than 0 / 1 levels: %lld / %lld\n", name.c_str(),
-                hot0, hot1);
+    std::printf("%s: pixels differing by more than 0 / 1 levels: %lld / %lld\n", name.c_str(), hot0,
+                hot1);
     EXPECT_LE(hot1, 5) << "the image changed";
     EXPECT_LE(hot0, kWidth * kHeight / 100);
 }

@@ -31,10 +31,7 @@ constexpr uint64_t mixBits(uint64_t v) {
 class PixelSampler {
   public:
     PixelSampler(int spp, uint64_t seed, const FilterSpec& filter = {})
-        : spp_(spp < 1 ? 1 : spp),
-          seed_(seed),
-          pixelBox_(filter == FilterSpec{}),
-          filter_(filter) {
+        : spp_(spp < 1 ? 1 : spp), seed_(seed), pixelBox_(filter == FilterSpec{}), filter_(filter) {
         cols_ = 1;
         for (int a = 1; a * a <= spp_; ++a)
             if (spp_ % a == 0) cols_ = a;

@@ -15,8 +15,8 @@ constexpr double kMinBranchWeight = 1e-3;
 
 /// The GGX lobe's share of lightTerm(), scaled by pi like the course's diffuse term (which is
 /// kd N.L without the 1/pi of a Lambertian BRDF): pi D G2 / (4 N.V).
-[[gnu::noinline]] double ggxSpecular(const SurfaceInteraction& si, const Vec3& wo,
-                                     const Vec3& wi, double roughness) {
+[[gnu::noinline]] double ggxSpecular(const SurfaceInteraction& si, const Vec3& wo, const Vec3& wi,
+                                     double roughness) {
     double nDotV = dot(si.n, wo);
     Vec3 sum = wi + wo;
     double len = length(sum);
@@ -94,8 +94,10 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
     return Vec3(0);
 }
 
-[[gnu::always_inline]] inline void WhittedIntegrator::directLight(const SurfaceInteraction& si, const Vec3& wo,
-                                    const Material& m, Vec3& color, PathContext& ctx) const {
+[[gnu::always_inline]] inline void WhittedIntegrator::directLight(const SurfaceInteraction& si,
+                                                                  const Vec3& wo, const Material& m,
+                                                                  Vec3& color,
+                                                                  PathContext& ctx) const {
     for (const Light& light : scene_.lights) {
         if (!light.isArea()) {
             LightSample ls = light.sample(si.p);
@@ -104,8 +106,7 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
             if (!(nDotL > 0)) continue;
             if (!anyTransmissive_) {  // the course's case, kept lean
                 ctx.counts.shadow++;
-                if (scene_.bvh().occluded(
-                        spawnRay(si.p, ls.wi, scene_.spawnOffset(), ls.distance)))
+                if (scene_.bvh().occluded(spawnRay(si.p, ls.wi, scene_.spawnOffset(), ls.distance)))
                     continue;
                 color += lightTerm(si, wo, m, ls, nDotL);
                 continue;
@@ -136,9 +137,8 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
     }
 }
 
-Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si,
-                                 const Material& m, int depth, double weight,
-                                 PathContext& ctx) const {
+Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, const Material& m,
+                                 int depth, double weight, PathContext& ctx) const {
     const double offset = scene_.spawnOffset();
     if (m.transmissive()) {
         // Which side the ray arrives from follows the geometric normal (outward for closed
@@ -191,8 +191,8 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si,
         } else if (!(m.specular == Vec3(0))) {
             // The course's mirror, inline: the common case.
             Vec3 r = normalize(reflect(ray.dir, si.n));
-            color += m.specular *
-                     trace(spawnRay(si.p, r, scene_.spawnOffset()), depth + 1, weight, ctx);
+            color +=
+                m.specular * trace(spawnRay(si.p, r, scene_.spawnOffset()), depth + 1, weight, ctx);
         }
     }
     return finiteRadiance(color);

@@ -83,8 +83,8 @@ class WhittedIntegrator {
                                         const Material& m, int depth, double weight,
                                         PathContext& ctx) const;
     /// Adds every light's contribution at the hit to `color`.
-    void directLight(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
-                     Vec3& color, PathContext& ctx) const;
+    void directLight(const SurfaceInteraction& si, const Vec3& wo, const Material& m, Vec3& color,
+                     PathContext& ctx) const;
     /// Refraction (with its Fresnel-weighted reflection) or the GGX lobe's reflected ray at a
     /// hit, recursively traced. The course's mirror ray is traced inline by shade().
     Vec3 indirect(const Ray& ray, const SurfaceInteraction& si, const Material& m, int depth,

@@ -17,8 +17,7 @@ Camera::Camera(const CameraSpec& spec, int width, int height) : eye_(spec.eye) {
     tanHalfY_ = std::tan(spec.fovyDegrees * std::numbers::pi / 360);
     tanHalfX_ = tanHalfY_ * static_cast<double>(width) / static_cast<double>(height);
     apertureRadius_ = spec.apertureRadius;
-    focusDistance_ =
-        spec.focusDistance > 0 ? spec.focusDistance : length(spec.center - spec.eye);
+    focusDistance_ = spec.focusDistance > 0 ? spec.focusDistance : length(spec.center - spec.eye);
 }
 
 Ray Camera::generateRay(double x, double y) const {

@@ -32,9 +32,9 @@ struct Light {
     enum class Kind { Point, Directional, Quad };
 
     Kind kind = Kind::Point;
-    Vec3 position;   ///< Point lights; the corner of quad lights. World space.
-    Vec3 direction;  ///< Directional lights: unit vector towards the light.
-    Vec3 color;      ///< Point and directional: intensity. Quad: emitted radiance.
+    Vec3 position;              ///< Point lights; the corner of quad lights. World space.
+    Vec3 direction;             ///< Directional lights: unit vector towards the light.
+    Vec3 color;                 ///< Point and directional: intensity. Quad: emitted radiance.
     Vec3 attenuation{1, 0, 0};  ///< Constant, linear, quadratic; point lights only.
     /// Quad lights: the parallelogram position + s edge1 + t edge2, s and t in [0, 1]. It emits
     /// from its front face only, the side cross(edge1, edge2) points to.
@@ -56,7 +56,7 @@ struct Light {
         if (!(d > 0)) return {Vec3(0), 0, Vec3(0)};
         Vec3 wi = toLight / d;
         Vec3 areaNormal = cross(edge1, edge2);  // length = area
-        double cosArea = -dot(wi, areaNormal);   // area * cos(theta_light)
+        double cosArea = -dot(wi, areaNormal);  // area * cos(theta_light)
         if (!(cosArea > 0)) return {wi, d, Vec3(0)};
         return {wi, d, finiteRadiance(color * (cosArea / d2))};
     }

@@ -65,8 +65,9 @@ TEST(Hw3Extensions, QuadLightIsALightAndAnEmittingSurface) {
 }
 
 TEST(Hw3Extensions, QuadLightDoesNotDisturbTheCurrentMaterial) {
-    auto s = parseOk("diffuse 1 0 0\nsphere 0 0 0 1\nquadLight 0 5 0 1 0 0 0 0 1 1 1 1\n"
-                     "sphere 3 0 0 1\n");
+    auto s = parseOk(
+        "diffuse 1 0 0\nsphere 0 0 0 1\nquadLight 0 5 0 1 0 0 0 0 1 1 1 1\n"
+        "sphere 3 0 0 1\n");
     auto si = shoot(*s, {3, 0, 10}, {0, 0, -1});
     ASSERT_TRUE(si);
     EXPECT_EQ(s->materials.at(si->material).diffuse, Vec3(1, 0, 0));

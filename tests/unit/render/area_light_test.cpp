@@ -58,9 +58,8 @@ class QuadIrradiance : public testing::TestWithParam<Case> {};
 TEST_P(QuadIrradiance, MeanOfEstimatesIsWithinFourStandardErrorsOfTheAnalyticValue) {
     const Case& c = GetParam();
     Light l = quad(c.corner, c.e1, c.e2);
-    double exact = polygonIrradiance({c.corner, c.corner + c.e1, c.corner + c.e1 + c.e2,
-                                      c.corner + c.e2},
-                                     c.p, normalize(c.n));
+    double exact = polygonIrradiance(
+        {c.corner, c.corner + c.e1, c.corner + c.e1 + c.e2, c.corner + c.e2}, c.p, normalize(c.n));
     ASSERT_GT(exact, 0);
     Rng rng(2024);
     const int runs = 2000;
@@ -73,9 +72,10 @@ TEST_P(QuadIrradiance, MeanOfEstimatesIsWithinFourStandardErrorsOfTheAnalyticVal
         }
         double mean = sum / runs;
         double se = std::sqrt(std::max(0.0, sum2 / runs - mean * mean) / runs);
-        std::printf("%s, %dx%d grid: exact %.6f, mean of %d estimates %.6f, error %+.2e (%.2f "
-                    "standard errors of %.2e)\n",
-                    c.name, grid, grid, exact, runs, mean, mean - exact, (mean - exact) / se, se);
+        std::printf(
+            "%s, %dx%d grid: exact %.6f, mean of %d estimates %.6f, error %+.2e (%.2f "
+            "standard errors of %.2e)\n",
+            c.name, grid, grid, exact, runs, mean, mean - exact, (mean - exact) / se, se);
         EXPECT_NEAR(mean, exact, 4 * se + 1e-12)
             << c.name << ", grid " << grid << ": exact " << exact << ", standard error " << se;
         // The 4 x 4 grid's estimates are usable ones (the 1 x 1 grid of a large, close light

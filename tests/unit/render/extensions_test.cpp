@@ -65,8 +65,7 @@ TEST(Refraction, ClearGlassLosesNoEnergyInAUniformSurrounding) {
         "size 41 41\ncamera 0 0 4 0 0 0 0 1 0 40\nmaxdepth 64\nbackground 1 1 1\n"
         "ambient 0 0 0\ntransmission 1 1 1\nior 1.5\n";
     std::string shapes[] = {
-        "sphere 0 0 0 1\n",
-        "rotate 1 1 0 30\nscale 1.2 0.7 0.9\nsphere 0 0 0 1\n",
+        "sphere 0 0 0 1\n", "rotate 1 1 0 30\nscale 1.2 0.7 0.9\nsphere 0 0 0 1\n",
         // An octahedron, faces wound counter-clockwise seen from outside.
         "vertex 1 0 0\nvertex -1 0 0\nvertex 0 1 0\nvertex 0 -1 0\nvertex 0 0 1\nvertex 0 0 -1\n"
         "tri 0 2 4\ntri 2 1 4\ntri 1 3 4\ntri 3 0 4\ntri 2 0 5\ntri 1 2 5\ntri 3 1 5\n"
@@ -94,9 +93,9 @@ TEST(Refraction, RaysEnterAndLeaveASphereBySnellsLaw) {
     // is seen through the glass with weight (1 - F)^2; anywhere else there is nothing.
     const double h = 0.5, n = 1.5;
     double ti = std::asin(h), tt = std::asin(h / n);
-    double inside = ti - tt;                                  // below horizontal, radians
-    double ex = -std::cos(ti), ey = h;                        // entry point
-    double chord = 2 * std::cos(tt);                          // chord length in a unit sphere
+    double inside = ti - tt;            // below horizontal, radians
+    double ex = -std::cos(ti), ey = h;  // entry point
+    double chord = 2 * std::cos(tt);    // chord length in a unit sphere
     double xx = ex + chord * std::cos(inside), xy = ey - chord * std::sin(inside);  // exit
     double out = 2 * inside;
     double hitY = xy - (6 - xx) * std::tan(out);
@@ -222,8 +221,8 @@ TEST(Sampling, AreaLightsCastSoftShadows) {
         if (std::abs(v - last) > 1e-3) ++levels, last = v;
     }
     EXPECT_GT(levels, 8);
-    EXPECT_EQ(f.at(0, 0).x, 0);                   // umbra at the left
-    EXPECT_GT(f.at(f.width() - 1, 0).x, 0.01);    // lit at the right
+    EXPECT_EQ(f.at(0, 0).x, 0);                 // umbra at the left
+    EXPECT_GT(f.at(f.width() - 1, 0).x, 0.01);  // lit at the right
 }
 
 }  // namespace

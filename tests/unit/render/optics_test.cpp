@@ -44,9 +44,7 @@ TEST(Refract, LeavingGlassBendsAwayFromTheNormalAndReversesEntering) {
 TEST(Refract, TotalInternalReflectionBeyondTheCriticalAngle) {
     // Glass to air: critical angle asin(1/1.5) = 41.81 degrees.
     double critical = std::asin(1 / 1.5);
-    auto at = [](double angle) {
-        return Vec3(std::sin(angle), 0, -std::cos(angle));
-    };
+    auto at = [](double angle) { return Vec3(std::sin(angle), 0, -std::cos(angle)); };
     Vec3 t;
     EXPECT_TRUE(refract(at(critical - 0.01), {0, 0, 1}, 1.5, t));
     EXPECT_FALSE(refract(at(critical + 0.01), {0, 0, 1}, 1.5, t));
@@ -125,13 +123,10 @@ TEST(Ggx, VisibleNormalsFollowTheirDistribution) {
     Ggx g{0.4};
     Vec3 wo = normalize(Vec3(0.6, 0.2, 0.5));
     double expected = hemisphereIntegral(
-        [&](const Vec3& h) {
-            return h.z * g.g1(wo) * std::max(0.0, dot(wo, h)) * g.d(h) / wo.z;
-        },
+        [&](const Vec3& h) { return h.z * g.g1(wo) * std::max(0.0, dot(wo, h)) * g.d(h) / wo.z; },
         1000);
     double mass = hemisphereIntegral(
-        [&](const Vec3& h) { return g.g1(wo) * std::max(0.0, dot(wo, h)) * g.d(h) / wo.z; },
-        1000);
+        [&](const Vec3& h) { return g.g1(wo) * std::max(0.0, dot(wo, h)) * g.d(h) / wo.z; }, 1000);
     EXPECT_NEAR(mass, 1, 0.01);
     Rng rng(7);
     const int n = 200000;
