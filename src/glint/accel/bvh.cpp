@@ -29,8 +29,8 @@ bool hitPlanes(const bvh::BvhData& d, const TraversalRay& ray, Hit& hit) {
 [[gnu::noinline]] void hitPlanes8(const bvh::BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
     for (int i = 0; i < 8; ++i) {
         if (!(rays.active >> i & 1)) continue;
-        Hit h{hits.t[i], hits.primId[i]};
-        if (hitPlanes(d, rays.rays[i], h)) hits.t[i] = h.t, hits.primId[i] = h.primId;
+        Hit h = hits[i];
+        if (hitPlanes(d, rays.rays[i], h)) hits.set(i, h);
     }
 }
 
@@ -77,7 +77,15 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
     if (isa_ == Isa::Avx2) throw std::invalid_argument("this build has no AVX2 kernels");
 #endif
     int threads = options.threads > 0 ? options.threads : hardwareThreads();
+    if (options.sharedMeshes.size() != prims.sharedMeshCount())
+        throw std::invalid_argument("a BVH is needed for every shared mesh");
     bvh::BuildSummary s = bvh::build(prims, threads, data_);
+    data_.meshes.clear();
+    for (const Bvh* mesh : options.sharedMeshes) {
+        if (mesh->isa_ != isa_)
+            throw std::invalid_argument("a shared mesh's BVH uses other kernels");
+        data_.meshes.push_back(&mesh->data_);
+    }
     for (uint32_t id = prims.boundedCount(); id < prims.size(); ++id) {
         data_.planes.push_back(prims.planeSearch(id));
         data_.planeIds.push_back(id);

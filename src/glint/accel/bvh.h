@@ -7,6 +7,7 @@
 /// Layout: bvh_layout.h; build: bvh_build.cpp; kernels: bvh_isa_*.cpp, bvh_traverse.inl.
 
 #include <cstdint>
+#include <vector>
 
 #include "glint/accel/bvh_layout.h"
 #include "glint/geometry/primitives.h"
@@ -16,9 +17,15 @@ namespace glint {
 /// Instruction sets the traversal kernels exist for.
 enum class Isa { Auto, Portable, Avx2 };
 
+class Bvh;
+
 struct BvhBuildOptions {
     int threads = 0;      ///< Build threads; 0 means all hardware threads.
     Isa isa = Isa::Auto;  ///< Kernels to traverse with; Auto: the best this CPU runs.
+    /// The BVHs of the primitives' shared meshes, in their order (Primitives::sharedMesh):
+    /// instances are searched through them. Each must use the same kernels and outlive this
+    /// BVH.
+    std::vector<const Bvh*> sharedMeshes = {};
 };
 
 struct BvhStats {

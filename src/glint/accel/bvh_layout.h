@@ -6,7 +6,8 @@
 /// four triangles, vertex coordinates again stored per component and per lane, or a short
 /// run of shapes (spheres, boxes, cylinders, cones, disks: their float search records).
 /// Everything is in flat arrays in depth-first order; children are 32-bit references.
-/// Planes are unbounded: they are not in the tree but in a list beside it.
+/// Planes are unbounded: they are not in the tree but in a list beside it. Instances of shared
+/// meshes are shape records whose test searches the mesh's own tree (BvhData::meshes).
 
 #include <cstddef>
 #include <cstdint>
@@ -84,6 +85,9 @@ struct BvhData {
     /// Unbounded primitives, tested beside the tree by Bvh (the kernels never see them).
     std::vector<PlaneSearch> planes;
     std::vector<uint32_t> planeIds;
+    /// The trees of the shared meshes that instance records name (ShapeSearch::mesh()); owned
+    /// by their own Bvh objects, traversed with the same kernels.
+    std::vector<const BvhData*> meshes;
 
     size_t bytes() const {
         return nodes.size() * sizeof(Node8) + tris.size() * sizeof(Tri4) +

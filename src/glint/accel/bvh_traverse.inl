@@ -21,6 +21,28 @@ struct StackEntry {
 };
 constexpr int kStackSize = 7 * static_cast<int>(kMaxDepth) + 1;
 
+template <bool AnyHit>
+bool traverse(const BvhData& d, const TraversalRay& ray, Hit& hit);
+
+/// Instance record `i`: the ray mapped into the mesh's space (its direction not renormalised,
+/// so t is the same) searches the mesh's tree. Closest hit: updates `hit` by the closerHit
+/// rule with the instance's id, the mesh's primitive in subId.
+template <bool AnyHit>
+bool instanceHits(const BvhData& d, uint32_t i, const TraversalRay& ray, Hit& hit) {
+    const ShapeSearch& s = d.shapes[i];
+    Vec3f o, dir;
+    s.map(ray, o, dir);
+    // Up to and including the best hit so far: a tie goes to the lower id (closerHit below).
+    float tMax = hit.t < ray.tMax ? std::nextafter(hit.t, ray.tMax) : ray.tMax;
+    Hit sub;
+    if (!traverse<AnyHit>(*d.meshes[s.mesh()], TraversalRay(o, dir, ray.tMin, tMax), sub))
+        return false;
+    if constexpr (AnyHit) return true;
+    if (!closerHit(sub.t, d.shapeIds[i], hit)) return false;
+    hit = {sub.t, d.shapeIds[i], sub.primId};
+    return true;
+}
+
 /// A leaf of shapes that are not all spheres: each record is tested by its kind. Out of line
 /// and cold, so that the sphere and triangle paths of the traversal loop keep their registers
 /// (measured: inlined, or as a plain call, it cost sphere scenes 1-2% more instructions).
@@ -29,6 +51,12 @@ template <bool AnyHit>
                                                const TraversalRay& ray, Hit& hit) {
     bool found = false;
     for (uint32_t i = run.first; i < run.first + run.count; ++i) {
+        if (d.shapes[i].kind == ShapeKind::Instance) {
+            if (!instanceHits<AnyHit>(d, i, ray, hit)) continue;
+            if constexpr (AnyHit) return true;
+            found = true;
+            continue;
+        }
         float t;
         if (!intersectShape(d.shapes[i], ray, t)) continue;
         if constexpr (AnyHit) return true;
@@ -189,11 +217,19 @@ inline void packetSpheres(const BvhData& d, uint32_t first, uint32_t count, cons
 }
 
 /// The shapes of a shape run against every active ray of a packet, each by its kind. Out of
-/// line and cold, like shapeRunHits.
+/// line and cold, like shapeRunHits. An instance hit sets the lane's subId (read only while
+/// the lane's best id is that instance).
 [[gnu::noinline, gnu::cold]] void packetShapeRun(const BvhData& d, ShapeRun run, const Packet& p,
-                                                 float* bestT, uint32_t* bestId) {
+                                                 float* bestT, uint32_t* bestId,
+                                                 uint32_t* subId) {
     for (uint32_t i = run.first; i < run.first + run.count; ++i)
         for (int lane = 0; lane < 8; ++lane) {
+            if (d.shapes[i].kind == ShapeKind::Instance) {
+                Hit best{bestT[lane], bestId[lane], subId[lane]};
+                if ((p.active >> lane & 1) && instanceHits<false>(d, i, p.rays[lane], best))
+                    bestT[lane] = best.t, bestId[lane] = best.primId, subId[lane] = best.subId;
+                continue;
+            }
             float t;
             if (!(p.active >> lane & 1) || !intersectShape(d.shapes[i], p.rays[lane], t)) continue;
             Hit best{bestT[lane], bestId[lane]};
@@ -202,10 +238,11 @@ inline void packetSpheres(const BvhData& d, uint32_t first, uint32_t count, cons
 }
 
 inline void packetLeaf(const BvhData& d, NodeRef ref, const Packet& p,
-                       const typename Isa::PacketLanes& lanes, float* bestT, uint32_t* bestId) {
+                       const typename Isa::PacketLanes& lanes, float* bestT, uint32_t* bestId,
+                       uint32_t* subId) {
     uint32_t first = leafFirst(ref), count = leafCount(ref);
     if (isSphereLeaf(ref)) return packetSpheres(d, first, count, p, bestT, bestId);
-    if (count == 0) return packetShapeRun(d, d.shapeRuns[first], p, bestT, bestId);
+    if (count == 0) return packetShapeRun(d, d.shapeRuns[first], p, bestT, bestId, subId);
     for (uint32_t b = first; b < first + count; ++b) {
         if (p.sameFrame) {
             Isa::packetTriangles(d.tris[b], lanes, bestT, bestId);
@@ -232,8 +269,8 @@ inline void traversePacket(const BvhData& d, const RayPacket8& rays, HitPacket8&
     if (!p.coherent) {
         for (int i = 0; i < 8; ++i) {
             if (!(p.active >> i & 1)) continue;
-            Hit h{hits.t[i], hits.primId[i]};
-            if (traverse<false>(d, p.rays[i], h)) hits.t[i] = h.t, hits.primId[i] = h.primId;
+            Hit h = hits[i];
+            if (traverse<false>(d, p.rays[i], h)) hits.set(i, h);
         }
         return;
     }
@@ -266,7 +303,7 @@ inline void traversePacket(const BvhData& d, const RayPacket8& rays, HitPacket8&
             ref = orderChildren(n, first, mask, dist, stack, sp);
         }
         if (reachedLeaf) {
-            packetLeaf(d, ref, p, lanes, bestT, bestId);
+            packetLeaf(d, ref, p, lanes, bestT, bestId, hits.subId);
             limit = packetLimit(p, bestT);
         }
         for (;;) {

@@ -60,6 +60,9 @@ struct TraversalRay {
 struct Hit {
     float t = std::numeric_limits<float>::infinity();
     uint32_t primId = 0;  ///< Index into the scene's primitives.
+    /// When `primId` is an instance (a placed shared mesh): the mesh's own primitive that was
+    /// hit. Meaningless otherwise.
+    uint32_t subId = 0;
 };
 
 /// Whether a candidate hit (t, id) beats `best`: nearer, or as near with a lower id. The tie
@@ -81,11 +84,14 @@ struct RayPacket8 {
 struct alignas(32) HitPacket8 {
     float t[8];
     uint32_t primId[8];
+    uint32_t subId[8];  ///< As Hit::subId.
 
     HitPacket8() {
-        for (int i = 0; i < 8; ++i) t[i] = std::numeric_limits<float>::infinity(), primId[i] = 0;
+        for (int i = 0; i < 8; ++i)
+            t[i] = std::numeric_limits<float>::infinity(), primId[i] = 0, subId[i] = 0;
     }
-    Hit operator[](int lane) const { return {t[lane], primId[lane]}; }
+    Hit operator[](int lane) const { return {t[lane], primId[lane], subId[lane]}; }
+    void set(int lane, const Hit& h) { t[lane] = h.t, primId[lane] = h.primId, subId[lane] = h.subId; }
 };
 
 }  // namespace glint

@@ -52,8 +52,51 @@ void Primitives::addPlane(const Plane& plane, uint32_t material) {
     planeMaterial_.push_back(material);
 }
 
+uint32_t Primitives::addSharedMesh(const Primitives& mesh) {
+    sharedMeshes_.push_back(&mesh);
+    sharedMeshBounds_.push_back(mesh.bounds());
+    return static_cast<uint32_t>(sharedMeshes_.size() - 1);
+}
+
+void Primitives::addInstance(uint32_t mesh, const Transform& worldFromObject) {
+    const Bounds3f& ob = sharedMeshBounds_[mesh];
+    Vec3 lo(kInfinity), hi(-kInfinity);
+    if (!ob.empty())
+        for (int corner = 0; corner < 8; ++corner) {
+            Vec3 p(corner & 1 ? ob.hi.x : ob.lo.x, corner & 2 ? ob.hi.y : ob.lo.y,
+                   corner & 4 ? ob.hi.z : ob.lo.z);
+            Vec3 w = worldFromObject.point(p);
+            lo = min(lo, w);
+            hi = max(hi, w);
+        }
+    Bounds3f bounds = ob.empty() ? Bounds3f() : paddedSearchBounds(lo, hi);
+    instances_.push_back({mesh, worldFromObject, bounds,
+                          ShapeSearch::instance(worldFromObject.inverseMatrix(), mesh)});
+}
+
+size_t Primitives::instancedTriangleCount() const {
+    size_t n = 0;
+    for (const Instance& in : instances_) n += sharedMeshes_[in.mesh]->triangleCount();
+    return n;
+}
+
+bool Primitives::intersectInstance(uint32_t id, const TraversalRay& ray, Hit& hit) const {
+    const ShapeSearch& s = shapeSearch(id);
+    Vec3f o, d;
+    s.map(ray, o, d);
+    const TraversalRay local(o, d, ray.tMin, ray.tMax);
+    const Primitives& mesh = *sharedMeshes_[s.mesh()];
+    Hit sub;
+    bool found = false;
+    for (uint32_t j = 0; j < mesh.size(); ++j) found |= mesh.intersect(j, local, sub);
+    if (!found || !closerHit(sub.t, id, hit)) return false;
+    hit = {sub.t, id, sub.primId};
+    return true;
+}
+
 uint32_t Primitives::shapeCount(ShapeKind kind) const {
     if (kind == ShapeKind::Sphere) return sphereCount();
+    if (kind == ShapeKind::Instance) return instanceCount();
     uint32_t n = 0;
     for (const Shape& s : shapes_) n += s.kind == kind;
     return n;
@@ -86,7 +129,9 @@ uint32_t Primitives::materialOf(uint32_t id) const {
     if (id < sphereCount()) return sphereMaterial_[id];
     id -= sphereCount();
     if (id < shapeCount()) return shapeMaterial_[id];
-    return planeMaterial_[id - shapeCount()];
+    id -= shapeCount();
+    if (id < instanceCount()) return kMixedMaterials;
+    return planeMaterial_[id - instanceCount()];
 }
 
 Bounds3f Primitives::bounds() const {
@@ -138,7 +183,20 @@ SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const
 
 SurfaceInteraction Primitives::shapeInteraction(const Ray& ray, const Hit& hit) const {
     SurfaceInteraction si;
-    if (hit.primId < boundedCount()) {
+    if (isInstance(hit.primId)) {
+        // The mesh's own interaction for the ray in its space (the direction is not
+        // renormalised, so t is the same), mapped back to world space.
+        const Instance& in =
+            instances_[hit.primId - triangleCount() - sphereCount() - shapeCount()];
+        const Transform& w = in.worldFromObject;
+        Ray local{w.inversePoint(ray.origin), w.inverseVector(ray.dir), ray.tMin, ray.tMax};
+        si = sharedMeshes_[in.mesh]->interaction(local, Hit{hit.t, hit.subId});
+        si.p = w.point(si.p);
+        si.ng = normalize(w.normal(si.ng));
+        Vec3 n = w.normal(si.n);
+        double len = length(n);
+        si.n = len > 0 && std::isfinite(len) ? n / len : si.ng;
+    } else if (hit.primId < boundedCount()) {
         uint32_t i = hit.primId - triangleCount() - sphereCount();
         const Shape& s = shapes_[i];
         Vec3 local;

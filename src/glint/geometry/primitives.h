@@ -2,10 +2,15 @@
 /// The scene's geometry as one indexed set of primitives that accelerators are built over.
 ///
 /// Primitive ids run over triangles first, then spheres, then the other bounded shapes (boxes,
-/// cylinders, cones, disks), then planes: id < triangleCount() is a triangle, and ids below
-/// boundedCount() have finite bounds (planes do not: accelerators test them beside their
-/// tree). Each primitive carries a material id; triangles may carry per-vertex shading normals
-/// and texture coordinates, stored only for scenes that have them.
+/// cylinders, cones, disks), then instances, then planes: id < triangleCount() is a triangle,
+/// and ids below boundedCount() have finite bounds (planes do not: accelerators test them
+/// beside their tree). Each primitive carries a material id; triangles may carry per-vertex
+/// shading normals and texture coordinates, stored only for scenes that have them.
+///
+/// An instance places a shared mesh: another Primitives object of triangles in the mesh's own
+/// space, stored once however many instances place it (two-level acceleration: the scene's
+/// BVH holds the instances, each shared mesh has a BVH of its own). A hit on an instance
+/// carries the mesh's triangle in Hit::subId.
 
 #include <array>
 #include <cstdint>
@@ -16,6 +21,7 @@
 #include "glint/geometry/shapes.h"
 #include "glint/geometry/sphere.h"
 #include "glint/geometry/triangle.h"
+#include "glint/math/transform.h"
 
 namespace glint {
 
@@ -57,6 +63,12 @@ class Primitives {
     /// Adds a box, cylinder, cone or disk.
     void addShape(const Shape& shape, uint32_t material);
     void addPlane(const Plane& plane, uint32_t material);
+    /// Registers a shared mesh for instances to place: triangles only, in the mesh's own
+    /// space. `mesh` must stay where it is, unchanged, while this object lives. Returns its
+    /// index for addInstance().
+    uint32_t addSharedMesh(const Primitives& mesh);
+    /// Places shared mesh `mesh` (an index from addSharedMesh) by `worldFromObject`.
+    void addInstance(uint32_t mesh, const Transform& worldFromObject);
     /// Room for this many more triangles, spheres and other shapes, so that adding them does
     /// not reallocate.
     void reserve(size_t triangles, size_t spheres, size_t shapes = 0);
@@ -66,7 +78,8 @@ class Primitives {
     uint32_t size() const { return boundedCount() + planeCount(); }
     /// Primitives with finite bounds: triangles, spheres and shapes (ids 0 to this - 1).
     uint32_t boundedCount() const {
-        return static_cast<uint32_t>(triangles_.size() + spheres_.size() + shapes_.size());
+        return static_cast<uint32_t>(triangles_.size() + spheres_.size() + shapes_.size() +
+                                     instances_.size());
     }
     uint32_t triangleCount() const { return static_cast<uint32_t>(triangles_.size()); }
     uint32_t sphereCount() const { return static_cast<uint32_t>(spheres_.size()); }
@@ -74,20 +87,33 @@ class Primitives {
     uint32_t shapeCount() const { return static_cast<uint32_t>(shapes_.size()); }
     uint32_t shapeCount(ShapeKind kind) const;
     uint32_t planeCount() const { return static_cast<uint32_t>(planes_.size()); }
+    uint32_t instanceCount() const { return static_cast<uint32_t>(instances_.size()); }
+    uint32_t sharedMeshCount() const { return static_cast<uint32_t>(sharedMeshes_.size()); }
+    const Primitives& sharedMesh(uint32_t mesh) const { return *sharedMeshes_[mesh]; }
+    /// Whether `id` is an instance.
+    bool isInstance(uint32_t id) const {
+        return id < boundedCount() && id >= triangleCount() + sphereCount() + shapeCount();
+    }
+    /// Triangles the instances place, each counted once per instance (stored once per mesh).
+    size_t instancedTriangleCount() const;
     /// Triangles with per-corner texture coordinates.
     uint32_t texturedTriangleCount() const { return static_cast<uint32_t>(cornerUvs_.size()); }
     /// Whether primitive `id` has texture coordinates (only triangles can).
     bool hasTexCoords(uint32_t id) const {
         return id < triangleCount() && !triangleUvs_.empty() && triangleUvs_[id] != kFlat;
     }
-    /// The material id of primitive `id` (< size()).
+    /// The material id of primitive `id` (< size()); kMixedMaterials for an instance, whose
+    /// triangles have their own.
     uint32_t materialOf(uint32_t id) const;
+    static constexpr uint32_t kMixedMaterials = UINT32_MAX;
 
     /// Bounds of bounded primitive `id` (< boundedCount()).
     Bounds3f bounds(uint32_t id) const {
         if (id < triangleCount()) return triangles_[id].bounds();
         id -= triangleCount();
-        return id < sphereCount() ? spheres_[id].bounds() : shapes_[id - sphereCount()].bounds();
+        if (id < sphereCount()) return spheres_[id].bounds();
+        id -= sphereCount();
+        return id < shapeCount() ? shapes_[id].bounds() : instances_[id - shapeCount()].bounds;
     }
     /// The stored (float) vertices A, B, C of triangle `id`, world space.
     std::array<Vec3f, 3> triangleVertices(uint32_t id) const {
@@ -100,6 +126,7 @@ class Primitives {
     /// Tests primitive `id` in float; if it is hit within the ray's range and closer than
     /// `hit` (closerHit), fills `hit` and returns true.
     bool intersect(uint32_t id, const TraversalRay& ray, Hit& hit) const {
+        if (isInstance(id)) return intersectInstance(id, ray, hit);
         float t;
         bool found = id < triangleCount()  ? intersectTriangle(triangles_[id], ray, t)
                      : id < boundedCount() ? intersectShape(shapeSearch(id), ray, t)
@@ -116,7 +143,9 @@ class Primitives {
     /// The float search record of sphere or shape `id` (triangleCount() <= id < boundedCount()).
     const ShapeSearch& shapeSearch(uint32_t id) const {
         id -= triangleCount();
-        return id < sphereCount() ? sphereSearch_[id] : shapeSearch_[id - sphereCount()];
+        if (id < sphereCount()) return sphereSearch_[id];
+        id -= sphereCount();
+        return id < shapeCount() ? shapeSearch_[id] : instances_[id - shapeCount()].search;
     }
     /// The float search record of plane `id` (boundedCount() <= id < size()).
     const PlaneSearch& planeSearch(uint32_t id) const { return planeSearch_[id - boundedCount()]; }
@@ -129,7 +158,17 @@ class Primitives {
     /// In triangleNormals_: the triangle has texture coordinates but no vertex normals.
     static constexpr uint32_t kNoNormals = UINT32_MAX - 1;
 
-    /// interaction() for boxes, cylinders, cones, disks and planes.
+    struct Instance {
+        uint32_t mesh;
+        Transform worldFromObject;
+        Bounds3f bounds;     ///< World space, padded like shapes' (paddedSearchBounds).
+        ShapeSearch search;  ///< Kind Instance: objectFromWorld and the mesh index.
+    };
+
+    /// intersect() for an instance: every triangle of its mesh, one at a time (a reference
+    /// for accelerators, which search the mesh's BVH instead).
+    [[gnu::noinline]] bool intersectInstance(uint32_t id, const TraversalRay& ray, Hit& hit) const;
+    /// interaction() for boxes, cylinders, cones, disks, instances and planes.
     [[gnu::noinline]] SurfaceInteraction shapeInteraction(const Ray& ray, const Hit& hit) const;
     /// Stores the triangle unless it has zero area; returns whether it did.
     bool pushTriangle(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t material);
@@ -152,6 +191,9 @@ class Primitives {
     LargeVector<Shape> shapes_;
     LargeVector<ShapeSearch> shapeSearch_;
     LargeVector<uint32_t> shapeMaterial_;
+    std::vector<Instance> instances_;
+    std::vector<const Primitives*> sharedMeshes_;
+    std::vector<Bounds3f> sharedMeshBounds_;  ///< Object space.
     std::vector<Plane> planes_;  // few: a scene has a floor, perhaps a wall or two
     std::vector<PlaneSearch> planeSearch_;
     std::vector<uint32_t> planeMaterial_;

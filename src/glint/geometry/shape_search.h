@@ -7,6 +7,7 @@
 /// The ray's direction is mapped but not renormalised, so a ray parameter t names the same
 /// point in world and canonical space: a search returns the world ray's t directly.
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -23,12 +24,16 @@ enum class ShapeKind : uint32_t {
     Cylinder,  ///< x^2 + y^2 <= 1, 0 <= z <= 1
     Cone,      ///< sqrt(x^2 + y^2) <= 1 + (k - 1) z, 0 <= z <= 1, k in [0, 1]
     Disk,      ///< z = 0, x^2 + y^2 <= 1
+    /// A placed shared mesh: "canonical" space is the mesh's own space, searched by the mesh's
+    /// BVH (accel/), not by intersectShape(). The record's mesh() names the mesh.
+    Instance,
 };
 
 struct ShapeSearch {
     float m[3][4];  ///< canonicalFromWorld: rows of a 3x4 matrix.
     ShapeKind kind = ShapeKind::Sphere;
-    float k = 1;  ///< Cone: its radius at z = 1 (it is 1 at z = 0). Unused by other kinds.
+    /// Cone: its radius at z = 1 (it is 1 at z = 0). Instance: the mesh index (see mesh()).
+    float k = 1;
 
     /// The search record for `canonicalFromWorld` (rounded to float).
     static ShapeSearch from(const Mat4& canonicalFromWorld, ShapeKind kind, double k = 1) {
@@ -39,6 +44,17 @@ struct ShapeSearch {
         s.k = static_cast<float>(k);
         return s;
     }
+
+    /// The search record of an instance of shared mesh `mesh` placed by the inverse of
+    /// `objectFromWorld`.
+    static ShapeSearch instance(const Mat4& objectFromWorld, uint32_t mesh) {
+        ShapeSearch s = from(objectFromWorld, ShapeKind::Instance);
+        s.k = std::bit_cast<float>(mesh);
+        return s;
+    }
+    /// The shared mesh an Instance record places (kept in the bits of `k`, which instances do
+    /// not use otherwise).
+    uint32_t mesh() const { return std::bit_cast<uint32_t>(k); }
 
     /// The ray's origin and (unnormalised) direction in canonical space.
     void map(const TraversalRay& ray, Vec3f& o, Vec3f& d) const {

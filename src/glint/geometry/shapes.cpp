@@ -3,11 +3,6 @@
 namespace glint {
 namespace {
 
-/// Bounds are widened by this fraction of the shape's size and coordinates (16 float ulps): the
-/// float shape search and the float box test round differently, and a hit that the one finds
-/// at a silhouette must not lie outside the box that the other tests.
-constexpr double kBoundsPadding = 0x1p-20;
-
 /// A matrix with columns x, y, z and translation t.
 Mat4 columns(const Vec3& x, const Vec3& y, const Vec3& z, const Vec3& t) {
     Mat4 m;
@@ -96,10 +91,17 @@ Bounds3f Shape::bounds() const {
             circle(1, kind == ShapeKind::Cone ? k : 1);
             break;
         case ShapeKind::Disk:
-        case ShapeKind::Sphere:  // not a Shape; bounds of the unit disk as a fallback
+        case ShapeKind::Sphere:    // not a Shape; bounds of the unit disk as a fallback
+        case ShapeKind::Instance:  // not a Shape either (Primitives::addInstance)
             circle(0, 1);
             break;
     }
+    return paddedSearchBounds(lo, hi);
+}
+
+Bounds3f paddedSearchBounds(const Vec3& lo, const Vec3& hi) {
+    // 16 float ulps of the size and coordinates.
+    constexpr double kBoundsPadding = 0x1p-20;
     double size = maxComponent(hi - lo) + std::max(maxComponent(abs(lo)), maxComponent(abs(hi)));
     double pad = kBoundsPadding * size;
     return Bounds3f::enclosing(lo - Vec3(pad), hi + Vec3(pad));
@@ -145,6 +147,7 @@ Vec3 canonicalNormal(ShapeKind kind, double k, const Vec3& p) {
             return normalize(Vec3(p.x / rho, p.y / rho, slope));
         }
         case ShapeKind::Disk:
+        case ShapeKind::Instance:
             break;
     }
     return {0, 0, 1};

@@ -43,6 +43,11 @@ struct Shape {
     }
 };
 
+/// World-space bounds [lo, hi] widened by a small fraction of their size and coordinates (16
+/// float ulps): a float search in another space and the float box test round differently, and
+/// a hit that the one finds at a silhouette must not lie outside the box that the other tests.
+Bounds3f paddedSearchBounds(const Vec3& lo, const Vec3& hi);
+
 /// objectFromCanonical placements from the scene format's parameters (object space). The
 /// parameters must describe a proper shape (the loader checks): corners differing on every
 /// axis, distinct end points, positive radii (one of a cone's may be 0), a non-zero normal.

@@ -30,16 +30,18 @@ void Parser::cmdMesh() {
         // Errors inside the mesh file name that file, its line and column.
         it = meshes_.emplace(path, loadObj(path, warnings_, options)).first;
     }
-    MeshPlacement placed;
-    try {
-        placed = addMesh(*scene_, it->second, t, material);
-    } catch (const SceneError& e) {
-        fail(0, "mesh " + quoted(1) + ": " + e.diagnostic().message);
-    }
-    if (placed.degenerate > 0 && !warnedMeshDegenerate_) {
-        warn(1, "mesh " + quoted(1) + ": " + std::to_string(placed.degenerate) +
-                    " triangles have zero area once placed and are skipped (reported once)");
-        warnedMeshDegenerate_ = true;
+    meshPlacer_.add(it->second, t, material, loc(tok_[0].column), "mesh " + quoted(1));
+    meshWhere_.push_back(loc(tok_[1].column));
+}
+
+void Parser::placeMeshes() {
+    std::vector<MeshPlacement> placed = meshPlacer_.place(*scene_);
+    for (size_t i = 0; i < placed.size(); ++i) {
+        if (placed[i].degenerate == 0) continue;
+        warnings_.push_back({meshWhere_[i], std::to_string(placed[i].degenerate) +
+                                                " triangles of this mesh have zero area once "
+                                                "placed and are skipped (reported once)"});
+        break;
     }
 }
 
@@ -87,13 +89,18 @@ void Parser::cmdChecker() {
 
 void Parser::checkTextureCoordinates() {
     // Surfaces without coordinates show an image texture's material colour instead.
-    const Primitives& prims = scene_->primitives;
     std::map<uint32_t, size_t> without;  // texture id -> surfaces without coordinates
-    for (uint32_t id = 0; id < prims.size(); ++id) {
-        uint32_t texture = scene_->materials[prims.materialOf(id)].texture;
-        if (texture != 0 && imageTextures_.count(texture) && !prims.hasTexCoords(id))
-            ++without[texture];
-    }
+    auto check = [&](const Primitives& prims) {
+        for (uint32_t id = 0; id < prims.size(); ++id) {
+            if (prims.isInstance(id)) continue;  // its mesh is checked once, below
+            uint32_t texture = scene_->materials[prims.materialOf(id)].texture;
+            if (texture != 0 && imageTextures_.count(texture) && !prims.hasTexCoords(id))
+                ++without[texture];
+        }
+    };
+    const Primitives& prims = scene_->primitives;
+    check(prims);
+    for (uint32_t m = 0; m < prims.sharedMeshCount(); ++m) check(prims.sharedMesh(m));
     for (const auto& [texture, count] : without)
         warnings_.push_back(
             {imageTextures_[texture],

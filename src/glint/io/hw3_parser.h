@@ -169,6 +169,9 @@ class Parser {
     void cmdChecker();
     /// `name`, a file named in the scene, relative to the scene file's directory.
     std::string scenePath(std::string_view name) const;
+    /// Adds the `mesh` placements to the scene; warns once of triangles that placing made
+    /// degenerate.
+    void placeMeshes();
     /// Warns once if surfaces without texture coordinates use an image texture.
     void checkTextureCoordinates();
     /// Adds a box, cylinder, cone or disk placed by `objectFromCanonical` under the current
@@ -213,7 +216,10 @@ class Parser {
     std::map<std::string, MeshData> meshes_;  ///< Read by `mesh`, by path: each read once.
     std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
     std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
-    bool warnedMeshDegenerate_ = false;
+    /// `mesh` placements, added when the file ends (so that a mesh placed several times is
+    /// stored once), and where each `mesh` command names its file.
+    MeshPlacer meshPlacer_;
+    std::vector<FileLoc> meshWhere_;
     double apertureRadius_ = 0, focusDistance_ = 0;  ///< From `lens`, applied to the camera.
 };
 

@@ -1,6 +1,9 @@
 #include "glint/scene/mesh.h"
 
 #include <cmath>
+#include <map>
+#include <memory>
+#include <utility>
 
 #include "glint/core/error.h"
 
@@ -10,16 +13,30 @@ size_t meshPlacementBytes(size_t positions, size_t normals) {
     return positions * (sizeof(Vec3) + sizeof(bool)) + normals * sizeof(Vec3);
 }
 
-MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& worldFromObject,
-                      uint32_t defaultMaterial) {
+namespace {
+
+bool inRange(const Vec3& p) {
+    return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+           std::abs(p.z) <= kMaxCoordinate;
+}
+
+[[noreturn]] void beyondRange(const MeshData& mesh, uint32_t vertex) {
+    throw SceneError({mesh.name, 0, 0},
+                     "vertex " + std::to_string(vertex + 1) +
+                         " lies beyond the supported coordinate range (1e18) once placed by "
+                         "the transform");
+}
+
+/// Adds `mesh`'s triangles to `target` placed by `worldFromObject`, with its materials and
+/// textures added to `scene` (addMesh, and the shared meshes of MeshPlacer).
+MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mesh,
+                           const Transform& worldFromObject, uint32_t defaultMaterial) {
     // Each vertex and normal is placed once, however many triangles share it.
     LargeVector<Vec3> world(mesh.positions.size());
-    std::vector<bool> inRange(mesh.positions.size());
+    std::vector<bool> placedInRange(mesh.positions.size());
     for (size_t i = 0; i < world.size(); ++i) {
         world[i] = worldFromObject.point(Vec3(mesh.positions[i]));
-        const Vec3& p = world[i];
-        inRange[i] = std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
-                     std::abs(p.z) <= kMaxCoordinate;
+        placedInRange[i] = inRange(world[i]);
     }
     LargeVector<Vec3> normals(mesh.normals.size());
     for (size_t i = 0; i < normals.size(); ++i) {
@@ -35,19 +52,15 @@ MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& world
         materialIds[i] = scene.addMaterial(m);
     }
 
-    scene.primitives.reserve(mesh.triangles.size(), 0);
-    scene.primitives.reserveAttributes(mesh.normalTriangles, mesh.uvTriangles);
+    target.reserve(mesh.triangles.size(), 0);
+    target.reserveAttributes(mesh.normalTriangles, mesh.uvTriangles);
     MeshPlacement placed;
     for (const MeshData::Triangle& t : mesh.triangles) {
         Vec3 p[3], n[3];
         TexCoord uv[3];
         for (int k = 0; k < 3; ++k) {
             const MeshData::Corner& c = t.corners[k];
-            if (!inRange[c.position])
-                throw SceneError({mesh.name, 0, 0},
-                                 "vertex " + std::to_string(c.position + 1) +
-                                     " lies beyond the supported coordinate range (1e18) once "
-                                     "placed by the transform");
+            if (!placedInRange[c.position]) beyondRange(mesh, c.position);
             p[k] = world[c.position];
             if (c.normal != MeshData::kNone) n[k] = normals[c.normal];
             if (c.uv != MeshData::kNone) uv[k] = mesh.uvs[c.uv];
@@ -55,12 +68,90 @@ MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& world
         const MeshData::Corner& c0 = t.corners[0];
         uint32_t material =
             t.material == MeshData::kNone ? defaultMaterial : materialIds[t.material];
-        bool ok = scene.primitives.addTriangle(p[0], p[1], p[2],
-                                               c0.normal != MeshData::kNone ? n : nullptr,
-                                               c0.uv != MeshData::kNone ? uv : nullptr, material);
+        bool ok = target.addTriangle(p[0], p[1], p[2], c0.normal != MeshData::kNone ? n : nullptr,
+                                     c0.uv != MeshData::kNone ? uv : nullptr, material);
         ++(ok ? placed.added : placed.degenerate);
     }
     return placed;
+}
+
+/// Whether some triangle of `mesh` takes the placing default material.
+bool usesDefaultMaterial(const MeshData& mesh) {
+    for (const MeshData::Triangle& t : mesh.triangles)
+        if (t.material == MeshData::kNone) return true;
+    return false;
+}
+
+}  // namespace
+
+MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& worldFromObject,
+                      uint32_t defaultMaterial) {
+    return addTriangles(scene, scene.primitives, mesh, worldFromObject, defaultMaterial);
+}
+
+void MeshPlacer::add(const MeshData& mesh, const Transform& worldFromObject,
+                     uint32_t defaultMaterial, FileLoc where, std::string what) {
+    placements_.push_back({&mesh, worldFromObject, defaultMaterial, std::move(where),
+                           std::move(what)});
+}
+
+std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
+    // Placements that can share: the same mesh, and the same default material where the mesh
+    // uses it.
+    using Key = std::pair<const MeshData*, uint32_t>;
+    std::map<const MeshData*, bool> usesDefault;
+    std::map<Key, size_t> uses;
+    std::vector<Key> keys;
+    for (const Placement& p : placements_) {
+        auto [it, added] = usesDefault.try_emplace(p.mesh, false);
+        if (added) it->second = usesDefaultMaterial(*p.mesh);
+        keys.push_back({p.mesh, it->second ? p.defaultMaterial : MeshData::kNone});
+        ++uses[keys.back()];
+    }
+
+    struct Shared {
+        uint32_t index;
+        MeshPlacement stored;
+        Bounds3f bounds;  // object space
+    };
+    std::map<Key, Shared> shared;
+    std::vector<MeshPlacement> results;
+    for (size_t i = 0; i < placements_.size(); ++i) {
+        const Placement& p = placements_[i];
+        try {
+            if (uses[keys[i]] == 1) {
+                results.push_back(addMesh(scene, *p.mesh, p.worldFromObject, p.defaultMaterial));
+                continue;
+            }
+            auto it = shared.find(keys[i]);
+            if (it == shared.end()) {
+                auto prims = std::make_unique<Primitives>();
+                MeshPlacement stored =
+                    addTriangles(scene, *prims, *p.mesh, Transform(), p.defaultMaterial);
+                Bounds3f bounds = prims->bounds();
+                it = shared.emplace(keys[i],
+                                    Shared{scene.addSharedMesh(std::move(prims)), stored, bounds})
+                         .first;
+            }
+            // The placed corners of the mesh's bounds must lie in range, as placed vertices must.
+            const Bounds3f& b = it->second.bounds;
+            for (int corner = 0; corner < 8 && !b.empty(); ++corner) {
+                Vec3 c(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y,
+                       corner & 4 ? b.hi.z : b.lo.z);
+                if (!inRange(p.worldFromObject.point(c)))
+                    throw SceneError({p.mesh->name, 0, 0},
+                                     "the mesh lies beyond the supported coordinate range (1e18) "
+                                     "once placed by the transform");
+            }
+            scene.primitives.addInstance(it->second.index, p.worldFromObject);
+            results.push_back(it->second.stored);
+        } catch (const SceneError& e) {
+            if (p.where.file.empty()) throw;
+            throw SceneError(p.where, p.what + ": " + e.diagnostic().message);
+        }
+    }
+    placements_.clear();
+    return results;
 }
 
 }  // namespace glint

@@ -1,7 +1,8 @@
 #pragma once
 /// Triangle meshes as a file describes them (io/obj_loader.h reads OBJ), independent of where
 /// they are placed, and how one is added to a scene under a transform. Loading and placing are
-/// separate steps so that one mesh can be placed several times.
+/// separate steps so that one mesh can be placed several times; MeshPlacer stores a mesh placed
+/// several times once, as a shared mesh that instances place.
 
 #include <array>
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "glint/core/error.h"
 #include "glint/core/huge_pages.h"
 #include "glint/math/transform.h"
 #include "glint/scene/scene.h"
@@ -63,5 +65,35 @@ size_t meshPlacementBytes(size_t positions, size_t normals);
 /// file and the vertex, if a placed vertex lies beyond the coordinate range (kMaxCoordinate).
 MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& worldFromObject,
                       uint32_t defaultMaterial);
+
+/// Collects the placements of meshes while a scene loads and adds them all at its end. A mesh
+/// placed once becomes world-space triangles (addMesh). A mesh placed more than once with the
+/// same default material (or whose triangles all have their own) is stored once as a shared
+/// mesh, in its own space, with a BVH of its own, and each placement adds an instance of it:
+/// 100 copies of a model cost the memory of one.
+class MeshPlacer {
+  public:
+    /// Records a placement of `mesh`, which must live until place() has run. `where` and
+    /// `what` (e.g. "mesh 'bunny.obj'") prefix errors about this placement; `where` may be
+    /// empty.
+    void add(const MeshData& mesh, const Transform& worldFromObject, uint32_t defaultMaterial,
+             FileLoc where = {}, std::string what = {});
+    size_t size() const { return placements_.size(); }
+
+    /// Adds every recorded placement to `scene`, in the order recorded, and forgets them.
+    /// Returns what each placement added (instances count their mesh's triangles). Throws
+    /// SceneError if a placed vertex would lie beyond the coordinate range.
+    std::vector<MeshPlacement> place(Scene& scene);
+
+  private:
+    struct Placement {
+        const MeshData* mesh;
+        Transform worldFromObject;
+        uint32_t defaultMaterial;
+        FileLoc where;
+        std::string what;
+    };
+    std::vector<Placement> placements_;
+};
 
 }  // namespace glint

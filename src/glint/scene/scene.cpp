@@ -26,8 +26,33 @@ size_t Scene::estimateBytes(size_t triangles, size_t spheres, size_t shapes, siz
            shapes * perShape;
 }
 
+uint32_t Scene::addSharedMesh(std::unique_ptr<Primitives> mesh) {
+    auto shared = std::make_unique<SharedMesh>();
+    shared->primitives = std::move(mesh);
+    uint32_t index = primitives.addSharedMesh(*shared->primitives);
+    sharedMeshes_.push_back(std::move(shared));
+    return index;
+}
+
+size_t Scene::sharedTriangleCount() const {
+    size_t n = 0;
+    for (const auto& m : sharedMeshes_) n += m->primitives->triangleCount();
+    return n;
+}
+
+size_t Scene::sharedBvhBytes() const {
+    size_t n = 0;
+    for (const auto& m : sharedMeshes_) n += m->bvh.stats().bytes;
+    return n;
+}
+
 void Scene::prepare() {
-    bvh_.build(primitives);
+    BvhBuildOptions options;
+    for (const auto& m : sharedMeshes_) {
+        m->bvh.build(*m->primitives);
+        options.sharedMeshes.push_back(&m->bvh);
+    }
+    bvh_.build(primitives, options);
     Bounds3f b = bvh_.bounds();
     spawnOffset_ =
         sceneSpawnOffset(b.empty() ? 1.0 : static_cast<double>(maxComponent(b.diagonal())));

@@ -1,6 +1,7 @@
 #pragma once
 /// Everything needed to render: settings, camera, lights, materials and geometry.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -77,7 +78,14 @@ class Scene {
     /// The texture of id `id` (1 to textures.size()).
     const Texture& texture(uint32_t id) const { return textures[id - 1]; }
 
-    /// Builds the acceleration structure and derived settings. Call once geometry is final.
+    /// Stores `mesh` (triangles in their own space) once, for instances to place
+    /// (primitives.addInstance). Returns its index there.
+    uint32_t addSharedMesh(std::unique_ptr<Primitives> mesh);
+    /// Triangles stored in shared meshes, each counted once.
+    size_t sharedTriangleCount() const;
+
+    /// Builds the acceleration structures (the shared meshes', then the scene's over its
+    /// primitives and instances) and derived settings. Call once geometry is final.
     void prepare();
     bool prepared() const { return prepared_; }
 
@@ -85,7 +93,15 @@ class Scene {
     /// Absolute part of the secondary-ray offset for this scene (see core/spawn.h).
     double spawnOffset() const { return spawnOffset_; }
 
+    /// Bytes of the shared meshes' BVHs (prepared scenes only).
+    size_t sharedBvhBytes() const;
+
   private:
+    struct SharedMesh {
+        std::unique_ptr<Primitives> primitives;  // where primitives.sharedMesh() points
+        Bvh bvh;
+    };
+    std::vector<std::unique_ptr<SharedMesh>> sharedMeshes_;
     Bvh bvh_;
     double spawnOffset_ = 0;
     bool prepared_ = false;

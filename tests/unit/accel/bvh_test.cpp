@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -132,13 +134,14 @@ struct Agreement {
 
 /// Compares BVH and brute force on one ray: hit/miss, exact t, and a tied primitive really
 /// being at that distance; occluded for rays with finite tMax.
-void compare(const Primitives&, const Bvh& bvh, const BruteForce& oracle, const Ray& ray,
+void compare(const Primitives& prims, const Bvh& bvh, const BruteForce& oracle, const Ray& ray,
              Agreement& a) {
     ++a.rays;
     Hit hb, ho;
     bool fb = bvh.intersect(ray, hb), fo = oracle.intersect(ray, ho);
     // With the tie rule (lowest id among equal distances) the answers are identical.
     bool ok = fb == fo && (!fb || (hb.t == ho.t && hb.primId == ho.primId));
+    if (ok && fb && prims.isInstance(hb.primId)) ok = hb.subId == ho.subId;
     if (std::isfinite(ray.tMax) && bvh.occluded(ray) != oracle.occluded(ray)) ok = false;
     // A tMax at the closest hit: nothing strictly closer, so neither may report occlusion.
     if (fo) {
@@ -543,6 +546,101 @@ TEST(Bvh, KernelSetsGiveIdenticalHits) {
         }
         EXPECT_EQ(differ, 0) << Bvh::name(isa);
     }
+}
+
+/// A two-level scene: shared meshes of random triangles around the origin, each with its BVH,
+/// placed many times under random transforms among other primitives of every kind.
+class InstancedScene {
+  public:
+    InstancedScene(uint64_t seed, int meshes, int instances, Isa isa) : r_(seed) {
+        for (int m = 0; m < meshes; ++m) {
+            auto mesh = std::make_unique<Primitives>();
+            addRandomMesh(*mesh, 200 + 150 * m);
+            meshes_.push_back(std::move(mesh));
+            auto meshBvh = std::make_unique<Bvh>();
+            meshBvh->build(*meshes_.back(), {0, isa});
+            meshBvhs_.push_back(std::move(meshBvh));
+            EXPECT_EQ(prims.addSharedMesh(*meshes_.back()), static_cast<uint32_t>(m));
+        }
+        addAllKinds(prims, r_, 500, 100, 100, 1);
+        for (int i = 0; i < instances; ++i)
+            prims.addInstance(static_cast<uint32_t>(i % meshes),
+                              *Transform::fromMatrix(randomTransform(r_)));
+        BvhBuildOptions options{0, isa};
+        for (const auto& b : meshBvhs_) options.sharedMeshes.push_back(b.get());
+        bvh.build(prims, options);
+    }
+
+    Primitives prims;
+    Bvh bvh;
+    Random& random() { return r_; }
+
+  private:
+    /// Triangles of sizes 0.05 to 0.5 within about [-1.5, 1.5]^3, some sharing an edge.
+    void addRandomMesh(Primitives& mesh, int triangles) {
+        for (int i = 0; i < triangles; ++i) {
+            Vec3 c = r_.point(-1, 1);
+            double size = r_.uni(0.05, 0.5);
+            Vec3 a = c + r_.direction() * size, b = c + r_.direction() * size;
+            mesh.addTriangle(a, b, c + r_.direction() * size, nullptr, 0);
+            if (i % 5 == 0) mesh.addTriangle(b, a, c - r_.direction() * size, nullptr, 0);
+        }
+    }
+
+    Random r_;
+    std::vector<std::unique_ptr<Primitives>> meshes_;
+    std::vector<std::unique_ptr<Bvh>> meshBvhs_;
+};
+
+TEST_P(BvhKernels, InstancesAgreeWithBruteForce) {
+    InstancedScene scene(77, 3, 30, GetParam());
+    const Primitives& prims = scene.prims;
+    EXPECT_EQ(prims.instanceCount(), 30u);
+    expectSaneTree(scene.bvh, prims);
+    BruteForce oracle;
+    oracle.build(prims);
+    Agreement a;
+    int instanceHits = 0;
+    for (int i = 0; i < 1500; ++i) {
+        Ray ray = randomRay(prims, scene.random(), i);
+        compare(prims, scene.bvh, oracle, ray, a);
+        Hit h;
+        instanceHits += scene.bvh.intersect(ray, h) && prims.isInstance(h.primId);
+    }
+    EXPECT_EQ(a.mismatches, 0) << a.first;
+    EXPECT_GT(instanceHits, a.rays / 20);  // instances are really hit, not just the rest
+    EXPECT_LT(a.hits, a.rays);
+}
+
+TEST_P(BvhKernels, PacketsHitInstancesAsSingleRaysDo) {
+    InstancedScene scene(78, 2, 40, GetParam());
+    int instanceLanes = 0;
+    for (int p = 0; p < 600; ++p) {
+        Ray rays[8];
+        RayPacket8 packet = randomPacket(scene.prims, scene.random(), p, rays);
+        HitPacket8 hits;
+        scene.bvh.intersect8(packet, hits);
+        for (int i = 0; i < 8; ++i) {
+            Hit single;
+            bool found = (packet.active >> i & 1) && scene.bvh.intersect(packet.ray(i), single);
+            EXPECT_EQ(hits.t[i], single.t) << "packet " << p << " lane " << i;
+            if (!found) continue;
+            EXPECT_EQ(hits.primId[i], single.primId);
+            if (scene.prims.isInstance(single.primId)) {
+                EXPECT_EQ(hits.subId[i], single.subId);
+                ++instanceLanes;
+            }
+        }
+    }
+    EXPECT_GT(instanceLanes, 200);
+}
+
+TEST(Bvh, InstancesNeedTheirMeshesBvhs) {
+    Primitives mesh, prims;
+    mesh.addTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, nullptr, 0);
+    prims.addInstance(prims.addSharedMesh(mesh), Transform());
+    Bvh bvh;
+    EXPECT_THROW(bvh.build(prims), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Kernels, BvhKernels, testing::ValuesIn(kernelSets()),

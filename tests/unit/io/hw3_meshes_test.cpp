@@ -61,11 +61,32 @@ TEST(Hw3Meshes, MeshIsPlacedByTheCurrentTransformWithTheCurrentMaterial) {
     EXPECT_FALSE(down(*s, 0.5, 0.5, 0));  // not at the origin any more
 }
 
-TEST(Hw3Meshes, TheSameMeshTwiceUnderDifferentTransforms) {
+TEST(Hw3Meshes, TheSameMeshTwiceIsStoredOnceAndInstanced) {
     auto s = parseIn("mesh quad.obj\ntranslate 10 0 0\nmesh quad.obj\n");
-    EXPECT_EQ(s->primitives.triangleCount(), 4u);
+    EXPECT_EQ(s->primitives.triangleCount(), 0u);
+    EXPECT_EQ(s->primitives.instanceCount(), 2u);
+    EXPECT_EQ(s->sharedTriangleCount(), 2u);
+    EXPECT_EQ(s->primitives.instancedTriangleCount(), 4u);
     EXPECT_TRUE(down(*s, 0.5, 0.5));
     EXPECT_TRUE(down(*s, 10.5, 0.5));
+    EXPECT_FALSE(down(*s, 5.5, 0.5));
+}
+
+TEST(Hw3Meshes, AMeshPlacedOnceIsFlattened) {
+    auto s = parseIn("mesh quad.obj\n");
+    EXPECT_EQ(s->primitives.triangleCount(), 2u);
+    EXPECT_EQ(s->primitives.instanceCount(), 0u);
+}
+
+TEST(Hw3Meshes, PlacementsUnderDifferentDefaultMaterialsAreNotShared) {
+    // quad.obj has no MTL materials: each placement's triangles take the current material.
+    auto s = parseIn("diffuse 1 0 0\nmesh quad.obj\ntranslate 10 0 0\ndiffuse 0 1 0\n"
+                     "mesh quad.obj\ntranslate 10 0 0\nmesh quad.obj\n");
+    EXPECT_EQ(s->primitives.triangleCount(), 2u);  // the red one
+    EXPECT_EQ(s->primitives.instanceCount(), 2u);  // the two green ones
+    expectNear(s->materials[down(*s, 0.5, 0.5)->material].diffuse, {1, 0, 0});
+    expectNear(s->materials[down(*s, 10.5, 0.5)->material].diffuse, {0, 1, 0});
+    expectNear(s->materials[down(*s, 20.5, 0.5)->material].diffuse, {0, 1, 0});
 }
 
 TEST(Hw3Meshes, MtlMaterialsOverrideTheCurrentMaterialPerGroup) {
