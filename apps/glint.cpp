@@ -150,6 +150,7 @@ std::string primitiveSummary(const glint::Primitives& prims) {
                  {prims.shapeCount(ShapeKind::Cylinder), "cylinder", "cylinders"},
                  {prims.shapeCount(ShapeKind::Cone), "cone", "cones"},
                  {prims.shapeCount(ShapeKind::Disk), "disk", "disks"},
+                 {prims.instanceCount(), "mesh instance", "mesh instances"},
                  {prims.planeCount(), "plane", "planes"}};
     for (const auto& k : kinds)
         if (k.n > 0) s += ", " + count(k.n, k.one, k.many);
@@ -168,8 +169,18 @@ void printStats(const glint::Scene& scene, double parse, double build, const gli
     std::printf("Scene       %s, %s, %s\n", primitiveSummary(scene.primitives).c_str(),
                 count(scene.lights.size(), "light", "lights").c_str(),
                 count(scene.materials.size(), "material", "materials").c_str());
-    std::printf("BVH         %u nodes, %u leaves, depth %u, %.2f MB\n", bvh.nodes, bvh.leaves,
+    if (scene.primitives.instanceCount() > 0)
+        std::printf(
+            "Instances   %s of %s: %s placed, %s stored once\n",
+            count(scene.primitives.instanceCount(), "instance", "instances").c_str(),
+            count(scene.primitives.sharedMeshCount(), "shared mesh", "shared meshes").c_str(),
+            count(scene.primitives.instancedTriangleCount(), "triangle", "triangles").c_str(),
+            count(scene.sharedTriangleCount(), "triangle", "triangles").c_str());
+    std::printf("BVH         %u nodes, %u leaves, depth %u, %.2f MB", bvh.nodes, bvh.leaves,
                 bvh.maxDepth, static_cast<double>(bvh.bytes) / 1e6);
+    if (scene.primitives.sharedMeshCount() > 0)
+        std::printf(" + shared meshes %.2f MB", static_cast<double>(scene.sharedBvhBytes()) / 1e6);
+    std::printf("\n");
     std::printf("Time        parse %.3f s, build %.3f s, render %.3f s, write %.3f s\n", parse,
                 build, r.seconds, write);
     std::printf("Rays        %llu camera, %llu shadow, %llu reflection, %llu total\n",

@@ -23,24 +23,15 @@ if [ ! -f "$model" ]; then
 fi
 ls -l "$model" | awk '{printf "model: %s, %.1f MB\n", $NF, $5 / 1e6}'
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+here=$(cd "$(dirname "$0")" && pwd)
+# shellcheck source=bench/measure.sh
+. "$here/measure.sh"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-: >"$out/runs"
-for ((i = 0; i < runs; i++)); do
-    /usr/bin/time -v "$build/glint" -q --stats -t "$threads" "$model" -o "$out/img.png" \
-        >"$out/stats" 2>"$out/time"
-    rss=$(awk -F': ' '/Maximum resident set size/ {print $2}' "$out/time")
-    wall=$(awk -F': ' '/Elapsed \(wall clock\)/ {print $2}' "$out/time" |
-        awk -F: '{print (NF == 3 ? $1 * 3600 + $2 * 60 + $3 : $1 * 60 + $2)}')
-    awk -v rss="$rss" -v wall="$wall" '
-        /^Time/ {parse=$3; build=$6; render=$9; write=$12}
-        END {print parse, build, render, write, wall, rss / 1024}' "$out/stats" >>"$out/runs"
-done
-grep -E '^(Scene|BVH)' "$out/stats"
-printf '%9s %9s %9s %9s %9s %12s\n' parse_s build_s render_s write_s total_s peak_RSS_MiB
-row=""
-for col in 1 2 3 4 5 6; do row="$row $(cut -d' ' -f$col "$out/runs" | median)"; done
-# shellcheck disable=SC2086
-printf '%9.3f %9.3f %9.3f %9.3f %9.2f %12.0f\n' $row
+glint_runs "$runs" "$out/runs" "$build/glint" -q --stats -t "$threads" "$model" -o "$out/img.png"
+grep -E '^(Scene|BVH)' "$out/runs.stats"
+glint_header
+echo
+glint_medians "$out/runs"
+echo
 echo "(medians of $runs runs, $threads threads, 640x480; parse = OBJ read, checked and placed)"

@@ -4,7 +4,8 @@
 #   1. BVH build and traversal against Intel Embree (bench/glint_traversal_bench, when built);
 #   2. whole renders against POV-Ray 3.7 (bench/render_compare.sh);
 #   3. --stats medians for the official course scenes (bench/course_stats.sh);
-#   4. loading and rendering a generated 1M-triangle OBJ model (bench/mesh_stats.sh).
+#   4. loading and rendering a generated 1M-triangle OBJ model (bench/mesh_stats.sh);
+#   5. 100 copies of a model, instanced and stored (bench/instancing_stats.sh).
 # Usage: bench/run.sh BUILD_DIR
 set -euo pipefail
 
@@ -39,3 +40,6 @@ header "3. Course scenes: glint --stats"
 
 header "4. A 1M-triangle OBJ model: glint model.obj"
 "$here/mesh_stats.sh" "$build" 5 2
+
+header "5. Instancing: 100 copies of a 102,400-triangle model"
+"$here/instancing_stats.sh" "$build" 3 2

@@ -352,6 +352,24 @@ TEST(Cli, StatsPrintsPhaseTimesRaysAndThroughput) {
     EXPECT_TRUE(contains(r.out, "Scene       2 triangles, 2 spheres, 2 lights")) << r.out;
 }
 
+TEST(Cli, StatsCountInstancedTrianglesOnce) {
+    std::string dir = freshDir("instances");
+    writeFile(dir + "/quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    writeFile(dir + "/scene.test",
+              "size 32 24\ncamera 1.5 0.5 6 1.5 0.5 0 0 1 0 45\ndirectional 0 0 1 1 1 1\n"
+              "diffuse 1 1 1\nmesh quad.obj\ntranslate 1 0 0\nmesh quad.obj\n"
+              "translate 1 0 0\nmesh quad.obj\nsphere 0 0 -5 1\n");
+    CommandResult r = runGlint("-q --stats scene.test", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "Scene       0 triangles, 1 sphere, 3 mesh instances, 1 light"))
+        << r.out;
+    EXPECT_TRUE(contains(
+        r.out, "Instances   3 instances of 1 shared mesh: 6 triangles placed, 2 triangles stored"))
+        << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex("BVH .* MB \\+ shared meshes [0-9.]+ MB")))
+        << r.out;
+}
+
 TEST(Cli, QuietPrintsNothingOnStderrOnSuccess) {
     std::string dir = sceneDir("quiet");
     CommandResult loud = runGlint("scene.test", dir);

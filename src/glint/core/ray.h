@@ -91,7 +91,9 @@ struct alignas(32) HitPacket8 {
             t[i] = std::numeric_limits<float>::infinity(), primId[i] = 0, subId[i] = 0;
     }
     Hit operator[](int lane) const { return {t[lane], primId[lane], subId[lane]}; }
-    void set(int lane, const Hit& h) { t[lane] = h.t, primId[lane] = h.primId, subId[lane] = h.subId; }
+    void set(int lane, const Hit& h) {
+        t[lane] = h.t, primId[lane] = h.primId, subId[lane] = h.subId;
+    }
 };
 
 }  // namespace glint

@@ -43,10 +43,10 @@ struct SurfaceInteraction {
 
 class Primitives {
   public:
-    /// Adds a triangle with world-space vertices; `normals` (world space, unit or zero) may be
-    /// null for a flat triangle, and `uvs` (texture coordinates of a, b, c) null for none. A
-    /// triangle of zero area as stored is dropped (it could never be seen, and the float test
-    /// cannot reject it reliably): returns false then.
+    /// Adds a triangle with world-space vertices; `normals` (world space, interpolated at a hit
+    /// and then normalised, so their lengths weigh them) may be null for a flat triangle, and `uvs`
+    /// (texture coordinates of a, b, c) null for none. A triangle of zero area as stored is dropped
+    /// (it could never be seen, and the float test cannot reject it reliably): returns false then.
     bool addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
                      uint32_t material) {
         if (!pushTriangle(a, b, c, material)) return false;
@@ -194,7 +194,7 @@ class Primitives {
     std::vector<Instance> instances_;
     std::vector<const Primitives*> sharedMeshes_;
     std::vector<Bounds3f> sharedMeshBounds_;  ///< Object space.
-    std::vector<Plane> planes_;  // few: a scene has a floor, perhaps a wall or two
+    std::vector<Plane> planes_;               // few: a scene has a floor, perhaps a wall or two
     std::vector<PlaneSearch> planeSearch_;
     std::vector<uint32_t> planeMaterial_;
 };

@@ -38,11 +38,13 @@ MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mes
         world[i] = worldFromObject.point(Vec3(mesh.positions[i]));
         placedInRange[i] = inRange(world[i]);
     }
+    // Normals are mapped by the inverse transpose and not renormalised: interpolating them
+    // (and normalising the result) then gives exactly the mapped interpolated normal, which
+    // is what an instance of the mesh shades with.
     LargeVector<Vec3> normals(mesh.normals.size());
     for (size_t i = 0; i < normals.size(); ++i) {
         Vec3 n = worldFromObject.normal(Vec3(mesh.normals[i]));
-        double len = length(n);
-        normals[i] = len > 0 && std::isfinite(len) ? n / len : Vec3(0);
+        normals[i] = std::isfinite(length(n)) ? n : Vec3(0);
     }
 
     std::vector<uint32_t> materialIds(mesh.materials.size());
@@ -91,8 +93,8 @@ MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& world
 
 void MeshPlacer::add(const MeshData& mesh, const Transform& worldFromObject,
                      uint32_t defaultMaterial, FileLoc where, std::string what) {
-    placements_.push_back({&mesh, worldFromObject, defaultMaterial, std::move(where),
-                           std::move(what)});
+    placements_.push_back(
+        {&mesh, worldFromObject, defaultMaterial, std::move(where), std::move(what)});
 }
 
 std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
@@ -129,8 +131,9 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
                 MeshPlacement stored =
                     addTriangles(scene, *prims, *p.mesh, Transform(), p.defaultMaterial);
                 Bounds3f bounds = prims->bounds();
-                it = shared.emplace(keys[i],
-                                    Shared{scene.addSharedMesh(std::move(prims)), stored, bounds})
+                it = shared
+                         .emplace(keys[i],
+                                  Shared{scene.addSharedMesh(std::move(prims)), stored, bounds})
                          .first;
             }
             // The placed corners of the mesh's bounds must lie in range, as placed vertices must.

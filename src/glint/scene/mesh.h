@@ -59,10 +59,11 @@ struct MeshPlacement {
 size_t meshPlacementBytes(size_t positions, size_t normals);
 
 /// Adds `mesh`'s triangles to `scene`, placed by `worldFromObject`: positions as points,
-/// normals by the inverse transpose, renormalised (zero stays zero), texture coordinates as
-/// they are. Triangles without a mesh material take `defaultMaterial` (an id in `scene`); the
-/// mesh's materials and textures are added to the scene. Throws SceneError, naming the mesh
-/// file and the vertex, if a placed vertex lies beyond the coordinate range (kMaxCoordinate).
+/// normals by the inverse transpose (not renormalised, so that the interpolated normal is
+/// the mapped one, as for an instance), texture coordinates as they are. Triangles without a mesh
+/// material take `defaultMaterial` (an id in `scene`); the mesh's materials and textures are added
+/// to the scene. Throws SceneError, naming the mesh file and the vertex, if a placed vertex lies
+/// beyond the coordinate range (kMaxCoordinate).
 MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& worldFromObject,
                       uint32_t defaultMaterial);
 

@@ -80,8 +80,9 @@ TEST(Hw3Meshes, AMeshPlacedOnceIsFlattened) {
 
 TEST(Hw3Meshes, PlacementsUnderDifferentDefaultMaterialsAreNotShared) {
     // quad.obj has no MTL materials: each placement's triangles take the current material.
-    auto s = parseIn("diffuse 1 0 0\nmesh quad.obj\ntranslate 10 0 0\ndiffuse 0 1 0\n"
-                     "mesh quad.obj\ntranslate 10 0 0\nmesh quad.obj\n");
+    auto s = parseIn(
+        "diffuse 1 0 0\nmesh quad.obj\ntranslate 10 0 0\ndiffuse 0 1 0\n"
+        "mesh quad.obj\ntranslate 10 0 0\nmesh quad.obj\n");
     EXPECT_EQ(s->primitives.triangleCount(), 2u);  // the red one
     EXPECT_EQ(s->primitives.instanceCount(), 2u);  // the two green ones
     expectNear(s->materials[down(*s, 0.5, 0.5)->material].diffuse, {1, 0, 0});
