@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs every libFuzzer harness in BUILD_DIR/fuzz for SECONDS each (`make fuzz` calls this).
+# Runs every libFuzzer harness in BUILD_DIR/fuzz for SECONDS each, side by side (`make fuzz`
+# calls this): the whole run takes about SECONDS, however many harnesses there are.
 #
 #   fuzz/run.sh BUILD_DIR SECONDS
 #
@@ -47,8 +48,10 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
 count() { find "$1" -type f | wc -l; }
 
-failed=0
-for exe in "${fuzzers[@]}"; do
+# One harness: its report goes to $work/NAME.report, and NAME.failed exists if it found
+# something.
+fuzz_one() {
+    local exe=$1 bin name corpus artifacts log dict before start status elapsed last execs rate found
     bin=$(basename "$exe")
     name=${bin#glint_fuzz_}
     corpus=$work/$name/corpus
@@ -61,6 +64,7 @@ for exe in "${fuzzers[@]}"; do
     before=$(count "$artifacts")
 
     echo "fuzz: $bin for ${seconds}s, corpus $corpus ($(count "$corpus") inputs), log $log"
+    exec >"$work/$name.report" 2>&1
     start=$(date +%s)
     status=0
     # shellcheck disable=SC2086  # FUZZ_FLAGS is a list of flags
@@ -83,12 +87,27 @@ for exe in "${fuzzers[@]}"; do
 
     found=$(count "$artifacts")
     if [ "$status" -ne 0 ] || [ "$found" -gt "$before" ]; then
-        failed=1
-        keep=1
+        : >"$work/$name.failed"
         echo "fuzz: $bin: FINDING (exit status $status); the log is $log" >&2
         grep -E '^(==[0-9]+==ERROR|SUMMARY|.*runtime error|.*non-finite pixel|.*deadly signal|.*ALARM)' \
             "$log" | sort | uniq -c | head -n 20 >&2 || true
         find "$artifacts" -type f | sort | sed 's/^/fuzz: reproducer: /' >&2
+    fi
+}
+
+for exe in "${fuzzers[@]}"; do
+    rm -f "$work/$(basename "$exe" | sed 's/^glint_fuzz_//').failed"
+    fuzz_one "$exe" &
+done
+wait
+failed=0
+for exe in "${fuzzers[@]}"; do
+    name=$(basename "$exe")
+    name=${name#glint_fuzz_}
+    cat "$work/$name.report"
+    if [ -e "$work/$name.failed" ]; then
+        failed=1
+        keep=1
     fi
 done
 
