@@ -27,6 +27,12 @@ bool inRange(const Vec3& p) {
                          "the transform");
 }
 
+/// Whether `t` mirrors space (its linear part has a negative determinant).
+bool mirrors(const Transform& t) {
+    Vec3 x = t.vector({1, 0, 0}), y = t.vector({0, 1, 0}), z = t.vector({0, 0, 1});
+    return dot(cross(x, y), z) < 0;
+}
+
 /// Adds `mesh`'s triangles to `target` placed by `worldFromObject`, with its materials and
 /// textures added to `scene` (addMesh, and the shared meshes of MeshPlacer).
 MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mesh,
@@ -54,6 +60,10 @@ MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mes
         materialIds[i] = scene.addMaterial(m);
     }
 
+    // A mirroring transform would turn the winding, and with it the face normal, inside out:
+    // corners are taken in the other order then, so the front stays the front (as the mapped
+    // face normal of an instance does).
+    const int second = mirrors(worldFromObject) ? 2 : 1;
     target.reserve(mesh.triangles.size(), 0);
     target.reserveAttributes(mesh.normalTriangles, mesh.uvTriangles);
     MeshPlacement placed;
@@ -61,7 +71,7 @@ MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mes
         Vec3 p[3], n[3];
         TexCoord uv[3];
         for (int k = 0; k < 3; ++k) {
-            const MeshData::Corner& c = t.corners[k];
+            const MeshData::Corner& c = t.corners[k == 0 ? 0 : k == 1 ? second : 3 - second];
             if (!placedInRange[c.position]) beyondRange(mesh, c.position);
             p[k] = world[c.position];
             if (c.normal != MeshData::kNone) n[k] = normals[c.normal];
@@ -131,11 +141,14 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
                 MeshPlacement stored =
                     addTriangles(scene, *prims, *p.mesh, Transform(), p.defaultMaterial);
                 Bounds3f bounds = prims->bounds();
-                it = shared
-                         .emplace(keys[i],
-                                  Shared{scene.addSharedMesh(std::move(prims)), stored, bounds})
-                         .first;
+                // A mesh whose every triangle is degenerate has nothing to place.
+                uint32_t index = prims->triangleCount() == 0
+                                     ? MeshData::kNone
+                                     : scene.addSharedMesh(std::move(prims));
+                it = shared.emplace(keys[i], Shared{index, stored, bounds}).first;
             }
+            results.push_back(it->second.stored);
+            if (it->second.index == MeshData::kNone) continue;
             // The placed corners of the mesh's bounds must lie in range, as placed vertices must.
             const Bounds3f& b = it->second.bounds;
             for (int corner = 0; corner < 8 && !b.empty(); ++corner) {
@@ -147,7 +160,6 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
                                      "once placed by the transform");
             }
             scene.primitives.addInstance(it->second.index, p.worldFromObject);
-            results.push_back(it->second.stored);
         } catch (const SceneError& e) {
             if (p.where.file.empty()) throw;
             throw SceneError(p.where, p.what + ": " + e.diagnostic().message);

@@ -89,6 +89,7 @@ void expectInstanceMatchesTriangles(const Transform& where) {
             ++hits;
             expectNear(a->p, b->p, 1e-6);
             expectNear(a->ng, b->ng, 1e-6);
+            EXPECT_GT(dot(a->ng, where.normal({0, 0, 1})), 0);  // the tent's front, placed
             expectNear(a->n, b->n, 1e-5);
             ASSERT_TRUE(a->hasUv && b->hasUv);
             EXPECT_NEAR(a->u, b->u, 1e-6);
@@ -102,6 +103,7 @@ void expectInstanceMatchesTriangles(const Transform& where) {
 TEST(MeshPlacer, AnInstanceShadesLikeTheSameMeshPlacedAsTriangles) {
     expectInstanceMatchesTriangles(placement(1.5, 1.5, 1.5));
     expectInstanceMatchesTriangles(placement(2, 0.5, 3));
+    expectInstanceMatchesTriangles(placement(-2, 0.5, 3));  // mirrored: the front stays the front
 }
 
 TEST(MeshPlacer, AHundredCopiesAreStoredOnce) {
@@ -147,6 +149,24 @@ TEST(MeshPlacer, AHundredCopiesAreStoredOnce) {
         ASSERT_TRUE(hit) << "copy " << i;
         EXPECT_NEAR(hit->p.z, 0.01 * std::sin(50 * 0.3), 0.02);
     }
+}
+
+TEST(MeshPlacer, AMeshOfOnlyDegenerateTrianglesPlacedTwiceAddsNothing) {
+    MeshData line;
+    line.name = "line";
+    line.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    line.triangles.push_back({{MeshData::Corner{0}, {1}, {2}}});
+    Scene scene;
+    MeshPlacer placer;
+    placer.add(line, Transform(), 0);
+    placer.add(line, *Transform::fromMatrix(Mat4::translate(0, 1, 0)), 0);
+    std::vector<MeshPlacement> placed = placer.place(scene);
+    ASSERT_EQ(placed.size(), 2u);
+    EXPECT_EQ(placed[1].degenerate, 1u);
+    EXPECT_EQ(scene.primitives.size(), 0u);
+    scene.prepare();
+    Hit hit;
+    EXPECT_FALSE(scene.bvh().intersect(Ray{{0.5, 0, 5}, {0, 0, -1}}, hit));
 }
 
 TEST(MeshPlacer, AnInstancePlacedBeyondTheCoordinateRangeIsAnError) {
