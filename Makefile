@@ -60,9 +60,10 @@ test: deps
 # The unit, golden and CLI tests again, built with AddressSanitizer and UndefinedBehaviorSanitizer
 # (plus float-cast-overflow, which GCC leaves out of -fsanitize=undefined). -O1 -g1 (line tables
 # only) halves the compile time of -O2 -g, and reports still name functions, files and lines.
+# Each test binary runs as two shards rather than one process per test case (tests/CMakeLists.txt).
 test-sanitize: deps
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGLINT_TEST_SHARDS=2 \
 	  -DGLINT_SANITIZE=address,undefined,float-cast-overflow -DGLINT_WERROR=$(GLINT_WERROR)
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
