@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "glint/io/gltf_loader.h"
 #include "glint/io/hw3_parser.h"
 #include "glint/io/obj_loader.h"
 #include "glint/io/texture_io.h"
@@ -21,18 +22,27 @@ void Parser::cmdMesh() {
     uint32_t material = this->material();
     if (!limits_.readFiles) fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
     std::string path = scenePath(tok_[1].text);
-    auto it = meshes_.find(path);
-    if (it == meshes_.end()) {
+    const bool gltf = isGltfFile(path);
+    if (!meshes_.count(path) && !gltfModels_.count(path)) {
         if (std::string problem = inputFileProblem(path); !problem.empty())
             fail(1, "cannot read mesh " + quoted(1) + " (" + path + "): " + problem);
-        ObjOptions options;
-        options.limits = limits_;
-        // Errors inside the mesh file name that file, its line and column.
-        it = meshes_.emplace(path, loadObj(path, warnings_, options)).first;
+        // Errors inside the mesh file name that file (and its line and column for OBJ).
+        if (gltf) {
+            GltfOptions options;
+            options.limits = limits_;
+            gltfModels_.emplace(path, loadGltf(path, warnings_, options));
+        } else {
+            ObjOptions options;
+            options.limits = limits_;
+            meshes_.emplace(path, loadObj(path, warnings_, options));
+        }
     }
     MeshPlacement placed;
     try {
-        placed = addMesh(*scene_, it->second, t, material);
+        // A glTF asset's meshes are placed by its nodes, under the current transform; its
+        // cameras and lights are the scene's business, and are not used.
+        placed = gltf ? placeGltf(*scene_, gltfModels_.at(path), t, material)
+                      : addMesh(*scene_, meshes_.at(path), t, material);
     } catch (const SceneError& e) {
         fail(0, "mesh " + quoted(1) + ": " + e.diagnostic().message);
     }
