@@ -132,10 +132,11 @@ MeshMaterial Materials::map(int index) {
     Material& g = out.material;
     const Vec3 baseMean = baseImage ? base * baseImage->average() : base;
     g.diffuse = base * ((1 - metallic) * (1 - transmission) * opacity);
-    g.specular = Vec3(kDielectricF0 * (1 - metallic)) + baseMean * metallic;
+    // Alpha blending weighs the whole surface (its reflection and emission too) by opacity.
+    g.specular = (Vec3(kDielectricF0 * (1 - metallic)) + baseMean * metallic) * opacity;
     g.roughness = roughness * roughness;  // glTF's perceptual roughness squared is GGX's alpha
     g.shininess = kSmoothShininess;       // used only where the roughness is 0
-    g.emission = emission;
+    g.emission = emission * opacity;
     g.transmission = base * (transmission * (1 - metallic) * opacity) + Vec3(1 - opacity);
     g.ior = transmissive ? ior : 1;
     // Ambient light as for MTL materials without Ka: a dim version of the surface's colour.
