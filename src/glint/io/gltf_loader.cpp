@@ -360,7 +360,10 @@ std::optional<GltfCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
         return std::nullopt;
     }
     out.spec.eye = eye;
-    out.spec.center = eye + forward / fl;
+    // A center as far away as the eye is from the origin, so that the view direction survives
+    // the rounding of eye + direction.
+    double reach = std::max({1.0, std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)});
+    out.spec.center = eye + forward * (reach / fl);
     out.spec.up = up / ul;
     out.spec.fovyDegrees = yfov * 180 / std::numbers::pi;
     const double aspect = c.perspective.aspectRatio;

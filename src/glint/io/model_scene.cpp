@@ -87,49 +87,43 @@ std::string frameModel(Scene& scene, const std::string& name, Framing framing) {
     return lights;
 }
 
-ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
-                          int height, const LoadLimits& limits) {
+namespace {
+
+/// The light grey of faces without a material of the file's, lit like MTL materials without Ka.
+Material lightGrey() {
+    Material grey;
+    grey.diffuse = Vec3(0.7);
+    grey.ambient = grey.diffuse * kMtlAmbientLight;
+    return grey;
+}
+
+}  // namespace
+
+ModelScene gltfModelScene(const GltfModel& model, int width, int height) {
     ModelScene out;
     out.scene = std::make_unique<Scene>();
     Scene& scene = *out.scene;
     scene.width = width > 0 ? width : 640;
     scene.height = height > 0 ? height : 480;
-    // Faces without a material of the file's: a light grey, lit like MTL materials without Ka.
-    Material grey;
-    grey.diffuse = Vec3(0.7);
-    grey.ambient = grey.diffuse * kMtlAmbientLight;
-    if (!isGltfFile(path)) {
-        ObjOptions options;
-        options.limits = limits;
-        MeshData mesh = loadObj(path, warnings, options);  // freed before the BVH is built
-        addMesh(scene, mesh, Transform(), scene.addMaterial(grey));
-        out.note = path + " has no camera or lights: framing it with " + frameModel(scene, path);
-        return out;
-    }
-
+    placeGltf(scene, model, Transform(), scene.addMaterial(lightGrey()));
     Framing framing;
     std::string has;  // what the file brought, for the note
-    {
-        GltfOptions options;
-        options.limits = limits;
-        GltfModel model = loadGltf(path, warnings, options);  // freed before the BVH is built
-        placeGltf(scene, model, Transform(), scene.addMaterial(grey));
-        if (model.camera) {
-            scene.camera = model.camera->spec;
-            framing.camera = false;
-            has = "its " + model.camera->description;
-            // The file's camera knows its picture's shape, unless the command line says.
-            if (width <= 0 && model.camera->aspectRatio > 0)
-                scene.height = static_cast<int>(std::clamp(
-                    std::lround(scene.width / model.camera->aspectRatio), 1L, long(kMaxImageSide)));
-        }
-        if (!model.lights.empty()) {
-            scene.lights = model.lights;
-            framing.lights = false;
-            has = std::to_string(model.lights.size()) +
-                  (model.lights.size() == 1 ? " light" : " lights") + " of its own";
-        }
+    if (model.camera) {
+        scene.camera = model.camera->spec;
+        framing.camera = false;
+        has = "its " + model.camera->description;
+        // The file's camera knows its picture's shape, unless the command line says.
+        if (width <= 0 && model.camera->aspectRatio > 0)
+            scene.height = static_cast<int>(std::clamp(
+                std::lround(scene.width / model.camera->aspectRatio), 1L, long(kMaxImageSide)));
     }
+    if (!model.lights.empty()) {
+        scene.lights = model.lights;
+        framing.lights = false;
+        has = std::to_string(model.lights.size()) +
+              (model.lights.size() == 1 ? " light" : " lights") + " of its own";
+    }
+    const std::string& path = model.name;
     if (!framing.camera && !framing.lights) {
         if (scene.primitives.bounds().empty())
             throw SceneError({path, 0, 0}, "the model has no faces of non-zero area");
@@ -142,6 +136,29 @@ ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warn
         out.note = path + " has no camera: framing it with " + assumed + " (and " + has + ")";
     else
         out.note = path + " has no lights: lighting it with " + assumed + " (and " + has + ")";
+    return out;
+}
+
+ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
+                          int height, const LoadLimits& limits) {
+    if (isGltfFile(path)) {
+        GltfOptions options;
+        options.limits = limits;
+        // The model is freed once placed, before the scene's BVH is built.
+        return gltfModelScene(loadGltf(path, warnings, options), width, height);
+    }
+    ModelScene out;
+    out.scene = std::make_unique<Scene>();
+    Scene& scene = *out.scene;
+    scene.width = width > 0 ? width : 640;
+    scene.height = height > 0 ? height : 480;
+    {
+        ObjOptions options;
+        options.limits = limits;
+        MeshData mesh = loadObj(path, warnings, options);  // freed before the BVH is built
+        addMesh(scene, mesh, Transform(), scene.addMaterial(lightGrey()));
+    }
+    out.note = path + " has no camera or lights: framing it with " + frameModel(scene, path);
     return out;
 }
 

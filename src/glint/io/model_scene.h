@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "glint/core/error.h"
+#include "glint/io/gltf_loader.h"
 #include "glint/io/input_file.h"
 #include "glint/scene/scene.h"
 
@@ -45,5 +46,9 @@ std::string frameModel(Scene& scene, const std::string& name, Framing framing = 
 /// without a material of the file's are light grey. Throws SceneError like loadObj/loadGltf.
 ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width = 0,
                           int height = 0, const LoadLimits& limits = {});
+
+/// The scene loadModelScene() makes of a glTF model already read (`model.name` names it in the
+/// note): the model placed, its camera and lights, and Glint's for what it lacks.
+ModelScene gltfModelScene(const GltfModel& model, int width = 0, int height = 0);
 
 }  // namespace glint
