@@ -27,6 +27,7 @@ struct Context {
     std::vector<Diagnostic>& warnings;
     const GltfOptions& options;
     tinygltf::Model model;
+    size_t externalBytes = 0;  ///< Read from external buffer files so far.
 
     /// Throws SceneError naming the file.
     [[noreturn]] void fail(const std::string& message) const;

@@ -10,7 +10,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <numbers>
+#include <optional>
 #include <system_error>
 
 #include "glint/core/system.h"
@@ -120,6 +122,62 @@ JsonShape scanJson(std::string_view text) {
     return s;
 }
 
+/// A look at the JSON before tinygltf parses it, for what tinygltf 2.7 does not check first:
+/// an image stored in a bufferView makes it form a pointer at the view's offset into its
+/// buffer before checking that the offset lies in the buffer (undefined behaviour beyond it),
+/// so that range is checked here (buffers hold exactly their byteLength once tinygltf has
+/// read them). Returns how many buffers have no URI: in a .glb, tinygltf copies the binary
+/// chunk into each. Values are read as tinygltf reads them; what tinygltf rejects is left to
+/// it. The JSON is parsed only when it may hold images (the key, or a \u escape that might
+/// spell it) or when `countBinaryCopies`.
+size_t lookBeforeTinygltf(const Context& ctx, std::string_view json, bool countBinaryCopies) {
+    if (!countBinaryCopies && json.find("\"images\"") == std::string_view::npos &&
+        json.find("\\u") == std::string_view::npos)
+        return 0;
+    const nlohmann::json j = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+    if (!j.is_object()) return 0;
+    auto array = [&](const char* key) -> const nlohmann::json* {
+        auto it = j.find(key);
+        return it != j.end() && it->is_array() ? &*it : nullptr;
+    };
+    auto unsignedOf = [](const nlohmann::json& o, const char* key) -> std::optional<size_t> {
+        auto it = o.find(key);
+        if (it == o.end() || !it->is_number_unsigned()) return std::nullopt;
+        return it->get<size_t>();
+    };
+    const nlohmann::json *buffers = array("buffers"), *views = array("bufferViews");
+    size_t binaryCopies = 0;
+    if (buffers)
+        for (const nlohmann::json& b : *buffers)
+            binaryCopies += b.is_object() && !b.contains("uri");
+    const nlohmann::json* images = array("images");
+    if (!images || !views || !buffers) return binaryCopies;
+    for (const nlohmann::json& image : *images) {
+        if (!image.is_object()) continue;
+        auto v = image.find("bufferView");
+        if (v == image.end() || !v->is_number_integer()) continue;
+        const int view = static_cast<int>(v->get<int64_t>());  // tinygltf's conversion
+        if (view < 0 || size_t(view) >= views->size() || !(*views)[size_t(view)].is_object())
+            continue;  // tinygltf reports it
+        const nlohmann::json& bv = (*views)[size_t(view)];
+        auto b = bv.find("buffer");
+        std::optional<size_t> length = unsignedOf(bv, "byteLength");
+        if (b == bv.end() || !b->is_number_integer() || !length) continue;
+        const int buffer = static_cast<int>(b->get<int64_t>());
+        if (buffer < 0 || size_t(buffer) >= buffers->size() ||
+            !(*buffers)[size_t(buffer)].is_object())
+            continue;
+        std::optional<size_t> size = unsignedOf((*buffers)[size_t(buffer)], "byteLength");
+        const size_t offset = unsignedOf(bv, "byteOffset").value_or(0);
+        if (size && (offset > *size || *length > *size - offset))
+            ctx.fail("bufferView " + std::to_string(view) + ": its " + std::to_string(*length) +
+                     " bytes from offset " + std::to_string(offset) +
+                     " lie beyond the end of buffer " + std::to_string(buffer) + " (" +
+                     std::to_string(*size) + " bytes)");
+    }
+    return binaryCopies;
+}
+
 uint32_t u32(std::string_view bytes, size_t at) {
     uint32_t x;
     std::memcpy(&x, bytes.data() + at, 4);
@@ -172,7 +230,7 @@ bool fileExists(const std::string&, void*) { return true; }
 std::string expandPath(const std::string& path, void*) { return path; }
 
 bool readFile(std::vector<unsigned char>* out, std::string*, const std::string& path, void* user) {
-    const Context& ctx = *static_cast<const Context*>(user);
+    Context& ctx = *static_cast<Context*>(user);
     if (!ctx.options.limits.readFiles)
         ctx.fail("buffer file '" + path + "' is not read: reading files is off");
     if (std::string problem = inputFileProblem(path); !problem.empty())
@@ -180,10 +238,13 @@ bool readFile(std::vector<unsigned char>* out, std::string*, const std::string& 
     try {
         MappedFile file(path);
         std::string_view data = file.text();
+        // Every buffer is a copy, even of a file read before: count them all.
+        ctx.externalBytes += data.size();
         size_t available = memoryAvailable(ctx.options.limits);
-        if (available > 0 && data.size() > available)
-            ctx.fail("buffer file '" + path + "' has " + formatBytes(double(data.size())) +
-                     ", more than the " + formatBytes(double(available)) + " of memory available");
+        if (available > 0 && ctx.externalBytes > available)
+            ctx.fail("its buffer files take " + formatBytes(double(ctx.externalBytes)) + " with '" +
+                     path + "', more than the " + formatBytes(double(available)) +
+                     " of memory available");
         out->assign(data.begin(), data.end());
     } catch (const std::system_error& e) {
         ctx.fail("cannot read buffer file '" + path + "': " + std::strerror(e.code().value()));
@@ -227,13 +288,22 @@ void parseContainer(Context& ctx, std::string_view bytes) {
     if (shape.depth > kMaxJsonDepth)
         ctx.fail("its JSON nests " + std::to_string(shape.depth) + " levels deep, more than the " +
                  std::to_string(kMaxJsonDepth) + " Glint reads");
-    // The JSON tree, tinygltf's copies (strings, base64 decoded) and the binary chunk's copy.
+    // The JSON tree (Glint's look at it, then tinygltf's), tinygltf's copies (strings, base64
+    // decoded) and of the binary chunk, once for every buffer that refers to it.
+    const size_t available = memoryAvailable(ctx.options.limits);
     double needed =
         double(shape.values) * kBytesPerJsonValue + 3.0 * double(json.size()) + double(binBytes);
-    size_t available = memoryAvailable(ctx.options.limits);
-    if (available > 0 && needed > double(available))
-        ctx.fail("reading it needs about " + formatBytes(needed) + " of memory, more than the " +
-                 formatBytes(double(available)) + " available");
+    auto checkMemory = [&] {
+        if (available > 0 && needed > double(available))
+            ctx.fail("reading it needs about " + formatBytes(needed) +
+                     " of memory, more than the " + formatBytes(double(available)) + " available");
+    };
+    checkMemory();
+    size_t binaryCopies = lookBeforeTinygltf(ctx, json, binBytes > 0);
+    if (binaryCopies > 1) {
+        needed += double(binaryCopies - 1) * double(binBytes);
+        checkMemory();
+    }
 
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({&fileExists, &expandPath, &readFile, &writeFile, &ctx});

@@ -582,6 +582,20 @@ TEST(GltfErrors, BadJsonAndStructure) {
               "mesh 2 does not exist (the file has 0 meshes): node 0 refers to it");
 }
 
+TEST(GltfErrors, ImagesInABufferViewBeyondItsBufferAreCaughtBeforeTinygltf) {
+    // tinygltf 2.7 would form a pointer at the offset before checking it (fuzzing found this).
+    std::string text = gltfText(
+        R"("bufferViews": [{"buffer": 0, "byteOffset": 18446744073709551000, "byteLength": 4}],
+           "images": [{"bufferView": 0, "mimeType": "image/png"}])",
+        "AAAA");
+    EXPECT_EQ(errorParsing(text).message,
+              "bufferView 0: its 4 bytes from offset 18446744073709551000 lie beyond the end of "
+              "buffer 0 (3 bytes)");
+    // Spelling the key with an escape does not get past the check.
+    text.replace(text.find("\"images\""), 8, "\"\\u0069mages\"");
+    EXPECT_THAT(errorParsing(text).message, HasSubstr("lie beyond the end of buffer 0"));
+}
+
 TEST(GltfErrors, NodesFormTrees) {
     // Two parents: node 2 is reached twice from the scene's roots.
     std::string twoParents = gltfText(
@@ -651,6 +665,55 @@ TEST(GltfErrors, AccessorsAndTheirData) {
     EXPECT_THAT(errorParsing(gltfText(kTriangleScene, nan)).message,
                 HasSubstr("accessor 0 (POSITION of mesh 0, primitive 0): element 0 is not a finite "
                           "position"));
+}
+
+/// A .glb of `json` and a binary chunk of `bin` (both padded to 4 bytes).
+std::string glbOf(std::string json, std::string bin) {
+    auto u32 = [](size_t x) {
+        uint32_t v = static_cast<uint32_t>(x);
+        return std::string(reinterpret_cast<const char*>(&v), 4);
+    };
+    json.append((4 - json.size() % 4) % 4, ' ');
+    bin.append((4 - bin.size() % 4) % 4, '\0');
+    return "glTF" + u32(2) + u32(12 + 8 + json.size() + 8 + bin.size()) + u32(json.size()) +
+           "JSON" + json + u32(bin.size()) + std::string("BIN\0", 4) + bin;
+}
+
+TEST(GltfErrors, CopiesOfTheBinaryChunkCountAgainstTheMemory) {
+    // tinygltf copies the binary chunk for each buffer without a URI: three 100 kB copies.
+    std::string bin(100000, '\0');
+    std::string one = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 100000}]})";
+    std::string three = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 100000},
+        {"byteLength": 100000}, {"byteLength": 100000}]})";
+    GltfOptions options;
+    options.limits.memoryBytes = 250000;
+    std::vector<Diagnostic> warnings;
+    EXPECT_NO_THROW(parseGltf(glbOf(one, bin), "t.glb", warnings, options));
+    EXPECT_THAT(errorParsing(glbOf(three, bin), options).message,
+                HasSubstr("reading it needs about"));
+}
+
+class GltfFiles : public test::TempDirTest {};
+
+TEST_F(GltfFiles, EveryReadOfABufferFileCountsAgainstTheMemory) {
+    std::ofstream(path("big.bin"), std::ios::binary) << std::string(100000, '\0');
+    auto gltf = [&](int buffers) {
+        std::string list;
+        for (int i = 0; i < buffers; ++i)
+            list += std::string(i ? ", " : "") + R"({"byteLength": 100000, "uri": "big.bin"})";
+        std::ofstream(path("m.gltf")) << gltfText(R"("buffers": [)" + list + "]");
+        return path("m.gltf");
+    };
+    GltfOptions options;
+    options.limits.memoryBytes = 250000;
+    std::vector<Diagnostic> warnings;
+    EXPECT_NO_THROW(loadGltf(gltf(2), warnings, options));
+    try {
+        loadGltf(gltf(3), warnings, options);
+        ADD_FAILURE() << "three copies of the buffer file were read";
+    } catch (const SceneError& e) {
+        EXPECT_THAT(e.diagnostic().message, HasSubstr("its buffer files take"));
+    }
 }
 
 TEST(GltfErrors, ModelsTooLargeForTheMemoryGivenAreRefusedBeforeReading) {
