@@ -3,6 +3,7 @@
 // (accessors and meshes) and gltf_materials.cpp (materials and their images). Internal to
 // glint/io: use gltf_loader.h.
 
+#include <bit>
 #include <map>
 #include <memory>
 #include <set>
@@ -17,6 +18,9 @@
 #include "glint/scene/mesh.h"
 
 namespace glint::gltf {
+
+static_assert(std::endian::native == std::endian::little,
+              "glTF's binary data is little-endian, and Glint reads it as it lies");
 
 /// What loading one asset shares: the file, tinygltf's model of it, and the warnings.
 struct Context {
@@ -38,6 +42,12 @@ struct Context {
   private:
     std::set<std::string> warned_;
 };
+
+/// Parses the file's bytes (JSON text or a .glb) with tinygltf into ctx.model, after checking
+/// what tinygltf would not check first (gltf_container.cpp).
+void parseContainer(Context& ctx, std::string_view bytes);
+/// Checks the asset's version and the extensions it requires; warns of what Glint ignores.
+void checkAsset(Context& ctx);
 
 /// "mesh 2 'Cube'", "node 0", ...: an object of the file with its name, for messages.
 std::string describe(const char* kind, size_t index, const std::string& name);
