@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 #include "glint/io/gltf_internal.h"
 
@@ -213,39 +214,58 @@ bool isSparse(const Context& ctx, const AccessorView& v) {
     return ctx.model.accessors[static_cast<size_t>(v.index)].sparse.isSparse;
 }
 
-/// Accessor `v`'s elements as floats, v.components per element.
-std::vector<float> readFloats(const Context& ctx, const AccessorView& v) {
+/// Calls `f(i, c)` for each element i of accessor `v`, with `c` its components as floats
+/// (zeros without a bufferView), then again for each element a sparse accessor replaces, with
+/// the new value: `f` stores by index. No copy of the accessor is made.
+template <typename F>
+void forEachElement(const Context& ctx, const AccessorView& v, F f) {
     const size_t n = static_cast<size_t>(v.components);
-    std::vector<float> out(v.count * n, 0.0f);
+    float c[16] = {};  // components: at most 16 (MAT4)
     auto convert = [&](size_t i, const unsigned char* element) {
-        for (size_t c = 0; c < n; ++c)
-            out[i * n + c] = component(element, static_cast<int>(c), v.componentType, v.normalized);
+        for (size_t k = 0; k < n; ++k)
+            c[k] = component(element, static_cast<int>(k), v.componentType, v.normalized);
+        f(i, static_cast<const float*>(c));
     };
     if (v.data && v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) {
-        for (size_t i = 0; i < v.count; ++i)
-            std::memcpy(&out[i * n], v.data + i * v.stride, n * sizeof(float));
+        for (size_t i = 0; i < v.count; ++i) {
+            std::memcpy(c, v.data + i * v.stride, n * sizeof(float));
+            f(i, static_cast<const float*>(c));
+        }
     } else if (v.data) {
         for (size_t i = 0; i < v.count; ++i) convert(i, v.data + i * v.stride);
+    } else {
+        for (size_t i = 0; i < v.count; ++i) f(i, static_cast<const float*>(c));
     }
     if (isSparse(ctx, v)) forEachSparse(ctx, v, convert);
-    return out;
 }
 
-/// Accessor `v`'s elements as vertex indices (unsigned integers).
-std::vector<uint32_t> readIndices(const Context& ctx, const AccessorView& v) {
-    if (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-        v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-        ctx.fail(v.label + ": indices must be unsigned bytes, shorts or ints");
-    std::vector<uint32_t> out(v.count, 0);
-    if (v.data)
-        for (size_t i = 0; i < v.count; ++i) out[i] = unsignedAt(v.data + i * v.stride, v.bytes);
-    if (isSparse(ctx, v))
+/// Vertex index `k` of indices accessor `v`.
+class IndexReader {
+  public:
+    IndexReader(const Context& ctx, const AccessorView& v) : v_(v) {
+        if (v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            v.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            ctx.fail(v.label + ": indices must be unsigned bytes, shorts or ints");
+        if (!isSparse(ctx, v)) return;
+        // Sparse indices (rare) are gathered first.
+        sparse_.assign(v.count, 0);
+        if (v.data)
+            for (size_t i = 0; i < v.count; ++i)
+                sparse_[i] = unsignedAt(v.data + i * v.stride, v.bytes);
         forEachSparse(ctx, v, [&](size_t i, const unsigned char* element) {
-            out[i] = unsignedAt(element, v.bytes);
+            sparse_[i] = unsignedAt(element, v.bytes);
         });
-    return out;
-}
+    }
+    uint32_t operator[](size_t k) const {
+        if (!sparse_.empty()) return sparse_[k];
+        return v_.data ? unsignedAt(v_.data + k * v_.stride, v_.bytes) : 0;
+    }
+
+  private:
+    const AccessorView& v_;
+    std::vector<uint32_t> sparse_;
+};
 
 /// "mesh 0 'Cube', primitive 1"
 std::string primitiveLabel(const Context& ctx, int mesh, size_t primitive) {
@@ -333,44 +353,44 @@ bool viewPrimitive(Context& ctx, int mesh, size_t k, bool report, PrimitiveViews
 
 /// Appends the positions of accessor `v` to `out`; returns the index of the first.
 uint32_t appendPositions(const Context& ctx, const AccessorView& v, MeshData& out) {
-    size_t first = out.positions.size();
+    const size_t first = out.positions.size();
     if (first + v.count >= MeshData::kNone)
         ctx.fail(v.label + ": the mesh has more than 4 billion vertices");
-    std::vector<float> f = readFloats(ctx, v);
-    for (size_t i = 0; i < v.count; ++i) {
-        Vec3f q{f[3 * i], f[3 * i + 1], f[3 * i + 2]};
-        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+    out.positions.resize(first + v.count);
+    Vec3f* p = out.positions.data() + first;
+    forEachElement(ctx, v, [&](size_t i, const float* c) { p[i] = {c[0], c[1], c[2]}; });
+    for (size_t i = 0; i < v.count; ++i)
+        if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
             ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite position");
-        out.positions.push_back(q);
-    }
     return static_cast<uint32_t>(first);
 }
 
 /// The same for normals, normalised (zero stays zero).
 uint32_t appendNormals(const Context& ctx, const AccessorView& v, MeshData& out) {
-    size_t first = out.normals.size();
-    std::vector<float> f = readFloats(ctx, v);
+    const size_t first = out.normals.size();
+    out.normals.resize(first + v.count);
+    Vec3f* p = out.normals.data() + first;
+    forEachElement(ctx, v, [&](size_t i, const float* c) { p[i] = {c[0], c[1], c[2]}; });
     for (size_t i = 0; i < v.count; ++i) {
-        Vec3 n(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+        Vec3 n(p[i]);
         if (!isFinite(n))
             ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite normal");
         double len = length(n);
-        out.normals.push_back(Vec3f(len > 0 ? n / len : Vec3(0)));
+        p[i] = Vec3f(len > 0 ? n / len : Vec3(0));
     }
     return static_cast<uint32_t>(first);
 }
 
 /// The same for texture coordinates, turned to Glint's v (up the image; glTF's runs down).
 uint32_t appendUvs(const Context& ctx, const AccessorView& v, MeshData& out) {
-    size_t first = out.uvs.size();
-    std::vector<float> f = readFloats(ctx, v);
-    for (size_t i = 0; i < v.count; ++i) {
-        float s = f[2 * i], t = f[2 * i + 1];
-        if (!std::isfinite(s) || !std::isfinite(t))
+    const size_t first = out.uvs.size();
+    out.uvs.resize(first + v.count);
+    TexCoord* p = out.uvs.data() + first;
+    forEachElement(ctx, v, [&](size_t i, const float* c) { p[i] = {c[0], 1 - c[1]}; });
+    for (size_t i = 0; i < v.count; ++i)
+        if (!std::isfinite(p[i][0]) || !std::isfinite(p[i][1]))
             ctx.fail(v.label + ": element " + std::to_string(i) +
                      " is not a finite texture coordinate");
-        out.uvs.push_back({s, 1 - t});
-    }
     return static_cast<uint32_t>(first);
 }
 
@@ -427,11 +447,11 @@ MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& m
             material = it->second;
         }
 
-        std::vector<uint32_t> indices;
-        if (v.hasIndices) indices = readIndices(ctx, v.indices);
+        std::optional<IndexReader> indices;
+        if (v.hasIndices) indices.emplace(ctx, v.indices);
         const size_t vertices = v.position.count;
         auto corner = [&](size_t at) {
-            uint32_t i = v.hasIndices ? indices[at] : static_cast<uint32_t>(at);
+            uint32_t i = indices ? (*indices)[at] : static_cast<uint32_t>(at);
             if (i >= vertices)
                 ctx.fail(v.indices.label + ": index " + std::to_string(at) + " is " +
                          std::to_string(i) + ", but the primitive has " + std::to_string(vertices) +
