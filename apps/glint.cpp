@@ -207,15 +207,14 @@ int run(const Options& opt) {
     auto t0 = Clock::now();
     std::vector<glint::Diagnostic> warnings;
     std::unique_ptr<glint::Scene> scene;
-    std::string assumed;  // for a bare model: the camera, lights and floor Glint chose
+    std::string modelNote;  // for a bare model: the camera, lights and floor Glint chose
     try {
         if (demo) {
             scene = glint::parseHw3Scene(glint::kDemoScene, "demo.test", warnings);
         } else if (glint::isModelFile(opt.scene)) {
-            glint::ModelScene m = glint::loadModelScene(opt.scene, warnings, width ? width : 640,
-                                                        height ? height : 480);
+            glint::ModelScene m = glint::loadModelScene(opt.scene, warnings, width, height);
             scene = std::move(m.scene);
-            assumed = std::move(m.assumptions);
+            modelNote = std::move(m.note);
         } else {
             scene = glint::loadHw3Scene(opt.scene, warnings);
         }
@@ -226,9 +225,7 @@ int run(const Options& opt) {
     }
     double parseSeconds = secondsSince(t0);
     for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
-    if (!assumed.empty() && !opt.quiet)
-        std::fprintf(stderr, "glint: %s has no camera or lights: framing it with %s\n",
-                     opt.scene.c_str(), assumed.c_str());
+    if (!modelNote.empty() && !opt.quiet) std::fprintf(stderr, "glint: %s\n", modelNote.c_str());
     if (width > 0) {
         scene->width = width;
         scene->height = height;
@@ -327,8 +324,8 @@ int run(const Options& opt) {
 int main(int argc, char** argv) {
     CLI::App app{
         "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
-        "\nWithout SCENE it renders a built-in demo scene to glint.png; given an .obj model"
-        "\nit adds a camera, lights and a floor.",
+        "\nWithout SCENE it renders a built-in demo scene to glint.png; given an .obj, .gltf"
+        "\nor .glb model it adds what the model lacks of a camera, lights and a floor.",
         "glint"};
     app.get_formatter()->column_width(30);
     // One style for every usage error, whether CLI11 or Glint finds it.
@@ -337,7 +334,8 @@ int main(int argc, char** argv) {
     });
     Options opt;
     app.add_option("SCENE", opt.scene,
-                   "Scene file to render (CSE167x .test format), or an .obj model to frame");
+                   "Scene file to render (CSE167x .test format), or an .obj, .gltf or .glb "
+                   "model to frame");
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,

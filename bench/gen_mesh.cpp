@@ -1,6 +1,8 @@
-// glint_gen_mesh [OPTIONS] OUT.obj: writes a finely subdivided smooth surface as a Wavefront OBJ
-// with vertex normals, for benchmarking the OBJ loader and `glint model.obj` on a real-sized
-// mesh (docs/performance.md, "Meshes"). Nothing is downloaded: the surface is computed.
+// glint_gen_mesh [OPTIONS] OUT.obj|OUT.glb: writes a finely subdivided smooth surface as a
+// Wavefront OBJ, or as a binary glTF when the name ends in .glb, with vertex normals, for
+// benchmarking the OBJ and glTF loaders and `glint model.obj` on a real-sized mesh
+// (docs/performance.md, "Meshes"). Nothing is downloaded: the surface is computed. Both formats
+// hold the same vertices and triangles (the glTF's in float, 32-bit indices, no material).
 //
 // The surface is a rippled tube around a trefoil knot, the (2, 3) torus knot
 //   C(t) = ((2 + cos 3t) cos 2t, (2 + cos 3t) sin 2t, -sin 3t),
@@ -14,9 +16,11 @@
 //   --sides N      steps around the tube (default 256)
 //   --uv           write texture coordinates too
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
@@ -90,8 +94,129 @@ struct Out {
     }
 };
 
+/// The surface: vertices with normals (and texture coordinates), triangles of vertex numbers
+/// counted from 0, counter-clockwise seen from outside.
+struct Mesh {
+    std::vector<V> p, n;
+    std::vector<std::array<double, 2>> uv;  ///< Empty without --uv.
+    std::vector<std::array<long long, 3>> tri;
+};
+
+/// The mesh as OBJ text (indices from 1).
+std::string objText(const Mesh& mesh) {
+    const bool uv = !mesh.uv.empty();
+    Out out;
+    out.text.reserve(mesh.p.size() * (uv ? 90 : 70) + mesh.tri.size() * 25);
+    out.put("# Trefoil knot tube, ");
+    out.put(static_cast<long long>(mesh.tri.size()));
+    out.put(" triangles, written by glint_gen_mesh (bench/gen_mesh.cpp)\n");
+    for (size_t k = 0; k < mesh.p.size(); ++k) {
+        const V &p = mesh.p[k], &n = mesh.n[k];
+        out.put("v ");
+        out.put(p[0]), out.put(" "), out.put(p[1]), out.put(" "), out.put(p[2]);
+        out.put("\nvn ");
+        out.put(n[0]), out.put(" "), out.put(n[1]), out.put(" "), out.put(n[2]);
+        out.put("\n");
+        if (uv) {
+            out.put("vt ");
+            out.put(mesh.uv[k][0]);
+            out.put(" ");
+            out.put(mesh.uv[k][1]);
+            out.put("\n");
+        }
+    }
+    auto corner = [&](long long k) {
+        out.put(k + 1);
+        out.put(uv ? "/" : "//");
+        if (uv) {
+            out.put(k + 1);
+            out.put("/");
+        }
+        out.put(k + 1);
+    };
+    for (const auto& t : mesh.tri) {
+        out.put("f "), corner(t[0]), out.put(" "), corner(t[1]), out.put(" "), corner(t[2]);
+        out.put("\n");
+    }
+    return std::move(out.text);
+}
+
+/// The mesh as a binary glTF: one buffer of float positions, normals (and texture
+/// coordinates, v turned down as glTF has it) and 32-bit indices; one node, no material.
+std::string glbFile(const Mesh& mesh) {
+    std::string bin;
+    auto floats = [&](const auto& values) {
+        for (double x : values) {
+            float f = static_cast<float>(x);
+            bin.append(reinterpret_cast<const char*>(&f), 4);
+        }
+    };
+    std::string views, accessors, attributes;
+    int view = 0;
+    auto add = [&](size_t start, const char* type, int componentType, size_t count,
+                   const std::string& extra) {
+        views += std::string(view ? "," : "") +
+                 "{\"buffer\":0,\"byteOffset\":" + std::to_string(start) +
+                 ",\"byteLength\":" + std::to_string(bin.size() - start) + "}";
+        accessors += std::string(view ? "," : "") + "{\"bufferView\":" + std::to_string(view) +
+                     ",\"componentType\":" + std::to_string(componentType) +
+                     ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + "\"" + extra +
+                     "}";
+        return view++;
+    };
+    V lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    size_t start = bin.size();
+    for (const V& p : mesh.p) {
+        floats(p);
+        for (int i = 0; i < 3; ++i) {
+            lo[i] = std::min(lo[i], static_cast<double>(static_cast<float>(p[i])));
+            hi[i] = std::max(hi[i], static_cast<double>(static_cast<float>(p[i])));
+        }
+    }
+    auto list = [](const V& v) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "[%.9g,%.9g,%.9g]", v[0], v[1], v[2]);
+        return std::string(buf);
+    };
+    attributes +=
+        "\"POSITION\":" + std::to_string(add(start, "VEC3", 5126, mesh.p.size(),
+                                             ",\"min\":" + list(lo) + ",\"max\":" + list(hi)));
+    start = bin.size();
+    for (const V& n : mesh.n) floats(n);
+    attributes += ",\"NORMAL\":" + std::to_string(add(start, "VEC3", 5126, mesh.n.size(), ""));
+    if (!mesh.uv.empty()) {
+        start = bin.size();
+        for (const auto& t : mesh.uv) floats(std::array<double, 2>{t[0], 1 - t[1]});
+        attributes +=
+            ",\"TEXCOORD_0\":" + std::to_string(add(start, "VEC2", 5126, mesh.uv.size(), ""));
+    }
+    start = bin.size();
+    for (const auto& t : mesh.tri)
+        for (long long k : t) {
+            uint32_t i = static_cast<uint32_t>(k);
+            bin.append(reinterpret_cast<const char*>(&i), 4);
+        }
+    int indices = add(start, "SCALAR", 5125, 3 * mesh.tri.size(), "");
+    std::string json =
+        "{\"asset\":{\"version\":\"2.0\",\"generator\":\"glint_gen_mesh "
+        "(bench/gen_mesh.cpp)\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+        "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"name\":\"trefoil\","
+        "\"primitives\":[{\"attributes\":{" +
+        attributes + "},\"indices\":" + std::to_string(indices) +
+        "}]}],\"buffers\":[{\"byteLength\":" + std::to_string(bin.size()) + "}],\"bufferViews\":[" +
+        views + "],\"accessors\":[" + accessors + "]}";
+    json.append((4 - json.size() % 4) % 4, ' ');
+    auto u32 = [](size_t x) {
+        uint32_t v = static_cast<uint32_t>(x);
+        return std::string(reinterpret_cast<const char*>(&v), 4);
+    };
+    return "glTF" + u32(2) + u32(12 + 8 + json.size() + 8 + bin.size()) + u32(json.size()) +
+           "JSON" + json + u32(bin.size()) + std::string("BIN\0", 4) + bin;
+}
+
 int usage() {
-    std::fprintf(stderr, "usage: glint_gen_mesh [--segments N] [--sides N] [--uv] OUT.obj\n");
+    std::fprintf(stderr,
+                 "usage: glint_gen_mesh [--segments N] [--sides N] [--uv] OUT.obj|OUT.glb\n");
     return 2;
 }
 
@@ -119,42 +244,21 @@ int main(int argc, char** argv) {
 
     // With texture coordinates the seams need their own vertices (u = 1, v = 1).
     const long long columns = segments + (uv ? 1 : 0), rows = sides + (uv ? 1 : 0);
-    Out out;
-    out.text.reserve(static_cast<size_t>(columns * rows * (uv ? 90 : 70) + segments * sides * 50));
-    out.put("# Trefoil knot tube, ");
-    out.put(2 * segments * sides);
-    out.put(" triangles, written by glint_gen_mesh (bench/gen_mesh.cpp)\n");
+    Mesh mesh;
     for (long long i = 0; i < columns; ++i)
         for (long long j = 0; j < rows; ++j) {
             double t = kTwoPi * static_cast<double>(i) / static_cast<double>(segments);
             double s = kTwoPi * static_cast<double>(j) / static_cast<double>(sides);
-            V p = surface(t, s), n = surfaceNormal(t, s);
-            out.put("v ");
-            out.put(p[0]), out.put(" "), out.put(p[1]), out.put(" "), out.put(p[2]);
-            out.put("\nvn ");
-            out.put(n[0]), out.put(" "), out.put(n[1]), out.put(" "), out.put(n[2]);
-            out.put("\n");
-            if (uv) {
-                out.put("vt ");
-                out.put(static_cast<double>(i) / static_cast<double>(segments));
-                out.put(" ");
-                out.put(static_cast<double>(j) / static_cast<double>(sides));
-                out.put("\n");
-            }
+            mesh.p.push_back(surface(t, s));
+            mesh.n.push_back(surfaceNormal(t, s));
+            if (uv)
+                mesh.uv.push_back({static_cast<double>(i) / static_cast<double>(segments),
+                                   static_cast<double>(j) / static_cast<double>(sides)});
         }
-    // Vertex (i, j) is number i * rows + j + 1; cells wrap around both ways without --uv.
+    // Vertex (i, j) is number i * rows + j (from 0); cells wrap around both ways without --uv.
     auto index = [&](long long i, long long j) {
         if (!uv) i %= segments, j %= sides;
-        return i * rows + j + 1;
-    };
-    auto corner = [&](long long k) {
-        out.put(k);
-        out.put(uv ? "/" : "//");
-        if (uv) {
-            out.put(k);
-            out.put("/");
-        }
-        out.put(k);
+        return i * rows + j;
     };
     for (long long i = 0; i < segments; ++i)
         for (long long j = 0; j < sides; ++j) {
@@ -162,18 +266,21 @@ int main(int argc, char** argv) {
                       d = index(i, j + 1);
             // Counter-clockwise seen from outside: around the tube, s turns left-handed about
             // the knot's tangent, so the outward normal is ds x dt and the cell (a, b, c, d)
-            // runs clockwise seen from outside; its triangles are written the other way round.
-            out.put("f "), corner(a), out.put(" "), corner(c), out.put(" "), corner(b);
-            out.put("\nf "), corner(a), out.put(" "), corner(d), out.put(" "), corner(c);
-            out.put("\n");
+            // runs clockwise seen from outside; its triangles are listed the other way round.
+            mesh.tri.push_back({a, c, b});
+            mesh.tri.push_back({a, d, c});
         }
+
+    std::string_view name = path;
+    bool glb = name.size() >= 4 && name.substr(name.size() - 4) == ".glb";
+    std::string bytes = glb ? glbFile(mesh) : objText(mesh);
     FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f || std::fwrite(out.text.data(), 1, out.text.size(), f) != out.text.size() ||
+    if (!f || std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size() ||
         std::fclose(f) != 0) {
         std::perror(path.c_str());
         return 1;
     }
-    std::printf("%s: %lld vertices, %lld triangles, %.1f MB\n", path.c_str(), columns * rows,
-                2 * segments * sides, static_cast<double>(out.text.size()) / 1e6);
+    std::printf("%s: %zu vertices, %zu triangles, %.1f MB\n", path.c_str(), mesh.p.size(),
+                mesh.tri.size(), static_cast<double>(bytes.size()) / 1e6);
     return 0;
 }

@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
-# Loading and rendering a 1M-triangle OBJ model with no scene file (`glint model.obj`): medians
-# over RUNS runs of parse (OBJ to MeshData to scene), BVH build, render and peak memory.
-# Usage: bench/mesh_stats.sh BUILD_DIR [RUNS] [THREADS]
+# Loading and rendering a 1M-triangle model with no scene file (`glint model.obj`, or
+# `glint model.glb`): medians over RUNS runs of parse (file to MeshData to scene), BVH build,
+# render and peak memory.
+# Usage: bench/mesh_stats.sh BUILD_DIR [RUNS] [THREADS] [obj|glb]
 # The model (bench/gen_mesh.cpp: a rippled trefoil-knot tube, 1,048,576 triangles with vertex
-# normals, about 80 MB of text) is written to $GLINT_BENCH_TMP (default /tmp/glint-bench) once
-# and reused; it is never part of the repository.
+# normals; about 80 MB of OBJ text, or a 25 MB binary glTF) is written to $GLINT_BENCH_TMP
+# (default /tmp/glint-bench) once and reused; it is never part of the repository.
 set -euo pipefail
 if [ $# -lt 1 ]; then
-    echo "usage: $0 BUILD_DIR [RUNS] [THREADS]" >&2
+    echo "usage: $0 BUILD_DIR [RUNS] [THREADS] [obj|glb]" >&2
     exit 2
 fi
 build=$1
 runs=${2:-5}
 threads=${3:-2}
+format=${4:-obj}
+case $format in obj | glb) ;; *) echo "$0: format must be obj or glb" >&2 && exit 2 ;; esac
 tmp=${GLINT_BENCH_TMP:-/tmp/glint-bench}
 mkdir -p "$tmp"
-model=$tmp/trefoil-1m.obj
+model=$tmp/trefoil-1m.$format
 if [ ! -f "$model" ]; then
     start=$(date +%s.%N)
     "$build/bench/glint_gen_mesh" "$model"
@@ -34,4 +37,4 @@ glint_header
 echo
 glint_medians "$out/runs"
 echo
-echo "(medians of $runs runs, $threads threads, 640x480; parse = OBJ read, checked and placed)"
+echo "(medians of $runs runs, $threads threads, 640x480; parse = $format read, checked and placed)"

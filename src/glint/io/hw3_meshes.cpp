@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "glint/io/gltf_loader.h"
 #include "glint/io/hw3_parser.h"
 #include "glint/io/obj_loader.h"
 #include "glint/io/texture_io.h"
@@ -21,17 +22,34 @@ void Parser::cmdMesh() {
     uint32_t material = this->material();
     if (!limits_.readFiles) fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
     std::string path = scenePath(tok_[1].text);
-    auto it = meshes_.find(path);
-    if (it == meshes_.end()) {
+    const bool gltf = isGltfFile(path);
+    if (!meshes_.count(path) && !gltfModels_.count(path)) {
         if (std::string problem = inputFileProblem(path); !problem.empty())
             fail(1, "cannot read mesh " + quoted(1) + " (" + path + "): " + problem);
-        ObjOptions options;
-        options.limits = limits_;
-        // Errors inside the mesh file name that file, its line and column.
-        it = meshes_.emplace(path, loadObj(path, warnings_, options)).first;
+        // Errors inside the mesh file name that file (and its line and column for OBJ).
+        if (gltf) {
+            GltfOptions options;
+            options.limits = limits_;
+            gltfModels_.emplace(path, loadGltf(path, warnings_, options));
+        } else {
+            ObjOptions options;
+            options.limits = limits_;
+            meshes_.emplace(path, loadObj(path, warnings_, options));
+        }
     }
-    meshPlacer_.add(it->second, t, material, loc(tok_[0].column), "mesh " + quoted(1));
-    meshWhere_.push_back(loc(tok_[1].column));
+    // Placed when the file ends (placeMeshes), so that a mesh placed several times is stored
+    // once. A glTF asset's meshes are placed by its nodes, under the current transform; its
+    // cameras and lights are the scene's business, and are not used.
+    const std::string what = "mesh " + quoted(1);
+    try {
+        if (gltf)
+            placeGltf(meshPlacer_, gltfModels_.at(path), t, material, loc(tok_[0].column), what);
+        else
+            meshPlacer_.add(meshes_.at(path), t, material, loc(tok_[0].column), what);
+    } catch (const SceneError& e) {
+        fail(0, what + ": " + e.diagnostic().message);
+    }
+    meshWhere_.resize(meshPlacer_.size(), loc(tok_[1].column));
 }
 
 void Parser::placeMeshes() {

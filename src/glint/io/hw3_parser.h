@@ -14,6 +14,7 @@
 
 #include "glint/core/error.h"
 #include "glint/geometry/shape_search.h"
+#include "glint/io/gltf_loader.h"
 #include "glint/io/hw3_loader.h"
 #include "glint/math/mat4.h"
 #include "glint/scene/mesh.h"
@@ -213,7 +214,8 @@ class Parser {
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
-    std::map<std::string, MeshData> meshes_;  ///< Read by `mesh`, by path: each read once.
+    std::map<std::string, MeshData> meshes_;       ///< Read by `mesh`, by path: each read once.
+    std::map<std::string, GltfModel> gltfModels_;  ///< The same for glTF files.
     std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
     std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
     /// `mesh` placements, added when the file ends (so that a mesh placed several times is

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "glint/io/input_file.h"
 #include "glint/scene/texture.h"
@@ -18,5 +19,10 @@ constexpr long long kMaxTextureTexels = 1LL << 28;
 /// memory available before the pixels are decoded. Throws RenderError with the reason.
 std::shared_ptr<TextureImage> loadTextureImage(const std::string& path, bool srgb = true,
                                                const LoadLimits& limits = {});
+
+/// The same for an image file's bytes in memory (a glTF's embedded images); `name` says where
+/// they came from, in messages and in TextureImage::name. Throws RenderError with the reason.
+std::shared_ptr<TextureImage> decodeTextureImage(std::string_view bytes, const std::string& name,
+                                                 bool srgb = true, const LoadLimits& limits = {});
 
 }  // namespace glint

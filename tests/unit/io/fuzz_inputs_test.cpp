@@ -1,5 +1,5 @@
-// Every input the fuzzers start from (fuzz/corpus/hw3, fuzz/corpus/obj) and every input they
-// ever found a problem with (fuzz/regressions/hw3, fuzz/regressions/obj) goes through what the fuzz
+// Every input the fuzzers start from (fuzz/corpus/hw3, fuzz/corpus/obj, fuzz/corpus/gltf) and
+// every input they ever found a problem with (fuzz/regressions/...) goes through what the fuzz
 // harness does, in every normal build: it parses or fails with a SceneError, and when it parses it
 // renders with finite pixels.
 
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "glint/io/gltf_loader.h"
 #include "glint/io/hw3_loader.h"
 #include "glint/io/model_scene.h"
 #include "glint/io/obj_loader.h"
@@ -128,6 +129,50 @@ TEST(FuzzInputs, EveryObjRegressionFromFuzzingStaysFixed) {
     auto files = inputs("regressions/obj");
     if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
     for (const auto& f : files) objLoadsAndRendersFinite(read(f), f.filename().string());
+}
+
+/// What fuzz/gltf_fuzzer.cpp does with one input: returns false for a clean SceneError; a model
+/// that loads becomes the scene `glint model.gltf` makes, rendered tiny, every pixel finite.
+bool gltfLoadsAndRendersFinite(const std::string& input, const std::string& name) {
+    GltfOptions options;
+    options.limits.readFiles = false;
+    options.limits.memoryBytes = size_t(64) << 20;
+    std::vector<Diagnostic> warnings;
+    GltfModel model;
+    try {
+        model = parseGltf(input, name, warnings, options);
+    } catch (const SceneError&) {
+        return false;
+    }
+    ModelScene m;
+    try {
+        m = gltfModelScene(model, 8, 8);
+    } catch (const SceneError&) {
+        return true;
+    }
+    m.scene->maxDepth = 2;
+    m.scene->prepare();
+    RenderOptions o;
+    o.threads = 1;
+    Film f = render(*m.scene, o).film;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x)
+            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
+    return true;
+}
+
+TEST(FuzzInputs, GltfSeedCorpusLoadsOrFailsCleanlyAndRendersFinite) {
+    auto files = inputs("corpus/gltf");
+    ASSERT_GE(files.size(), 10u) << "the glTF seed corpus is missing";
+    int loaded = 0;
+    for (const auto& f : files) loaded += gltfLoadsAndRendersFinite(read(f), f.filename().string());
+    EXPECT_GE(loaded, 9);
+}
+
+TEST(FuzzInputs, EveryGltfRegressionFromFuzzingStaysFixed) {
+    auto files = inputs("regressions/gltf");
+    if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
+    for (const auto& f : files) gltfLoadsAndRendersFinite(read(f), f.filename().string());
 }
 
 }  // namespace

@@ -1,0 +1,120 @@
+// `glint model.gltf` and `glint model.glb` as a user meets them: the file's camera and lights,
+// Glint's framing for what is missing, and bad files. Files are copied from tests/data/gltf
+// into a fresh directory per test.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli/cli_support.h"
+#include "glint/io/image_io.h"
+
+namespace glint::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kGltf = std::string(GLINT_TEST_DATA_DIR) + "/gltf/";
+
+/// A fresh directory holding copies of the named files from tests/data/gltf.
+std::string dirWith(const std::string& name, std::initializer_list<const char*> files) {
+    std::string dir = freshDir(name);
+    for (const char* f : files) fs::copy_file(kGltf + f, dir + "/" + f);
+    return dir;
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+    return haystack.find(needle) != std::string::npos;
+}
+
+TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
+    std::string dir = dirWith("gltf-scene", {"scene.glb"});
+    CommandResult r = runGlint("scene.glb", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(contains(r.err, "has no")) << r.err;  // nothing was assumed
+    EXPECT_TRUE(contains(r.err, "glint: wrote scene.png (640x360)")) << r.err;
+    Image8 img = readImage8(dir + "/scene.png", 3);
+    EXPECT_EQ(img.height, 360);
+    r = runGlint("scene.glb --check --size 100x50", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out,
+              "scene.glb: ok: 100x50, 530 triangles, 0 spheres, 2 mesh instances, 2 lights, "
+              "maxdepth 5, output scene.png\n");
+}
+
+TEST(CliGltf, ABareModelIsFramedAndSaysSo) {
+    std::string dir = dirWith("gltf-bare", {"quad.gltf", "quad.bin", "quadrants.png"});
+    CommandResult r = runGlint("quad.gltf --size 80x60", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(
+        contains(r.err, "glint: quad.gltf has no camera or lights: framing it with a camera at ("))
+        << r.err;
+    EXPECT_TRUE(contains(r.err, "a key and a fill directional light")) << r.err;
+    EXPECT_TRUE(fs::exists(dir + "/quad.png"));
+    r = runGlint("-q quad.gltf --size 80x60 -o q.png", dir);
+    EXPECT_EQ(r.err, "");
+}
+
+TEST(CliGltf, BadFilesAreErrorsNamingTheFile) {
+    std::string dir = dirWith(
+        "gltf-bad", {"bad-accessor.gltf", "truncated.glb", "missing-bin.gltf", "bad-index.gltf"});
+    CommandResult r = runGlint("bad-accessor.gltf", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "bad-accessor.gltf: error: accessor 9 does not exist")) << r.err;
+    r = runGlint("truncated.glb", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "truncated.glb: error: the file is truncated")) << r.err;
+    r = runGlint("missing-bin.gltf", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err,
+                         "missing-bin.gltf: error: cannot read buffer file 'nowhere.bin': No such "
+                         "file or directory"))
+        << r.err;
+    r = runGlint("bad-index.gltf", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err,
+                         "bad-index.gltf: error: accessor 1 (indices of mesh 0, "
+                         "primitive 0): index 5 is 7"))
+        << r.err;
+    r = runGlint("NOWHERE.GLB", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "NOWHERE.GLB: error: cannot read glTF: No such file")) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/NOWHERE.png"));
+}
+
+TEST(CliGltf, AMissingTextureIsAWarning) {
+    std::string dir = dirWith("gltf-notexture", {"missing-texture.gltf"});
+    CommandResult r = runGlint("missing-texture.gltf --size 40x30", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err,
+                         "missing-texture.gltf: warning: material 0 'painted': cannot read "
+                         "texture 'nowhere.png'"))
+        << r.err;
+    EXPECT_TRUE(fs::exists(dir + "/missing-texture.png"));
+}
+
+TEST(CliGltf, MeshCommandPlacesAGltfFileRelativeToTheScene) {
+    std::string dir = freshDir("gltf-meshcmd");
+    fs::create_directories(dir + "/models");
+    for (const char* f : {"quad.gltf", "quad.bin", "quadrants.png"})
+        fs::copy_file(kGltf + f, dir + "/models/" + f);
+    writeFile(dir + "/scene.test",
+              "size 40 40\ncamera 0 0 5 0 0 0 0 1 0 45\nambient 0 0 0\n"
+              "directional 0 0 1 1 1 1\n"
+              "pushTransform\ntranslate -1 -1 0\nscale 2 2 1\nmesh models/quad.gltf\n"
+              "popTransform\n");
+    CommandResult r = runGlint("-q scene.test", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    Image8 img = readImage8(dir + "/scene.png", 3);
+    // The textured square, scaled to 2 x 2 and centred: red at the top left, blue at the
+    // bottom left (quadrants.png), black in the corners.
+    EXPECT_GT(img.at(14, 14, 0), 200);
+    EXPECT_LT(img.at(14, 14, 2), 50);
+    EXPECT_GT(img.at(14, 26, 2), 200);
+    EXPECT_LT(img.at(14, 26, 0), 50);
+    EXPECT_EQ(img.at(0, 0, 0), 0);
+}
+
+}  // namespace
+}  // namespace glint::test

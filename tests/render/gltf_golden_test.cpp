@@ -1,0 +1,44 @@
+// Golden image of a glTF scene: tests/data/gltf/scene.glb (a textured box placed by two nodes
+// sharing one mesh, a smooth metal ball, a ground, the file's camera and its point and
+// directional lights) loaded as `glint scene.glb --size 160x90` loads it, rendered and compared
+// with the image Glint made when glTF input was accepted (tests/data/gltf/scene.png,
+// regenerated only deliberately with tests/data/gltf/regenerate.sh). A few pixels one level off
+// are tolerated for floating-point differences on another CPU.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "glint/io/image_io.h"
+#include "glint/io/model_scene.h"
+#include "glint/render/image_diff.h"
+#include "glint/render/renderer.h"
+
+namespace glint {
+namespace {
+
+TEST(GltfGolden, SceneMatchesItsAcceptedImage) {
+    const std::string dir = std::string(GLINT_TEST_DATA_DIR) + "/gltf/";
+    std::vector<Diagnostic> warnings;
+    ModelScene m = loadModelScene(dir + "scene.glb", warnings, 160, 90);
+    EXPECT_TRUE(warnings.empty()) << warnings.front().format("warning");
+    EXPECT_EQ(m.note, "");  // the file's camera and lights: nothing assumed
+    Scene& scene = *m.scene;
+    scene.prepare();
+    // The box is placed by two nodes: stored once, with its image texture once.
+    EXPECT_EQ(scene.primitives.instanceCount(), 2u);
+    EXPECT_EQ(scene.textures.size(), 1u);
+    Image8 ours = toImage8(render(scene, RenderOptions{}).film);
+    Image8 reference = readImage8(dir + "scene.png", 3);
+    ASSERT_EQ(ours.width, reference.width);
+    ASSERT_EQ(ours.height, reference.height);
+    long long hot1 = countHotPixels(ours, reference, 1);
+    long long hot0 = countHotPixels(ours, reference, 0);
+    std::printf("gltf scene: pixels differing by more than 0 / 1 levels: %lld / %lld\n", hot0,
+                hot1);
+    EXPECT_LE(hot1, 5) << "the image changed";
+    EXPECT_LE(hot0, ours.width * ours.height / 100);
+}
+
+}  // namespace
+}  // namespace glint
