@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fuzz_render.h"
 #include "glint/core/error.h"
 #include "glint/io/gltf_loader.h"
 #include "glint/io/model_scene.h"
@@ -53,17 +54,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     glint::Scene& scene = *m.scene;
     scene.maxDepth = 2;
     scene.prepare();
-    glint::RenderOptions o;
-    o.threads = 1;
-    glint::RenderResult result = glint::render(scene, o);
-    for (int y = 0; y < result.film.height(); ++y)
-        for (int x = 0; x < result.film.width(); ++x) {
-            const glint::Vec3& c = result.film.at(x, y);
-            if (!glint::isFinite(c)) {
-                std::fprintf(stderr, "glint_fuzz_gltf: non-finite pixel (%d, %d) = (%g, %g, %g)\n",
-                             x, y, c.x, c.y, c.z);
-                std::abort();
-            }
-        }
+    glint::fuzz::renderExpectingFinitePixels(scene, "glint_fuzz_gltf");
     return 0;
 }

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fuzz_render.h"
 #include "glint/core/error.h"
 #include "glint/io/hw3_loader.h"
 #include "glint/render/renderer.h"
@@ -45,17 +46,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (scene->primitives.size() > kMaxPrimitives) return 0;
     scene->prepare();
 
-    glint::RenderOptions options;
-    options.threads = 1;
-    glint::RenderResult result = glint::render(*scene, options);
-    for (int y = 0; y < result.film.height(); ++y)
-        for (int x = 0; x < result.film.width(); ++x) {
-            const glint::Vec3& c = result.film.at(x, y);
-            if (!glint::isFinite(c)) {
-                std::fprintf(stderr, "glint_fuzz_hw3: non-finite pixel (%d, %d) = (%g, %g, %g)\n",
-                             x, y, c.x, c.y, c.z);
-                std::abort();
-            }
-        }
+    glint::fuzz::renderExpectingFinitePixels(*scene, "glint_fuzz_hw3");
     return 0;
 }

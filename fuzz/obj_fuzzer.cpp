@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fuzz_render.h"
 #include "glint/core/error.h"
 #include "glint/io/model_scene.h"
 #include "glint/io/obj_loader.h"
@@ -62,17 +63,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;  // beyond the coordinate range, or nothing of non-zero area
     }
     scene.prepare();
-    glint::RenderOptions o;
-    o.threads = 1;
-    glint::RenderResult result = glint::render(scene, o);
-    for (int y = 0; y < result.film.height(); ++y)
-        for (int x = 0; x < result.film.width(); ++x) {
-            const glint::Vec3& c = result.film.at(x, y);
-            if (!glint::isFinite(c)) {
-                std::fprintf(stderr, "glint_fuzz_obj: non-finite pixel (%d, %d) = (%g, %g, %g)\n",
-                             x, y, c.x, c.y, c.z);
-                std::abort();
-            }
-        }
+    glint::fuzz::renderExpectingFinitePixels(scene, "glint_fuzz_obj");
     return 0;
 }

@@ -97,14 +97,20 @@ Material lightGrey() {
     return grey;
 }
 
+/// A model scene with no geometry yet, for a `width` x `height` image (640 x 480 for 0).
+ModelScene emptyModelScene(int width, int height) {
+    ModelScene out;
+    out.scene = std::make_unique<Scene>();
+    out.scene->width = width > 0 ? width : 640;
+    out.scene->height = height > 0 ? height : 480;
+    return out;
+}
+
 }  // namespace
 
 ModelScene gltfModelScene(const GltfModel& model, int width, int height) {
-    ModelScene out;
-    out.scene = std::make_unique<Scene>();
+    ModelScene out = emptyModelScene(width, height);
     Scene& scene = *out.scene;
-    scene.width = width > 0 ? width : 640;
-    scene.height = height > 0 ? height : 480;
     MeshPlacer placer;
     placeGltf(placer, model, Transform(), scene.addMaterial(lightGrey()));
     placer.place(scene);
@@ -149,11 +155,8 @@ ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warn
         // The model is freed once placed, before the scene's BVH is built.
         return gltfModelScene(loadGltf(path, warnings, options), width, height);
     }
-    ModelScene out;
-    out.scene = std::make_unique<Scene>();
+    ModelScene out = emptyModelScene(width, height);
     Scene& scene = *out.scene;
-    scene.width = width > 0 ? width : 640;
-    scene.height = height > 0 ? height : 480;
     {
         ObjOptions options;
         options.limits = limits;
