@@ -13,6 +13,7 @@
 #include "glint/io/image_io.h"
 #include "glint/render/image_diff.h"
 #include "glint/render/renderer.h"
+#include "render/accepted_image.h"
 
 namespace glint {
 namespace {
@@ -32,17 +33,9 @@ TEST_P(ExtensionScene, MatchesItsAcceptedImage) {
     RenderOptions o;
     o.spp = scene->spp > 0 ? scene->spp : 1;
     RenderResult result = render(*scene, o);
-    Image8 ours = toImage8(result.film);
-    Image8 reference =
-        readImage8(std::string(GLINT_TEST_DATA_DIR) + "/extensions/" + name + ".png", 3);
-    ASSERT_EQ(ours.width, reference.width);
-    ASSERT_EQ(ours.height, reference.height);
-    long long hot1 = countHotPixels(ours, reference, 1);
-    long long hot0 = countHotPixels(ours, reference, 0);
-    std::printf("%s: pixels differing by more than 0 / 1 levels: %lld / %lld\n", name.c_str(), hot0,
-                hot1);
-    EXPECT_LE(hot1, 5) << "the image changed";
-    EXPECT_LE(hot0, kWidth * kHeight / 100);
+    test::expectAcceptedImage(toImage8(result.film),
+                              std::string(GLINT_TEST_DATA_DIR) + "/extensions/" + name + ".png",
+                              name);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ExtensionScene,
