@@ -5,11 +5,13 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 
 #include "glint/math/vec3.h"
 #include "glint/scene/material.h"
+#include "glint/scene/scene.h"
 
 namespace glint::test {
 
@@ -18,6 +20,16 @@ inline void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-12) {
     EXPECT_NEAR(a.x, b.x, eps);
     EXPECT_NEAR(a.y, b.y, eps);
     EXPECT_NEAR(a.z, b.z, eps);
+}
+
+/// The closest hit in a prepared scene of the ray from `origin` along `dir`, with its shading
+/// data.
+inline std::optional<SurfaceInteraction> shoot(const Scene& scene, const Vec3& origin,
+                                               const Vec3& dir) {
+    Ray ray{origin, normalize(dir)};
+    Hit hit;
+    if (!scene.bvh().intersect(ray, hit)) return std::nullopt;
+    return scene.primitives.interaction(ray, hit);
 }
 
 /// A material with the given terms; emission black.

@@ -38,13 +38,6 @@ std::unique_ptr<Scene> place(const GltfModel& model, const Transform& t = Transf
     return scene;
 }
 
-std::optional<SurfaceInteraction> shoot(const Scene& scene, const Vec3& origin, const Vec3& dir) {
-    Ray ray{origin, normalize(dir)};
-    Hit hit;
-    if (!scene.bvh().intersect(ray, hit)) return std::nullopt;
-    return scene.primitives.interaction(ray, hit);
-}
-
 Vec3 position(const MeshData& mesh, size_t triangle, int corner) {
     return Vec3(mesh.positions[mesh.triangles[triangle].corners[corner].position]);
 }

@@ -7,9 +7,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "glint/io/hw3_loader.h"
+#include "unit/test_support.h"
 
 namespace glint::test {
 
@@ -62,13 +64,11 @@ inline Diagnostic warningOf(const std::string& body, std::unique_ptr<Scene>* sce
     return warnings.empty() ? Diagnostic{} : warnings.front();
 }
 
-/// The closest hit of the ray from `origin` along `dir`, with its shading data.
+/// The closest hit of the ray from `origin` along `dir`, with its shading data; prepares the
+/// scene first if need be.
 inline std::optional<SurfaceInteraction> shoot(Scene& scene, const Vec3& origin, const Vec3& dir) {
     if (!scene.prepared()) scene.prepare();
-    Ray ray{origin, normalize(dir)};
-    Hit hit;
-    if (!scene.bvh().intersect(ray, hit)) return std::nullopt;
-    return scene.primitives.interaction(ray, hit);
+    return shoot(std::as_const(scene), origin, dir);
 }
 
 }  // namespace glint::test

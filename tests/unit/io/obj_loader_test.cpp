@@ -18,6 +18,7 @@ namespace glint {
 namespace {
 
 using test::expectNear;
+using test::shoot;
 using ::testing::HasSubstr;
 
 std::string meshPath(const std::string& name) {
@@ -89,14 +90,6 @@ std::unique_ptr<Scene> place(const MeshData& mesh, const Mat4& m = Mat4::identit
     addMesh(*scene, mesh, *Transform::fromMatrix(m), id);
     scene->prepare();
     return scene;
-}
-
-/// What the ray from `origin` along `dir` hits first.
-std::optional<SurfaceInteraction> shoot(const Scene& scene, const Vec3& origin, const Vec3& dir) {
-    Ray ray{origin, normalize(dir)};
-    Hit hit;
-    if (!scene.bvh().intersect(ray, hit)) return std::nullopt;
-    return scene.primitives.interaction(ray, hit);
 }
 
 std::optional<SurfaceInteraction> shootDown(const Scene& scene, double x, double y) {
