@@ -312,22 +312,31 @@ void readMeshes(Context& ctx, GltfModel& out) {
             maxPositions = std::max(maxPositions, c->positions);
             maxNormals = std::max(maxNormals, c->normals);
         }
-    for (const GltfPlacement& p : out.placements) {
-        placed += double(counts[p.mesh]->triangles);
-        placedNormals += double(counts[p.mesh]->normalTriangles);
-        placedUvs += double(counts[p.mesh]->uvTriangles);
-    }
+    // A mesh placed once becomes the scene's triangles; a mesh placed several times is stored
+    // once and placed by instances (MeshPlacer), each the size of a shape.
+    std::vector<size_t> uses(meshes);
+    for (const GltfPlacement& p : out.placements) ++uses[p.mesh];
+    double instances = 0;
+    for (size_t m = 0; m < meshes; ++m)
+        if (uses[m] > 0) {
+            placed += double(counts[m]->triangles);
+            placedNormals += double(counts[m]->normalTriangles);
+            placedUvs += double(counts[m]->uvTriangles);
+            if (uses[m] > 1) instances += double(uses[m]);
+        }
     // The scene's estimate per triangle, scaled: the counts may exceed size_t's range.
     const double perTriangle = double(Scene::estimateBytes(1000, 0, 0, 0, 0)) / 1000;
     const double perNormal = double(Scene::estimateBytes(1000, 0, 0, 1000, 0)) / 1000 - perTriangle;
     const double perUv = double(Scene::estimateBytes(1000, 0, 0, 0, 1000)) / 1000 - perTriangle;
+    const double perInstance = double(Scene::estimateBytes(0, 0, 1000, 0, 0)) / 1000;
     double needed = meshBytes + placed * perTriangle + placedNormals * perNormal +
-                    placedUvs * perUv + double(meshPlacementBytes(maxPositions, maxNormals));
+                    placedUvs * perUv + instances * perInstance +
+                    double(meshPlacementBytes(maxPositions, maxNormals));
     size_t available = memoryAvailable(ctx.options.limits);
     if (available > 0 && needed > double(available))
         ctx.fail("the model needs about " + formatBytes(needed) + " of memory (" +
                  std::to_string(static_cast<unsigned long long>(placed)) +
-                 " triangles placed), more than the " + formatBytes(double(available)) +
+                 " triangles stored), more than the " + formatBytes(double(available)) +
                  " available");
     Materials materials(ctx);
     for (size_t i = 0; i < meshes; ++i)
