@@ -58,7 +58,7 @@ uint32_t Primitives::addSharedMesh(const Primitives& mesh) {
     return static_cast<uint32_t>(sharedMeshes_.size() - 1);
 }
 
-void Primitives::addInstance(uint32_t mesh, const Transform& worldFromObject) {
+const Bounds3f& Primitives::addInstance(uint32_t mesh, const Transform& worldFromObject) {
     const Bounds3f& ob = sharedMeshBounds_[mesh];
     Vec3 lo(kInfinity), hi(-kInfinity);
     if (!ob.empty())
@@ -70,13 +70,14 @@ void Primitives::addInstance(uint32_t mesh, const Transform& worldFromObject) {
             hi = max(hi, w);
         }
     Bounds3f bounds = ob.empty() ? Bounds3f() : paddedSearchBounds(lo, hi);
-    instances_.push_back({mesh, worldFromObject, bounds,
-                          ShapeSearch::instance(worldFromObject.inverseMatrix(), mesh)});
+    instances_.push_back(
+        {worldFromObject, bounds, ShapeSearch::instance(worldFromObject.inverseMatrix(), mesh)});
+    return instances_.back().bounds;
 }
 
 size_t Primitives::instancedTriangleCount() const {
     size_t n = 0;
-    for (const Instance& in : instances_) n += sharedMeshes_[in.mesh]->triangleCount();
+    for (const Instance& in : instances_) n += sharedMeshes_[in.search.mesh()]->triangleCount();
     return n;
 }
 
@@ -190,7 +191,7 @@ SurfaceInteraction Primitives::shapeInteraction(const Ray& ray, const Hit& hit) 
             instances_[hit.primId - triangleCount() - sphereCount() - shapeCount()];
         const Transform& w = in.worldFromObject;
         Ray local{w.inversePoint(ray.origin), w.inverseVector(ray.dir), ray.tMin, ray.tMax};
-        si = sharedMeshes_[in.mesh]->interaction(local, Hit{hit.t, hit.subId});
+        si = sharedMeshes_[in.search.mesh()]->interaction(local, Hit{hit.t, hit.subId});
         si.p = w.point(si.p);
         si.ng = normalize(w.normal(si.ng));
         Vec3 n = w.normal(si.n);

@@ -67,8 +67,9 @@ class Primitives {
     /// space. `mesh` must stay where it is, unchanged, while this object lives. Returns its
     /// index for addInstance().
     uint32_t addSharedMesh(const Primitives& mesh);
-    /// Places shared mesh `mesh` (an index from addSharedMesh) by `worldFromObject`.
-    void addInstance(uint32_t mesh, const Transform& worldFromObject);
+    /// Places shared mesh `mesh` (an index from addSharedMesh) by `worldFromObject`. Returns
+    /// the instance's world-space bounds.
+    const Bounds3f& addInstance(uint32_t mesh, const Transform& worldFromObject);
     /// Room for this many more triangles, spheres and other shapes, so that adding them does
     /// not reallocate.
     void reserve(size_t triangles, size_t spheres, size_t shapes = 0);
@@ -159,7 +160,6 @@ class Primitives {
     static constexpr uint32_t kNoNormals = UINT32_MAX - 1;
 
     struct Instance {
-        uint32_t mesh;
         Transform worldFromObject;
         Bounds3f bounds;     ///< World space, padded like shapes' (paddedSearchBounds).
         ShapeSearch search;  ///< Kind Instance: objectFromWorld and the mesh index.

@@ -184,7 +184,7 @@ std::unique_ptr<Scene> Parser::run() {
                          "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
                          "upx upy upz fovy')");
     }
-    placeMeshes();
+    meshPlacer_.place(*scene_, &warnings_);
     if (!imageTextures_.empty()) checkTextureCoordinates();
     scene_->camera->apertureRadius = apertureRadius_;
     scene_->camera->focusDistance = focusDistance_;

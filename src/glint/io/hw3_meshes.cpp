@@ -49,18 +49,6 @@ void Parser::cmdMesh() {
     } catch (const SceneError& e) {
         fail(0, what + ": " + e.diagnostic().message);
     }
-    meshWhere_.resize(meshPlacer_.size(), loc(tok_[1].column));
-}
-
-void Parser::placeMeshes() {
-    std::vector<MeshPlacement> placed = meshPlacer_.place(*scene_);
-    for (size_t i = 0; i < placed.size(); ++i) {
-        if (placed[i].degenerate == 0) continue;
-        warnings_.push_back({meshWhere_[i], std::to_string(placed[i].degenerate) +
-                                                " triangles of this mesh have zero area once "
-                                                "placed and are skipped (reported once)"});
-        break;
-    }
 }
 
 void Parser::cmdTexture() {

@@ -170,9 +170,6 @@ class Parser {
     void cmdChecker();
     /// `name`, a file named in the scene, relative to the scene file's directory.
     std::string scenePath(std::string_view name) const;
-    /// Adds the `mesh` placements to the scene; warns once of triangles that placing made
-    /// degenerate.
-    void placeMeshes();
     /// Warns once if surfaces without texture coordinates use an image texture.
     void checkTextureCoordinates();
     /// Adds a box, cylinder, cone or disk placed by `objectFromCanonical` under the current
@@ -219,9 +216,8 @@ class Parser {
     std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
     std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
     /// `mesh` placements, added when the file ends (so that a mesh placed several times is
-    /// stored once), and where each `mesh` command names its file.
+    /// stored once).
     MeshPlacer meshPlacer_;
-    std::vector<FileLoc> meshWhere_;
     double apertureRadius_ = 0, focusDistance_ = 0;  ///< From `lens`, applied to the camera.
 };
 

@@ -107,7 +107,7 @@ void MeshPlacer::add(const MeshData& mesh, const Transform& worldFromObject,
         {&mesh, worldFromObject, defaultMaterial, std::move(where), std::move(what)});
 }
 
-std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
+std::vector<MeshPlacement> MeshPlacer::place(Scene& scene, std::vector<Diagnostic>* warnings) {
     // Placements that can share: the same mesh, and the same default material where the mesh
     // uses it.
     using Key = std::pair<const MeshData*, uint32_t>;
@@ -124,7 +124,6 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
     struct Shared {
         uint32_t index;
         MeshPlacement stored;
-        Bounds3f bounds;  // object space
     };
     std::map<Key, Shared> shared;
     std::vector<MeshPlacement> results;
@@ -137,33 +136,42 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene) {
             }
             auto it = shared.find(keys[i]);
             if (it == shared.end()) {
-                auto prims = std::make_unique<Primitives>();
+                Primitives prims;
                 MeshPlacement stored =
-                    addTriangles(scene, *prims, *p.mesh, Transform(), p.defaultMaterial);
-                Bounds3f bounds = prims->bounds();
+                    addTriangles(scene, prims, *p.mesh, Transform(), p.defaultMaterial);
                 // A mesh whose every triangle is degenerate has nothing to place.
-                uint32_t index = prims->triangleCount() == 0
-                                     ? MeshData::kNone
-                                     : scene.addSharedMesh(std::move(prims));
-                it = shared.emplace(keys[i], Shared{index, stored, bounds}).first;
+                uint32_t index = prims.triangleCount() == 0 ? MeshData::kNone
+                                                            : scene.addSharedMesh(std::move(prims));
+                it = shared.emplace(keys[i], Shared{index, stored}).first;
             }
             results.push_back(it->second.stored);
             if (it->second.index == MeshData::kNone) continue;
-            // The placed corners of the mesh's bounds must lie in range, as placed vertices must.
-            const Bounds3f& b = it->second.bounds;
-            for (int corner = 0; corner < 8 && !b.empty(); ++corner) {
-                Vec3 c(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y,
-                       corner & 4 ? b.hi.z : b.lo.z);
-                if (!inRange(p.worldFromObject.point(c)))
-                    throw SceneError({p.mesh->name, 0, 0},
-                                     "the mesh lies beyond the supported coordinate range (1e18) "
-                                     "once placed by the transform");
-            }
-            scene.primitives.addInstance(it->second.index, p.worldFromObject);
+            // The placed mesh must lie in range, as placed vertices must.
+            const Bounds3f& b = scene.primitives.addInstance(it->second.index, p.worldFromObject);
+            if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
+                throw SceneError({p.mesh->name, 0, 0},
+                                 "the mesh lies beyond the supported coordinate range (1e18) "
+                                 "once placed by the transform");
         } catch (const SceneError& e) {
             if (p.where.file.empty()) throw;
             throw SceneError(p.where, p.what + ": " + e.diagnostic().message);
         }
+    }
+    // Degenerate triangles: one warning, at the first placement that had some.
+    for (size_t i = 0; warnings && i < results.size(); ++i) {
+        if (results[i].degenerate == 0) continue;
+        const Placement& p = placements_[i];
+        Diagnostic d;
+        d.message = std::to_string(results[i].degenerate) +
+                    " triangles have zero area once placed and are skipped";
+        if (p.where.file.empty()) {
+            d.loc.file = p.mesh->name;
+        } else {
+            d.loc = p.where;
+            d.message = p.what + ": " + d.message + " (reported once)";
+        }
+        warnings->push_back(std::move(d));
+        break;
     }
     placements_.clear();
     return results;

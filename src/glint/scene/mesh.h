@@ -82,9 +82,10 @@ class MeshPlacer {
     size_t size() const { return placements_.size(); }
 
     /// Adds every recorded placement to `scene`, in the order recorded, and forgets them.
-    /// Returns what each placement added (instances count their mesh's triangles). Throws
+    /// Returns what each placement added (instances count their mesh's triangles), and warns
+    /// once in `warnings` (if given) of triangles that placing made degenerate. Throws
     /// SceneError if a placed vertex would lie beyond the coordinate range.
-    std::vector<MeshPlacement> place(Scene& scene);
+    std::vector<MeshPlacement> place(Scene& scene, std::vector<Diagnostic>* warnings = nullptr);
 
   private:
     struct Placement {

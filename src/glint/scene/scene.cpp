@@ -26,17 +26,17 @@ size_t Scene::estimateBytes(size_t triangles, size_t spheres, size_t shapes, siz
            shapes * perShape;
 }
 
-uint32_t Scene::addSharedMesh(std::unique_ptr<Primitives> mesh) {
+uint32_t Scene::addSharedMesh(Primitives mesh) {
     auto shared = std::make_unique<SharedMesh>();
     shared->primitives = std::move(mesh);
-    uint32_t index = primitives.addSharedMesh(*shared->primitives);
+    uint32_t index = primitives.addSharedMesh(shared->primitives);
     sharedMeshes_.push_back(std::move(shared));
     return index;
 }
 
 size_t Scene::sharedTriangleCount() const {
     size_t n = 0;
-    for (const auto& m : sharedMeshes_) n += m->primitives->triangleCount();
+    for (const auto& m : sharedMeshes_) n += m->primitives.triangleCount();
     return n;
 }
 
@@ -49,7 +49,7 @@ size_t Scene::sharedBvhBytes() const {
 void Scene::prepare() {
     BvhBuildOptions options;
     for (const auto& m : sharedMeshes_) {
-        m->bvh.build(*m->primitives);
+        m->bvh.build(m->primitives);
         options.sharedMeshes.push_back(&m->bvh);
     }
     bvh_.build(primitives, options);

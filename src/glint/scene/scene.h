@@ -80,7 +80,7 @@ class Scene {
 
     /// Stores `mesh` (triangles in their own space) once, for instances to place
     /// (primitives.addInstance). Returns its index there.
-    uint32_t addSharedMesh(std::unique_ptr<Primitives> mesh);
+    uint32_t addSharedMesh(Primitives mesh);
     /// Triangles stored in shared meshes, each counted once.
     size_t sharedTriangleCount() const;
 
@@ -98,7 +98,7 @@ class Scene {
 
   private:
     struct SharedMesh {
-        std::unique_ptr<Primitives> primitives;  // where primitives.sharedMesh() points
+        Primitives primitives;  // where primitives.sharedMesh() points: SharedMesh never moves
         Bvh bvh;
     };
     std::vector<std::unique_ptr<SharedMesh>> sharedMeshes_;

@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "glint/io/hw3_loader.h"
 #include "glint/render/whitted.h"
 #include "unit/io/hw3_test_support.h"
@@ -70,6 +72,24 @@ TEST(Hw3Meshes, TheSameMeshTwiceIsStoredOnceAndInstanced) {
     EXPECT_TRUE(down(*s, 0.5, 0.5));
     EXPECT_TRUE(down(*s, 10.5, 0.5));
     EXPECT_FALSE(down(*s, 5.5, 0.5));
+}
+
+class Hw3MeshFiles : public test::TempDirTest {};
+
+TEST_F(Hw3MeshFiles, DegenerateTrianglesAreReportedOnceAtTheFirstMeshCommand) {
+    // One face of zero area (collinear corners) and one proper face; placed twice (instanced).
+    std::ofstream(path("line.obj")) << "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n";
+    std::vector<Diagnostic> warnings;
+    auto scene =
+        parseHw3Scene(std::string("mesh line.obj\ntranslate 5 0 0\nmesh line.obj\n") + kCamera,
+                      path("scene.test"), warnings);
+    EXPECT_EQ(scene->primitives.instanceCount(), 2u);
+    EXPECT_EQ(scene->sharedTriangleCount(), 1u);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0].loc.line, 1);
+    EXPECT_EQ(warnings[0].message,
+              "mesh 'line.obj': 1 triangles have zero area once placed and are skipped (reported "
+              "once)");
 }
 
 TEST(Hw3Meshes, AMeshPlacedOnceIsFlattened) {
