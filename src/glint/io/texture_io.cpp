@@ -4,10 +4,12 @@
 
 #include <climits>
 #include <memory>
+#include <system_error>
 
 #include "glint/core/error.h"
 #include "glint/core/system.h"
 #include "glint/io/image_io.h"
+#include "glint/io/mapped_file.h"
 
 namespace glint {
 namespace {
@@ -47,11 +49,13 @@ std::shared_ptr<TextureImage> makeTexture(Image8 img, bool srgb, const std::stri
 std::shared_ptr<TextureImage> loadTextureImage(const std::string& path, bool srgb,
                                                const LoadLimits& limits) {
     if (std::string problem = inputFileProblem(path); !problem.empty()) cannot(path, problem);
-    // The header first: a few bytes must not make us allocate gigabytes.
-    int w = 0, h = 0, n = 0;
-    if (!stbi_info(path.c_str(), &w, &h, &n)) cannot(path, stbi_failure_reason());
-    checkTextureSize(path, w, h, limits);
-    return makeTexture(readImage8(path, 3), srgb, path);
+    std::unique_ptr<MappedFile> file;
+    try {
+        file = std::make_unique<MappedFile>(path);
+    } catch (const std::system_error& e) {
+        cannot(path, e.code().message());
+    }
+    return decodeTextureImage(file->text(), path, srgb, limits);
 }
 
 std::shared_ptr<TextureImage> decodeTextureImage(std::string_view bytes, const std::string& name,
@@ -62,6 +66,7 @@ std::shared_ptr<TextureImage> decodeTextureImage(std::string_view bytes, const s
                          std::to_string(INT_MAX));
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int size = static_cast<int>(bytes.size());
+    // The header first: a few bytes must not make us allocate gigabytes.
     int w = 0, h = 0, n = 0;
     if (!stbi_info_from_memory(data, size, &w, &h, &n)) cannot(name, stbi_failure_reason());
     checkTextureSize(name, w, h, limits);
