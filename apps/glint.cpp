@@ -18,9 +18,9 @@
 #include "glint/accel/bvh.h"
 #include "glint/core/error.h"
 #include "glint/core/system.h"
-#include "glint/io/atomic_file.h"
-#include "glint/io/hw3_loader.h"
-#include "glint/io/image_io.h"
+#include "glint/core/atomic_file.h"
+#include "glint/io/course/course_loader.h"
+#include "glint/io/image/image_io.h"
 #include "glint/io/model_scene.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
@@ -210,13 +210,13 @@ int run(const Options& opt) {
     std::string modelNote;  // for a bare model: the camera, lights and floor Glint chose
     try {
         if (demo) {
-            scene = glint::parseHw3Scene(glint::kDemoScene, "demo.test", warnings);
+            scene = glint::parseCourseScene(glint::kDemoScene, "demo.test", warnings);
         } else if (glint::isModelFile(opt.scene)) {
             glint::ModelScene m = glint::loadModelScene(opt.scene, warnings, width, height);
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
         } else {
-            scene = glint::loadHw3Scene(opt.scene, warnings);
+            scene = glint::loadCourseScene(opt.scene, warnings);
         }
     } catch (const glint::SceneError& e) {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());

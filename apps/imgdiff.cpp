@@ -5,8 +5,8 @@
 #include <cstdio>
 
 #include "glint/core/error.h"
-#include "glint/io/image_io.h"
-#include "glint/render/image_diff.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/image/image_diff.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"Counts pixels whose largest channel difference exceeds a threshold.", "imgdiff"};

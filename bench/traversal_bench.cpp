@@ -45,7 +45,7 @@
 #include "glint/accel/bvh.h"
 #include "glint/core/ray.h"
 #include "glint/geometry/primitives.h"
-#include "glint/io/hw3_loader.h"
+#include "glint/io/course/course_loader.h"
 #include "torus.h"
 
 namespace {
@@ -400,7 +400,7 @@ BenchMesh makeSceneMesh(const std::string& path) {
     std::vector<glint::Diagnostic> warnings;
     BenchMesh m;
     m.name = "dragon (scene7)";
-    m.scene = glint::loadHw3Scene(path, warnings);
+    m.scene = glint::loadCourseScene(path, warnings);
     m.prims = &m.scene->primitives;
     uint32_t n = m.prims->triangleCount();
     m.embree.vertices.reserve(9 * size_t{n} + 1);

@@ -19,12 +19,12 @@ pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 
 # tinyobjloader 2.0rc10 (libtinyobjloader-dev): Wavefront OBJ and MTL parsing in io/, in float
 # (Glint stores geometry in float anyway). Its header only: the implementation it carries is
-# compiled into glint_core (src/glint/io/tinyobj_impl.cpp).
+# compiled into glint_io (src/glint/io/obj/tinyobj_impl.cpp).
 find_package(tinyobjloader CONFIG REQUIRED)
 
 # tinygltf 2.7 (libtinygltf-dev) with nlohmann/json 3.11 (nlohmann-json3-dev): glTF 2.0 (.gltf,
 # .glb) in io/. Like tinyobjloader, only the header: its implementation is compiled into
-# glint_core (src/glint/io/tinygltf_impl.cpp) against the JSON package's header, and images are
+# glint_io (src/glint/io/gltf/tinygltf_impl.cpp) against the JSON package's header, and images are
 # decoded by Glint's own texture reader (stb_image), so Debian's libtinygltf.so is not linked.
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(nlohmann_json 3 CONFIG REQUIRED)

@@ -1,4 +1,4 @@
-// libFuzzer harness for the glTF loader (io/gltf_loader.h) and the scenes made of glTF models
+// libFuzzer harness for the glTF loader (io/gltf/gltf_loader.h) and the scenes made of glTF models
 // (io/model_scene.h).
 //
 // An input is a glTF asset: JSON text, or a binary .glb (recognised by its magic). No file is
@@ -18,7 +18,7 @@
 
 #include "fuzz_render.h"
 #include "glint/core/error.h"
-#include "glint/io/gltf_loader.h"
+#include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/model_scene.h"
 #include "glint/render/renderer.h"
 

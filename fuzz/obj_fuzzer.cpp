@@ -1,4 +1,4 @@
-// libFuzzer harness for the OBJ loader (io/obj_loader.h) and placing meshes (scene/mesh.h).
+// libFuzzer harness for the OBJ loader (io/obj/obj_loader.h) and placing meshes (scene/mesh.h).
 //
 // An input is an OBJ text, optionally followed by a line "#mtl" and an MTL text that serves
 // every `mtllib` of the OBJ. No file is ever read (LoadLimits::readFiles is off). A SceneError
@@ -17,7 +17,7 @@
 #include "fuzz_render.h"
 #include "glint/core/error.h"
 #include "glint/io/model_scene.h"
-#include "glint/io/obj_loader.h"
+#include "glint/io/obj/obj_loader.h"
 #include "glint/render/renderer.h"
 
 namespace {

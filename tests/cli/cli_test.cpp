@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "cli/cli_support.h"
-#include "glint/io/image_io.h"
+#include "glint/io/image/image_io.h"
 
 namespace glint::test {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli/cli_support.h"
-#include "glint/io/image_io.h"
+#include "glint/io/image/image_io.h"
 
 namespace glint::test {
 namespace {

@@ -19,7 +19,7 @@
 
 #include "cli/cli_support.h"
 #include "glint/core/error.h"
-#include "glint/io/image_io.h"
+#include "glint/io/image/image_io.h"
 
 extern char** environ;
 

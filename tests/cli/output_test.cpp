@@ -11,7 +11,7 @@
 #include <string>
 
 #include "cli/cli_support.h"
-#include "glint/io/image_io.h"
+#include "glint/io/image/image_io.h"
 #include "glint/render/display.h"
 
 namespace glint::test {

@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <string>
 
-#include "glint/io/image_io.h"
-#include "glint/render/image_diff.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/image/image_diff.h"
 
 namespace glint::test {
 

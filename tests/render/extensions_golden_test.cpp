@@ -9,9 +9,9 @@
 
 #include <string>
 
-#include "glint/io/hw3_loader.h"
-#include "glint/io/image_io.h"
-#include "glint/render/image_diff.h"
+#include "glint/io/course/course_loader.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/image/image_diff.h"
 #include "glint/render/renderer.h"
 #include "render/accepted_image.h"
 
@@ -25,7 +25,7 @@ class ExtensionScene : public testing::TestWithParam<const char*> {};
 TEST_P(ExtensionScene, MatchesItsAcceptedImage) {
     std::string name = GetParam();
     std::vector<Diagnostic> warnings;
-    auto scene = loadHw3Scene(std::string(GLINT_SCENES_DIR) + "/" + name + ".test", warnings);
+    auto scene = loadCourseScene(std::string(GLINT_SCENES_DIR) + "/" + name + ".test", warnings);
     EXPECT_TRUE(warnings.empty());
     scene->width = kWidth;
     scene->height = kHeight;

@@ -10,9 +10,9 @@
 
 #include <string>
 
-#include "glint/io/hw3_loader.h"
-#include "glint/io/image_io.h"
-#include "glint/render/image_diff.h"
+#include "glint/io/course/course_loader.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/image/image_diff.h"
 #include "glint/render/renderer.h"
 
 namespace glint {
@@ -22,7 +22,7 @@ const std::string kData = std::string(GLINT_TEST_DATA_DIR) + "/cse167x/";
 
 Image8 renderScene(const std::string& name) {
     std::vector<Diagnostic> warnings;
-    auto scene = loadHw3Scene(kData + name + ".test", warnings);
+    auto scene = loadCourseScene(kData + name + ".test", warnings);
     EXPECT_TRUE(warnings.empty()) << warnings.front().format("warning");
     scene->prepare();
     RenderResult result = render(*scene, RenderOptions{});

@@ -9,9 +9,9 @@
 
 #include <string>
 
-#include "glint/io/hw3_loader.h"
-#include "glint/io/image_io.h"
-#include "glint/render/image_diff.h"
+#include "glint/io/course/course_loader.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/image/image_diff.h"
 #include "glint/render/renderer.h"
 #include "render/accepted_image.h"
 
@@ -21,7 +21,7 @@ namespace {
 TEST(MeshGolden, TexturedSceneMatchesItsAcceptedImage) {
     const std::string dir = std::string(GLINT_TEST_DATA_DIR) + "/meshes/";
     std::vector<Diagnostic> warnings;
-    auto scene = loadHw3Scene(dir + "textured-scene.test", warnings);
+    auto scene = loadCourseScene(dir + "textured-scene.test", warnings);
     EXPECT_TRUE(warnings.empty()) << warnings.front().format("warning");
     scene->prepare();
     EXPECT_EQ(scene->textures.size(), 3u);  // the floor's checker and two images

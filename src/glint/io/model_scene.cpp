@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <numbers>
 
-#include "glint/io/gltf_loader.h"
-#include "glint/io/obj_loader.h"
+#include "glint/io/gltf/gltf_loader.h"
+#include "glint/io/obj/obj_loader.h"
 #include "glint/scene/mesh.h"
 
 namespace glint {

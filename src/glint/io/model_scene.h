@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "glint/core/error.h"
-#include "glint/io/gltf_loader.h"
-#include "glint/io/input_file.h"
+#include "glint/io/gltf/gltf_loader.h"
+#include "glint/core/input_file.h"
 #include "glint/scene/scene.h"
 
 namespace glint {

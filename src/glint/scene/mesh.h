@@ -1,5 +1,5 @@
 #pragma once
-/// Triangle meshes as a file describes them (io/obj_loader.h reads OBJ), independent of where
+/// Triangle meshes as a file describes them (io/obj/obj_loader.h reads OBJ), independent of where
 /// they are placed, and how one is added to a scene under a transform. Loading and placing are
 /// separate steps so that one mesh can be placed several times; MeshPlacer stores a mesh placed
 /// several times once, as a shared mesh that instances place.

@@ -1,4 +1,4 @@
-// Every input the fuzzers start from (fuzz/corpus/hw3, fuzz/corpus/obj, fuzz/corpus/gltf) and
+// Every input the fuzzers start from (fuzz/corpus/course, fuzz/corpus/obj, fuzz/corpus/gltf) and
 // every input they ever found a problem with (fuzz/regressions/...) goes through what the fuzz
 // harness does, in every normal build: it parses or fails with a SceneError, and when it parses it
 // renders with finite pixels.
@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "glint/io/gltf_loader.h"
-#include "glint/io/hw3_loader.h"
+#include "glint/io/gltf/gltf_loader.h"
+#include "glint/io/course/course_loader.h"
 #include "glint/io/model_scene.h"
-#include "glint/io/obj_loader.h"
+#include "glint/io/obj/obj_loader.h"
 #include "glint/render/renderer.h"
 
 namespace glint {
@@ -40,7 +40,7 @@ bool parsesAndRendersFinite(const std::string& text, const std::string& name) {
     try {
         LoadLimits limits;
         limits.readFiles = false;  // as the harness: no mesh or texture file is read
-        scene = parseHw3Scene(text, name, warnings, limits);
+        scene = parseCourseScene(text, name, warnings, limits);
     } catch (const SceneError&) {
         return false;
     }
@@ -65,7 +65,7 @@ std::string read(const fs::path& p) {
 }
 
 TEST(FuzzInputs, SeedCorpusParsesOrFailsCleanlyAndRendersFinite) {
-    auto files = inputs("corpus/hw3");
+    auto files = inputs("corpus/course");
     ASSERT_GT(files.size(), 10u) << "the seed corpus is missing";
     int parsed = 0;
     for (const auto& f : files) parsed += parsesAndRendersFinite(read(f), f.filename().string());
@@ -74,7 +74,7 @@ TEST(FuzzInputs, SeedCorpusParsesOrFailsCleanlyAndRendersFinite) {
 }
 
 TEST(FuzzInputs, EveryRegressionFromFuzzingStaysFixed) {
-    auto files = inputs("regressions/hw3");
+    auto files = inputs("regressions/course");
     if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
     for (const auto& f : files) parsesAndRendersFinite(read(f), f.filename().string());
 }

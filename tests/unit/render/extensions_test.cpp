@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "glint/io/hw3_loader.h"
+#include "glint/io/course/course_loader.h"
 #include "glint/render/filter.h"
 #include "glint/render/renderer.h"
 
@@ -18,7 +18,7 @@ namespace {
 
 std::unique_ptr<Scene> load(const std::string& text) {
     std::vector<Diagnostic> warnings;
-    auto scene = parseHw3Scene(text, "ext.test", warnings);
+    auto scene = parseCourseScene(text, "ext.test", warnings);
     scene->prepare();
     return scene;
 }

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "glint/io/hw3_loader.h"
+#include "glint/io/course/course_loader.h"
 #include "glint/render/renderer.h"
 
 namespace glint {
@@ -14,7 +14,7 @@ namespace {
 
 Film renderText(const std::string& text, int threads = 2) {
     std::vector<Diagnostic> warnings;
-    auto scene = parseHw3Scene(text, "hygiene.test", warnings);
+    auto scene = parseCourseScene(text, "hygiene.test", warnings);
     scene->prepare();
     RenderOptions o;
     o.threads = threads;
@@ -147,7 +147,7 @@ int faceAcnePixels(const std::string& shape, double scale) {
                   "vertex -1 1 0\n%s\npopTransform\n",
                   w, h, 4 * scale, scale, scale, scale, shape.c_str());
     std::vector<Diagnostic> warnings;
-    auto scene = parseHw3Scene(text, "face.test", warnings);
+    auto scene = parseCourseScene(text, "face.test", warnings);
     scene->prepare();
     RenderOptions o;
     o.threads = 2;
@@ -178,7 +178,7 @@ int acnePixels(double r) {
                   "ambient 0.1 0.1 0.1\ndiffuse 0.8 0.8 0.8\nsphere 0 0 0 %.17g\n",
                   w, h, camZ, lightX, lightZ, r);
     std::vector<Diagnostic> warnings;
-    auto scene = parseHw3Scene(text, "acne.test", warnings);
+    auto scene = parseCourseScene(text, "acne.test", warnings);
     scene->prepare();
     Film f = render(*scene, RenderOptions{}).film;
     Camera camera(*scene->camera, w, h);

@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "glint/math/mat4.h"
-#include "unit/io/hw3_test_support.h"
+#include "unit/io/course/course_test_support.h"
 #include "unit/test_support.h"
 
 namespace glint {

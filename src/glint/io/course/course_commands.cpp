@@ -1,0 +1,201 @@
+// The course's commands (CSE167x homework 3): docs/scene-format.md, "Commands".
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "glint/io/course/course_parser.h"
+#include "glint/io/image/image_io.h"
+
+namespace glint::course {
+
+void Parser::cmdSize() {
+    long long w = integer(1, 1, kMaxImageSide);
+    long long h = integer(2, 1, kMaxImageSide);
+    if (w * h > kMaxImagePixels)
+        fail(2, "image of " + std::to_string(w) + " x " + std::to_string(h) +
+                    " pixels is too large (at most " + std::to_string(kMaxImagePixels) +
+                    " pixels)");
+    scene_->width = static_cast<int>(w);
+    scene_->height = static_cast<int>(h);
+}
+
+void Parser::cmdMaxDepth() {
+    long long d = integer(1, 0, std::numeric_limits<long long>::max());
+    if (d > kMaxDepthLimit) {
+        warn(1, "maxdepth " + std::to_string(d) + " is more than Glint traces; using " +
+                    std::to_string(kMaxDepthLimit));
+        d = kMaxDepthLimit;
+    }
+    scene_->maxDepth = static_cast<int>(d);
+}
+
+void Parser::cmdOutput() {
+    scene_->output = std::string(tok_[1].text);
+    if (!imageFormatFor(scene_->output))
+        warn(1, "Glint cannot write " + quoted(1) + ": use a " + kImageExtensions +
+                    " name here or choose one with -o");
+}
+
+void Parser::cmdCamera() {
+    CameraSpec c{vec3(1), vec3(4), vec3(7), real(10)};
+    if (c.eye == c.center) fail(4, "the camera looks at its own position (from equals at)");
+    if (!(length(c.eye - c.center) > 0) || !std::isfinite(length(c.eye - c.center)))
+        fail(4, "the camera's viewing direction cannot be normalised");
+    if (!(length(cross(c.up, normalize(c.eye - c.center))) > 0))
+        fail(7, "the camera's up vector is zero or parallel to the viewing direction");
+    if (!(c.fovyDegrees > 0 && c.fovyDegrees < 180))
+        fail(10, "fovy must be between 0 and 180 degrees, got " + quoted(10));
+    if (scene_->camera)
+        warn(0, "a second camera replaces the one on line " + std::to_string(cameraLine_));
+    scene_->camera = c;
+    cameraLine_ = line_;
+}
+
+void Parser::cmdSphere() {
+    Sphere s{vec3(1), real(4), {}};
+    if (s.radius < 0) fail(4, "sphere radius must not be negative, got " + quoted(4));
+    s.worldFromObject = transform();
+    if (s.radius == 0) {
+        warn(4, "sphere of radius 0 is invisible and is skipped");
+        return;
+    }
+    Bounds3f b = s.bounds();
+    if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
+        fail(0, "the sphere reaches beyond the supported coordinate range (1e18)");
+    if (!(sphereSearch(s).largestEntry() <= kMaxCoordinate))
+        fail(0, "the sphere is too thin: a semi-axis is below 1e-18 after the transform");
+    scene_->primitives.addSphere(s, material());
+}
+
+void Parser::cmdMaxVerts() {
+    maxVerts_ = integer(1, 0, std::numeric_limits<long long>::max());
+    vertices_.reserve(static_cast<size_t>(std::min(maxVerts_, kMaxVertexReserve)));
+}
+
+void Parser::cmdMaxVertNorms() {
+    maxVertNorms_ = integer(1, 0, std::numeric_limits<long long>::max());
+    normalVertices_.reserve(static_cast<size_t>(std::min(maxVertNorms_, kMaxVertexReserve)));
+}
+
+void Parser::cmdVertex() {
+    vertices_.push_back(vec3(1));
+    if (maxVerts_ >= 0 && static_cast<long long>(vertices_.size()) > maxVerts_ && !warnedVerts_) {
+        warn(0, "more vertices than 'maxverts " + std::to_string(maxVerts_) + "' announced");
+        warnedVerts_ = true;
+    }
+}
+
+void Parser::cmdVertexNormal() {
+    Vec3 p = vec3(1), n = vec3(4);
+    double len = length(n);
+    if (!(len > 0) || !std::isfinite(len)) {
+        warn(4,
+             "vertex normal has zero length: it adds nothing to interpolated normals (where "
+             "nothing remains, the face normal is used)");
+        n = Vec3(0);
+    } else {
+        n = n / len;
+    }
+    normalVertices_.push_back({p, n});
+    if (maxVertNorms_ >= 0 && static_cast<long long>(normalVertices_.size()) > maxVertNorms_ &&
+        !warnedVertNorms_) {
+        warn(0, "more vertices with normals than 'maxvertnorms " + std::to_string(maxVertNorms_) +
+                    "' announced");
+        warnedVertNorms_ = true;
+    }
+}
+
+void Parser::cmdTri() {
+    uint32_t i[3];
+    for (int k = 0; k < 3; ++k) i[k] = vertexIndex(k + 1, vertices_.size(), "vertex", "vertices");
+    const Transform& t = transform();
+    Vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = checkedVertex(t.point(vertices_[i[k]]), k + 1);
+    addTriangle(p, nullptr);
+}
+
+void Parser::cmdTriNormal() {
+    uint32_t i[3];
+    for (int k = 0; k < 3; ++k)
+        i[k] = vertexIndex(k + 1, normalVertices_.size(), "vertexnormal", "vertexnormals");
+    const Transform& t = transform();
+    Vec3 p[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+        p[k] = checkedVertex(t.point(normalVertices_[i[k]][0]), k + 1);
+        n[k] = t.normal(normalVertices_[i[k]][1]);
+        double len = length(n[k]);
+        n[k] = len > 0 && std::isfinite(len) ? n[k] / len : Vec3(0);
+    }
+    addTriangle(p, n);
+}
+
+void Parser::cmdTranslate() {
+    Vec3 v = vec3(1);
+    applyTransform(Mat4::translate(v.x, v.y, v.z));
+}
+
+void Parser::cmdRotate() {
+    Vec3 axis = vec3(1);
+    double degrees = number(4);
+    if (axis == Vec3(0)) fail(1, "rotation axis must not be zero");
+    applyTransform(Mat4::rotate(axis.x, axis.y, axis.z, degrees));
+}
+
+void Parser::cmdScale() {
+    Vec3 s = vec3(1);
+    for (int k = 0; k < 3; ++k)
+        if (s[k] == 0) fail(k + 1, "scale by zero would make the transform singular");
+    applyTransform(Mat4::scale(s.x, s.y, s.z));
+}
+
+void Parser::cmdPushTransform() { stack_.push_back(stack_.back()); }
+
+void Parser::cmdPopTransform() {
+    if (stack_.size() == 1) fail(0, "popTransform without a matching pushTransform");
+    stack_.pop_back();
+    transformValid_ = false;
+}
+
+void Parser::cmdDirectional() {
+    Light l;
+    l.kind = Light::Kind::Directional;
+    Vec3 d = transform().vector(vec3(1));
+    double len = length(d);
+    if (!(len > 0) || !std::isfinite(len)) fail(1, "light direction must not be zero");
+    l.direction = d / len;
+    l.color = colour(4);
+    scene_->lights.push_back(l);
+}
+
+void Parser::cmdPoint() {
+    Light l;
+    l.kind = Light::Kind::Point;
+    l.position = transform().point(vec3(1));
+    l.color = colour(4);
+    l.attenuation = attenuation_;
+    scene_->lights.push_back(l);
+}
+
+void Parser::cmdAttenuation() {
+    Vec3 a = vec3(1);
+    for (int k = 0; k < 3; ++k)
+        if (a[k] < 0) fail(k + 1, "attenuation coefficients must not be negative");
+    if (a == Vec3(0)) fail(1, "attenuation coefficients must not all be zero");
+    attenuation_ = a;
+}
+
+void Parser::cmdShininess() {
+    double s = real(1);
+    if (s < 0) fail(1, "shininess must not be negative, got " + quoted(1));
+    material_.shininess = s;
+    materialChanged_ = true;
+}
+
+void Parser::cmdBackground() {
+    scene_->background.down = colour(1);
+    scene_->background.up = ntok_ == 7 ? colour(4) : scene_->background.down;
+}
+
+}  // namespace glint::course

@@ -1,0 +1,30 @@
+#pragma once
+/// Loader for the CSE167x homework 3 scene format and Glint's extensions to it
+/// (docs/scene-format.md has every command, its defaults and the errors it reports).
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "glint/core/error.h"
+#include "glint/core/input_file.h"
+#include "glint/scene/scene.h"
+
+namespace glint {
+
+/// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error, or if
+/// the scene would need more memory than `limits` allow; appends warnings to `warnings`. The
+/// scene is not yet prepared (see Scene::prepare).
+std::unique_ptr<Scene> parseCourseScene(std::string_view text, const std::string& fileName,
+                                     std::vector<Diagnostic>& warnings,
+                                     const LoadLimits& limits = {});
+
+/// Reads and parses the file at `path`. Throws SceneError if it cannot be read or is malformed.
+std::unique_ptr<Scene> loadCourseScene(const std::string& path, std::vector<Diagnostic>& warnings,
+                                    const LoadLimits& limits = {});
+
+/// Every command name the loader accepts.
+std::vector<std::string_view> courseCommandNames();
+
+}  // namespace glint

@@ -1,0 +1,119 @@
+// Glint's mesh and texture commands: `mesh`, `texture`, `checker` (docs/scene-format.md,
+// "Meshes" and "Textures").
+
+#include <filesystem>
+#include <string>
+
+#include "glint/io/gltf/gltf_loader.h"
+#include "glint/io/course/course_parser.h"
+#include "glint/io/obj/obj_loader.h"
+#include "glint/io/image/texture_io.h"
+
+namespace glint::course {
+
+std::string Parser::scenePath(std::string_view name) const {
+    std::filesystem::path p(name);
+    if (p.is_absolute()) return p.string();
+    return (std::filesystem::path(file_).parent_path() / p).string();
+}
+
+void Parser::cmdMesh() {
+    const Transform& t = transform();  // a singular transform is reported first
+    uint32_t material = this->material();
+    if (!limits_.readFiles) fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
+    std::string path = scenePath(tok_[1].text);
+    const bool gltf = isGltfFile(path);
+    if (!meshes_.count(path) && !gltfModels_.count(path)) {
+        if (std::string problem = inputFileProblem(path); !problem.empty())
+            fail(1, "cannot read mesh " + quoted(1) + " (" + path + "): " + problem);
+        // Errors inside the mesh file name that file (and its line and column for OBJ).
+        if (gltf) {
+            GltfOptions options;
+            options.limits = limits_;
+            gltfModels_.emplace(path, loadGltf(path, warnings_, options));
+        } else {
+            ObjOptions options;
+            options.limits = limits_;
+            meshes_.emplace(path, loadObj(path, warnings_, options));
+        }
+    }
+    // Placed when the file ends (placeMeshes), so that a mesh placed several times is stored
+    // once. A glTF asset's meshes are placed by its nodes, under the current transform; its
+    // cameras and lights are the scene's business, and are not used.
+    const std::string what = "mesh " + quoted(1);
+    try {
+        if (gltf)
+            placeGltf(meshPlacer_, gltfModels_.at(path), t, material, loc(tok_[0].column), what);
+        else
+            meshPlacer_.add(meshes_.at(path), t, material, loc(tok_[0].column), what);
+    } catch (const SceneError& e) {
+        fail(0, what + ": " + e.diagnostic().message);
+    }
+}
+
+void Parser::cmdTexture() {
+    if (tok_[1].text == "none") {
+        if (ntok_ > 2) fail(2, "'texture none' takes no other argument");
+        material_.texture = 0;
+        materialChanged_ = true;
+        return;
+    }
+    Texture texture;
+    texture.kind = Texture::Kind::Image;
+    if (ntok_ == 3) {
+        if (tok_[2].text == "clamp")
+            texture.wrap = TextureWrap::Clamp;
+        else if (tok_[2].text != "repeat")
+            fail(2, "unknown texture wrap " + quoted(2) + " (repeat or clamp)");
+    }
+    if (!limits_.readFiles) fail(1, "texture " + quoted(1) + " is not read: reading files is off");
+    std::string path = scenePath(tok_[1].text);
+    auto it = images_.find(path);
+    if (it == images_.end()) {
+        try {
+            it = images_.emplace(path, loadTextureImage(path, true, limits_)).first;
+        } catch (const RenderError& e) {
+            fail(1, e.what());
+        }
+    }
+    texture.image = it->second;
+    material_.texture = scene_->addTexture(std::move(texture));
+    materialChanged_ = true;
+    imageTextures_[material_.texture] = loc(tok_[1].column);
+}
+
+void Parser::cmdChecker() {
+    Texture texture;
+    texture.kind = Texture::Kind::Checker;
+    texture.a = colour(1);
+    texture.b = colour(4);
+    texture.scale = real(7);
+    if (!(texture.scale > 0)) fail(7, "checker scale must be positive, got " + quoted(7));
+    material_.texture = scene_->addTexture(std::move(texture));
+    materialChanged_ = true;
+}
+
+void Parser::checkTextureCoordinates() {
+    // Surfaces without coordinates show an image texture's material colour instead.
+    std::map<uint32_t, size_t> without;  // texture id -> surfaces without coordinates
+    auto check = [&](const Primitives& prims) {
+        for (uint32_t id = 0; id < prims.size(); ++id) {
+            if (prims.isInstance(id)) continue;  // its mesh is checked once, below
+            uint32_t texture = scene_->materials[prims.materialOf(id)].texture;
+            if (texture != 0 && imageTextures_.count(texture) && !prims.hasTexCoords(id))
+                ++without[texture];
+        }
+    };
+    const Primitives& prims = scene_->primitives;
+    check(prims);
+    for (uint32_t m = 0; m < prims.sharedMeshCount(); ++m) check(prims.sharedMesh(m));
+    for (const auto& [texture, count] : without)
+        warnings_.push_back(
+            {imageTextures_[texture],
+             "this image texture needs texture coordinates, which only meshes with 'vt' "
+             "statements have: " +
+                 std::to_string(count) + (count == 1 ? " surface shows" : " surfaces show") +
+                 " the diffuse colour instead"});
+}
+
+}  // namespace glint::course

@@ -1,0 +1,404 @@
+// glTF 2.0 assets: the default scene's node trees flattened into placements, the first
+// perspective camera and the punctual lights, the meshes the placements use (after the memory
+// they need is checked), and placing them. The container and tinygltf's parse are in
+// gltf_container.cpp, meshes in gltf_meshes.cpp, materials in gltf_materials.cpp.
+
+#include "glint/io/gltf/gltf_loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <numbers>
+#include <optional>
+#include <system_error>
+
+#include "glint/core/system.h"
+#include "glint/io/gltf/gltf_internal.h"
+#include "glint/core/mapped_file.h"
+
+namespace glint {
+namespace gltf {
+
+Context::Context(const std::string& file_, std::vector<Diagnostic>& warnings_,
+                 const GltfOptions& options_)
+    : file(file_),
+      dir(std::filesystem::path(file_).parent_path().string()),
+      warnings(warnings_),
+      options(options_) {}
+
+void Context::fail(const std::string& message) const { throw SceneError({file, 0, 0}, message); }
+
+void Context::warn(const std::string& message) {
+    Diagnostic d;  // built in steps: GCC 12 warns falsely on the aggregate
+    d.loc.file = file;
+    d.message = message;
+    warnings.push_back(std::move(d));
+}
+
+void Context::warnOnce(const std::string& key, const std::string& message) {
+    if (warned_.insert(key).second) warn(message + " (reported once)");
+}
+
+std::string describe(const char* kind, size_t index, const std::string& name) {
+    std::string s = std::string(kind) + " " + std::to_string(index);
+    if (!name.empty()) s += " '" + name + "'";
+    return s;
+}
+
+void missing(const Context& ctx, const char* kind, long long index, size_t count,
+             const std::string& user) {
+    std::string plural = std::string(kind) + (std::string_view(kind).ends_with("h") ? "es" : "s");
+    ctx.fail(std::string(kind) + " " + std::to_string(index) + " does not exist (the file has " +
+             std::to_string(count) + " " + (count == 1 ? std::string(kind) : plural) +
+             "): " + user + " refers to it");
+}
+
+std::string_view bufferViewBytes(const Context& ctx, int index, const std::string& user) {
+    const auto& views = ctx.model.bufferViews;
+    if (index < 0 || static_cast<size_t>(index) >= views.size())
+        missing(ctx, "bufferView", index, views.size(), user);
+    const tinygltf::BufferView& bv = views[static_cast<size_t>(index)];
+    const std::string label = "bufferView " + std::to_string(index);
+    const auto& buffers = ctx.model.buffers;
+    if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= buffers.size())
+        missing(ctx, "buffer", bv.buffer, buffers.size(), label);
+    const std::vector<unsigned char>& data = buffers[static_cast<size_t>(bv.buffer)].data;
+    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+        ctx.fail(label + ": its " + std::to_string(bv.byteLength) + " bytes from offset " +
+                 std::to_string(bv.byteOffset) + " lie beyond the end of buffer " +
+                 std::to_string(bv.buffer) + " (" + std::to_string(data.size()) + " bytes)");
+    return {reinterpret_cast<const char*>(data.data()) + bv.byteOffset, bv.byteLength};
+}
+
+namespace {
+
+Vec3 applyPoint(const Mat4& m, const Vec3& p) {
+    return {m.m[0][0] * p.x + m.m[0][1] * p.y + m.m[0][2] * p.z + m.m[0][3],
+            m.m[1][0] * p.x + m.m[1][1] * p.y + m.m[1][2] * p.z + m.m[1][3],
+            m.m[2][0] * p.x + m.m[2][1] * p.y + m.m[2][2] * p.z + m.m[2][3]};
+}
+
+Vec3 applyVector(const Mat4& m, const Vec3& v) {
+    return {m.m[0][0] * v.x + m.m[0][1] * v.y + m.m[0][2] * v.z,
+            m.m[1][0] * v.x + m.m[1][1] * v.y + m.m[1][2] * v.z,
+            m.m[2][0] * v.x + m.m[2][1] * v.y + m.m[2][2] * v.z};
+}
+
+bool inRange(const Vec3& p) {
+    return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+           std::abs(p.z) <= kMaxCoordinate;
+}
+
+/// A node's transform relative to its parent: its matrix, or translation x rotation x scale.
+Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label) {
+    auto numbers = [&](const std::vector<double>& v, size_t count, const char* what) {
+        if (v.empty()) return false;
+        if (v.size() != count)
+            ctx.fail(label + ": '" + what + "' must have " + std::to_string(count) +
+                     " numbers, got " + std::to_string(v.size()));
+        for (double x : v)
+            if (!std::isfinite(x)) ctx.fail(label + ": '" + what + "' must be finite numbers");
+        return true;
+    };
+    Mat4 m;
+    if (numbers(n.matrix, 16, "matrix")) {
+        for (int c = 0; c < 4; ++c)  // glTF stores matrices column by column
+            for (int r = 0; r < 4; ++r) m.m[r][c] = n.matrix[static_cast<size_t>(c * 4 + r)];
+        if (m.m[3][0] != 0 || m.m[3][1] != 0 || m.m[3][2] != 0 || m.m[3][3] != 1)
+            ctx.fail(label + ": its matrix is not affine (the last row must be 0 0 0 1)");
+        return m;
+    }
+    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+    if (numbers(n.translation, 3, "translation")) std::copy_n(n.translation.begin(), 3, t);
+    if (numbers(n.scale, 3, "scale")) std::copy_n(n.scale.begin(), 3, s);
+    if (numbers(n.rotation, 4, "rotation")) {
+        double len = std::hypot(n.rotation[0], n.rotation[1], n.rotation[2]);
+        len = std::hypot(len, n.rotation[3]);
+        if (!(len > 0) || !std::isfinite(len))
+            ctx.fail(label + ": its rotation must be a non-zero quaternion");
+        for (int i = 0; i < 4; ++i) q[i] = n.rotation[static_cast<size_t>(i)] / len;
+    }
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) m.m[i][j] = r[i][j] * s[j];
+        m.m[i][3] = t[i];
+    }
+    return m;
+}
+
+/// The camera of node `node`, if it is one Glint can use.
+std::optional<GltfCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
+                                     const std::string& node) {
+    const tinygltf::Camera& c = ctx.model.cameras[static_cast<size_t>(index)];
+    GltfCamera out;
+    out.description = describe("camera", static_cast<size_t>(index), c.name) + " (" + node + ")";
+    if (c.type != "perspective") {
+        ctx.warn(out.description + " is " + c.type +
+                 ", and Glint has perspective cameras only: it is ignored");
+        return std::nullopt;
+    }
+    const double yfov = c.perspective.yfov;
+    if (!(yfov > 0 && yfov < std::numbers::pi))
+        ctx.fail(out.description + ": yfov must be between 0 and pi radians");
+    Vec3 eye = applyPoint(world, Vec3(0)), forward = applyVector(world, {0, 0, -1});
+    Vec3 up = applyVector(world, {0, 1, 0});
+    double fl = length(forward), ul = length(up);
+    if (!isFinite(eye) || !inRange(eye) || !(fl > 0) || !std::isfinite(fl) || !(ul > 0) ||
+        !std::isfinite(ul) || !(length(cross(forward / fl, up / ul)) > 1e-6)) {
+        ctx.warn(out.description +
+                 ": its node's transform gives it no position or view "
+                 "direction: it is ignored");
+        return std::nullopt;
+    }
+    out.spec.eye = eye;
+    // A center as far away as the eye is from the origin, so that the view direction survives
+    // the rounding of eye + direction.
+    double reach = std::max({1.0, std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)});
+    out.spec.center = eye + forward * (reach / fl);
+    out.spec.up = up / ul;
+    out.spec.fovyDegrees = yfov * 180 / std::numbers::pi;
+    const double aspect = c.perspective.aspectRatio;
+    if (std::isfinite(aspect) && aspect > 0) out.aspectRatio = aspect;
+    return out;
+}
+
+/// Light `index` of KHR_lights_punctual, placed by `world`, if Glint can use it.
+std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
+                               const std::string& node) {
+    const tinygltf::Light& l = ctx.model.lights[static_cast<size_t>(index)];
+    const std::string label = describe("light", static_cast<size_t>(index), l.name);
+    Vec3 colour(1);
+    if (!l.color.empty()) {
+        if (l.color.size() != 3)
+            ctx.fail(label + ": its color must have 3 numbers, got " +
+                     std::to_string(l.color.size()));
+        colour = {l.color[0], l.color[1], l.color[2]};
+    }
+    if (!isFinite(colour) || colour.x < 0 || colour.y < 0 || colour.z < 0 ||
+        !std::isfinite(l.intensity) || l.intensity < 0)
+        ctx.fail(label + ": its color and intensity must be finite numbers, not negative");
+    if (l.range > 0)
+        ctx.warnOnce("range",
+                     "the range of lights is ignored: they fall off with the square of "
+                     "the distance, without a cut-off");
+    Light out;
+    out.color = colour * (l.intensity * kGltfLightScale);
+    if (l.type == "point" || l.type == "spot") {
+        if (l.type == "spot")
+            ctx.warnOnce("spot", label +
+                                     " is a spot light: Glint lights it as a point light, "
+                                     "in every direction");
+        out.kind = Light::Kind::Point;
+        out.position = applyPoint(world, Vec3(0));
+        out.attenuation = {0, 0, 1};
+        if (isFinite(out.position) && inRange(out.position)) return out;
+    } else if (l.type == "directional") {
+        out.kind = Light::Kind::Directional;
+        Vec3 towards = applyVector(world, {0, 0, 1});  // it shines along its node's -z
+        double len = length(towards);
+        if (len > 0 && std::isfinite(len)) {
+            out.direction = towards / len;
+            return out;
+        }
+    } else {
+        ctx.warn(label + ": light type '" + l.type + "' is unknown: it is ignored");
+        return std::nullopt;
+    }
+    ctx.warn(label + " (" + node +
+             "): its node's transform leaves it no position or direction: "
+             "it is ignored");
+    return std::nullopt;
+}
+
+/// Walks the default scene's node trees (or every root node when the file has no scene):
+/// placements, the first perspective camera and the lights.
+void walkNodes(Context& ctx, GltfModel& out) {
+    const auto& nodes = ctx.model.nodes;
+    const auto& scenes = ctx.model.scenes;
+    std::vector<int> roots;
+    std::string rootUser;
+    if (!scenes.empty()) {
+        int s = ctx.model.defaultScene == -1 ? 0 : ctx.model.defaultScene;
+        if (s < 0 || static_cast<size_t>(s) >= scenes.size())
+            missing(ctx, "scene", s, scenes.size(), "the default scene ('scene')");
+        roots = scenes[static_cast<size_t>(s)].nodes;
+        rootUser = "scene " + std::to_string(s);
+    } else {
+        std::vector<bool> isChild(nodes.size());
+        for (size_t i = 0; i < nodes.size(); ++i)
+            for (int c : nodes[i].children)
+                if (c >= 0 && static_cast<size_t>(c) < nodes.size())
+                    isChild[static_cast<size_t>(c)] = true;
+        for (size_t i = 0; i < nodes.size(); ++i)
+            if (!isChild[i]) roots.push_back(static_cast<int>(i));
+        rootUser = "the file's root nodes";
+    }
+
+    struct Pending {
+        int node;
+        Mat4 parent;
+        int from;  ///< The parent node, or -1 for a root.
+    };
+    std::vector<Pending> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, Mat4(), -1});
+    std::vector<bool> visited(nodes.size());
+    while (!stack.empty()) {
+        Pending p = stack.back();
+        stack.pop_back();
+        if (p.node < 0 || static_cast<size_t>(p.node) >= nodes.size())
+            missing(ctx, "node", p.node, nodes.size(),
+                    p.from < 0 ? rootUser : "node " + std::to_string(p.from) + "'s children");
+        const size_t index = static_cast<size_t>(p.node);
+        const tinygltf::Node& n = nodes[index];
+        const std::string label = describe("node", index, n.name);
+        if (visited[index])
+            ctx.fail(label +
+                     " is reached twice: glTF nodes form trees (no node has two parents "
+                     "or is its own ancestor)");
+        visited[index] = true;
+        const Mat4 world = p.parent * localMatrix(ctx, n, label);
+
+        if (n.mesh != -1) {
+            if (n.mesh < 0 || static_cast<size_t>(n.mesh) >= ctx.model.meshes.size())
+                missing(ctx, "mesh", n.mesh, ctx.model.meshes.size(), label);
+            if (std::optional<Transform> t = Transform::fromMatrix(world))
+                out.placements.push_back(
+                    {static_cast<uint32_t>(n.mesh), *t, static_cast<uint32_t>(index)});
+            else
+                ctx.warn(label +
+                         ": its transform is singular (a scale of 0?) or too large: its "
+                         "mesh is not placed");
+        }
+        if (n.camera != -1) {
+            if (n.camera < 0 || static_cast<size_t>(n.camera) >= ctx.model.cameras.size())
+                missing(ctx, "camera", n.camera, ctx.model.cameras.size(), label);
+            if (!out.camera) out.camera = nodeCamera(ctx, n.camera, world, label);
+        }
+        if (auto ext = n.extensions.find("KHR_lights_punctual");
+            ext != n.extensions.end() && ext->second.IsObject() && ext->second.Has("light")) {
+            const tinygltf::Value& v = ext->second.Get("light");
+            if (!v.IsInt()) ctx.fail(label + ": its KHR_lights_punctual light must be an index");
+            int light = v.GetNumberAsInt();
+            if (light < 0 || static_cast<size_t>(light) >= ctx.model.lights.size())
+                missing(ctx, "light", light, ctx.model.lights.size(), label);
+            if (std::optional<Light> l = nodeLight(ctx, light, world, label))
+                out.lights.push_back(*l);
+        }
+        for (auto it = n.children.rbegin(); it != n.children.rend(); ++it)
+            stack.push_back({*it, world, p.node});
+    }
+}
+
+/// Reads every mesh a placement uses, once, after checking what they and their placements
+/// need of memory.
+void readMeshes(Context& ctx, GltfModel& out) {
+    const size_t meshes = ctx.model.meshes.size();
+    out.meshes.resize(meshes);
+    std::vector<std::optional<MeshCounts>> counts(meshes);
+    for (const GltfPlacement& p : out.placements)
+        if (!counts[p.mesh]) counts[p.mesh] = countMesh(ctx, static_cast<int>(p.mesh));
+    double meshBytes = 0, placed = 0, placedNormals = 0, placedUvs = 0;
+    size_t maxPositions = 0, maxNormals = 0;
+    for (const auto& c : counts)
+        if (c) {
+            meshBytes += double(c->positions) * sizeof(Vec3f) + double(c->normals) * sizeof(Vec3f) +
+                         double(c->uvs) * sizeof(TexCoord) +
+                         double(c->triangles) * sizeof(MeshData::Triangle);
+            maxPositions = std::max(maxPositions, c->positions);
+            maxNormals = std::max(maxNormals, c->normals);
+        }
+    // A mesh placed once becomes the scene's triangles; a mesh placed several times is stored
+    // once and placed by instances (MeshPlacer), each the size of a shape.
+    std::vector<size_t> uses(meshes);
+    for (const GltfPlacement& p : out.placements) ++uses[p.mesh];
+    double instances = 0;
+    for (size_t m = 0; m < meshes; ++m)
+        if (uses[m] > 0) {
+            placed += double(counts[m]->triangles);
+            placedNormals += double(counts[m]->normalTriangles);
+            placedUvs += double(counts[m]->uvTriangles);
+            if (uses[m] > 1) instances += double(uses[m]);
+        }
+    // The scene's estimate per triangle, scaled: the counts may exceed size_t's range.
+    const double perTriangle = double(Scene::estimateBytes(1000, 0, 0, 0, 0)) / 1000;
+    const double perNormal = double(Scene::estimateBytes(1000, 0, 0, 1000, 0)) / 1000 - perTriangle;
+    const double perUv = double(Scene::estimateBytes(1000, 0, 0, 0, 1000)) / 1000 - perTriangle;
+    const double perInstance = double(Scene::estimateBytes(0, 0, 1000, 0, 0)) / 1000;
+    double needed = meshBytes + placed * perTriangle + placedNormals * perNormal +
+                    placedUvs * perUv + instances * perInstance +
+                    double(meshPlacementBytes(maxPositions, maxNormals));
+    size_t available = memoryAvailable(ctx.options.limits);
+    if (available > 0 && needed > double(available))
+        ctx.fail("the model needs about " + formatBytes(needed) + " of memory (" +
+                 std::to_string(static_cast<unsigned long long>(placed)) +
+                 " triangles stored), more than the " + formatBytes(double(available)) +
+                 " available");
+    Materials materials(ctx);
+    for (size_t i = 0; i < meshes; ++i)
+        if (counts[i]) out.meshes[i] = readMesh(ctx, static_cast<int>(i), *counts[i], materials);
+}
+
+}  // namespace
+}  // namespace gltf
+
+size_t GltfModel::triangles() const {
+    size_t n = 0;
+    for (const GltfPlacement& p : placements) n += meshes[p.mesh].triangles.size();
+    return n;
+}
+
+GltfModel parseGltf(std::string_view bytes, const std::string& fileName,
+                    std::vector<Diagnostic>& warnings, const GltfOptions& options) {
+    gltf::Context ctx(fileName, warnings, options);
+    gltf::parseContainer(ctx, bytes);
+    gltf::checkAsset(ctx);
+    GltfModel out;
+    out.name = fileName;
+    gltf::walkNodes(ctx, out);
+    gltf::readMeshes(ctx, out);
+    return out;
+}
+
+GltfModel loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
+                   const GltfOptions& options) {
+    if (std::string problem = inputFileProblem(path); !problem.empty())
+        throw SceneError({path, 0, 0}, "cannot read glTF: " + problem);
+    try {
+        MappedFile file(path);
+        return parseGltf(file.text(), path, warnings, options);
+    } catch (const std::system_error& e) {
+        throw SceneError({path, 0, 0},
+                         std::string("cannot read glTF: ") + std::strerror(e.code().value()));
+    }
+}
+
+bool isGltfFile(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".gltf" || ext == ".glb";
+}
+
+void placeGltf(MeshPlacer& placer, const GltfModel& model, const Transform& worldFromModel,
+               uint32_t defaultMaterial, const FileLoc& where, const std::string& what) {
+    // One MeshData per glTF mesh, placed once per node: the placer stores a mesh that several
+    // nodes place once.
+    const bool identity = worldFromModel.isIdentity();
+    for (const GltfPlacement& p : model.placements) {
+        std::optional<Transform> t =
+            identity ? p.worldFromObject
+                     : Transform::fromMatrix(worldFromModel.matrix() * p.worldFromObject.matrix());
+        if (!t)
+            throw SceneError({model.name, 0, 0},
+                             "node " + std::to_string(p.node) +
+                                 ": its transform, with the scene's, is singular or too large");
+        placer.add(model.meshes[p.mesh], *t, defaultMaterial, where, what);
+    }
+}
+
+}  // namespace glint

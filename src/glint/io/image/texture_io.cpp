@@ -1,0 +1,81 @@
+#include "glint/io/image/texture_io.h"
+
+#include <stb_image.h>
+
+#include <climits>
+#include <memory>
+#include <system_error>
+
+#include "glint/core/error.h"
+#include "glint/core/system.h"
+#include "glint/io/image/image_io.h"
+#include "glint/core/mapped_file.h"
+
+namespace glint {
+namespace {
+
+[[noreturn]] void cannot(const std::string& name, const std::string& why) {
+    throw RenderError("cannot read texture '" + name + "': " + why);
+}
+
+/// Checks an image's size, read from its header, against the texture limits and the memory
+/// that decoding it takes, before any pixel is decoded.
+void checkTextureSize(const std::string& name, int w, int h, const LoadLimits& limits) {
+    if (w < 1 || h < 1 || w > kMaxTextureSide || h > kMaxTextureSide ||
+        static_cast<long long>(w) * h > kMaxTextureTexels)
+        cannot(name, "the image is " + std::to_string(w) + " x " + std::to_string(h) +
+                         " pixels; textures may have at most " + std::to_string(kMaxTextureSide) +
+                         " on a side and " + std::to_string(kMaxTextureTexels) + " in all");
+    // Decoding holds the file's own channels and our copy: about 8 bytes per texel at most.
+    double needed = static_cast<double>(w) * h * 8;
+    if (size_t available = memoryAvailable(limits);
+        available > 0 && needed > static_cast<double>(available))
+        cannot(name, "decoding it needs about " + formatBytes(needed) + ", more than the " +
+                         formatBytes(static_cast<double>(available)) + " available");
+}
+
+std::shared_ptr<TextureImage> makeTexture(Image8 img, bool srgb, const std::string& name) {
+    auto texture = std::make_shared<TextureImage>();
+    texture->width = img.width;
+    texture->height = img.height;
+    texture->rgb = std::move(img.data);
+    texture->srgb = srgb;
+    texture->name = name;
+    return texture;
+}
+
+}  // namespace
+
+std::shared_ptr<TextureImage> loadTextureImage(const std::string& path, bool srgb,
+                                               const LoadLimits& limits) {
+    if (std::string problem = inputFileProblem(path); !problem.empty()) cannot(path, problem);
+    std::unique_ptr<MappedFile> file;
+    try {
+        file = std::make_unique<MappedFile>(path);
+    } catch (const std::system_error& e) {
+        cannot(path, e.code().message());
+    }
+    return decodeTextureImage(file->text(), path, srgb, limits);
+}
+
+std::shared_ptr<TextureImage> decodeTextureImage(std::string_view bytes, const std::string& name,
+                                                 bool srgb, const LoadLimits& limits) {
+    if (bytes.empty()) cannot(name, "the image has no bytes");
+    if (bytes.size() > static_cast<size_t>(INT_MAX))
+        cannot(name, "the image has " + std::to_string(bytes.size()) + " bytes, more than " +
+                         std::to_string(INT_MAX));
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int size = static_cast<int>(bytes.size());
+    // The header first: a few bytes must not make us allocate gigabytes.
+    int w = 0, h = 0, n = 0;
+    if (!stbi_info_from_memory(data, size, &w, &h, &n)) cannot(name, stbi_failure_reason());
+    checkTextureSize(name, w, h, limits);
+    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+        stbi_load_from_memory(data, size, &w, &h, &n, 3), stbi_image_free);
+    if (!pixels) cannot(name, stbi_failure_reason());
+    Image8 img{w, h, 3, {}};
+    img.data.assign(pixels.get(), pixels.get() + static_cast<size_t>(w) * h * 3);
+    return makeTexture(std::move(img), srgb, name);
+}
+
+}  // namespace glint

@@ -1,0 +1,172 @@
+// MTL materials as Glint materials, and their diffuse textures (docs/scene-format.md,
+// "MTL materials").
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "glint/core/error.h"
+#include "glint/io/obj/obj_internal.h"
+#include "glint/io/obj/obj_loader.h"
+#include "glint/io/image/texture_io.h"
+
+namespace glint::obj {
+namespace {
+
+bool isBlank(char c) { return c == ' ' || c == '\t'; }
+
+/// Calls `f(line, lineNumber)` for each line of `text`, split and counted as tinyobjloader's
+/// reader does (LF, CR or CR LF), with leading and trailing blanks removed.
+template <typename F>
+void forEachLine(std::string_view text, F f) {
+    size_t pos = 0;
+    int number = 0;
+    while (pos < text.size()) {
+        size_t end = text.find_first_of("\r\n", pos);
+        if (end == std::string_view::npos) end = text.size();
+        std::string_view line = text.substr(pos, end - pos);
+        pos = end;
+        if (pos < text.size())
+            pos += text[pos] == '\r' && pos + 1 < text.size() && text[pos + 1] == '\n' ? 2 : 1;
+        ++number;
+        while (!line.empty() && isBlank(line.front())) line.remove_prefix(1);
+        while (!line.empty() && isBlank(line.back())) line.remove_suffix(1);
+        f(line, number);
+    }
+}
+
+/// Whether `line` starts with the keyword `key` followed by a blank.
+bool statement(std::string_view line, std::string_view key) {
+    return line.size() > key.size() && line.starts_with(key) && isBlank(line[key.size()]);
+}
+
+Vec3 colour(const tinyobj::real_t (&c)[3]) { return {c[0], c[1], c[2]}; }
+
+}  // namespace
+
+std::vector<MtlEntry> scanMtl(std::string_view text) {
+    std::vector<MtlEntry> entries;
+    MtlEntry current;  // LoadMtl's unnamed first material, kept only if nothing follows
+    forEachLine(text, [&](std::string_view line, int number) {
+        if (statement(line, "newmtl")) {
+            if (current.line > 0) entries.push_back(current);
+            current = MtlEntry{number};
+        } else if (statement(line, "Ka")) {
+            current.hasKa = true;
+        } else if (statement(line, "Kd")) {
+            current.hasKd = true;
+        } else if (statement(line, "illum")) {
+            current.hasIllum = true;
+        }
+    });
+    entries.push_back(current);
+    return entries;
+}
+
+MeshMaterial mapMtlMaterial(const tinyobj::material_t& m, const MtlEntry& entry,
+                            const MtlSource& source, TextureCache& cache,
+                            std::vector<Diagnostic>& warnings, const LoadLimits& limits) {
+    const FileLoc at{source.file, entry.line, entry.line > 0 ? 1 : 0};
+    const std::string quotedName = "'" + m.name + "'";
+    Vec3 ka = colour(m.ambient), kd = colour(m.diffuse), ks = colour(m.specular);
+    Vec3 ke = colour(m.emission);
+    double ns = m.shininess, ni = m.ior, d = m.dissolve;
+    if (!isFinite(ka) || !isFinite(kd) || !isFinite(ks) || !isFinite(ke) || !std::isfinite(ns) ||
+        !std::isfinite(ni) || !std::isfinite(d))
+        throw SceneError(at, "material " + quotedName + " has a value that is not a finite number");
+
+    MeshMaterial out;
+    out.name = m.name;
+    Material& g = out.material;
+    // The colour a diffuse texture is multiplied by (Kd, as MTL has it), and the colour used
+    // where there is no texture: Kd, or tinyobjloader's grey when only map_Kd is given.
+    Vec3 tint = entry.hasKd ? kd : Vec3(1);
+    g.diffuse = kd;
+    if (!m.diffuse_texname.empty()) {
+        std::string name = m.diffuse_texname;
+        std::replace(name.begin(), name.end(), '\\', '/');  // paths from Windows exporters
+        std::string path = name.front() == '/' || source.textureDir.empty()
+                               ? name
+                               : source.textureDir + "/" + name;
+        bool srgb = m.diffuse_texopt.colorspace != "linear";
+        std::string key = path + (srgb ? "" : "\n(linear)");
+        std::shared_ptr<const TextureImage> image;
+        if (auto it = cache.find(key); it != cache.end()) {
+            image = it->second;
+        } else if (source.readTextures) {
+            try {
+                image = loadTextureImage(path, srgb, limits);
+            } catch (const RenderError& e) {
+                warnings.push_back({at, "material " + quotedName + ": " + e.what() +
+                                            "; its faces show its diffuse colour instead"});
+            }
+            cache[key] = image;
+        }
+        if (image) {
+            Texture t;
+            t.kind = Texture::Kind::Image;
+            t.wrap = m.diffuse_texopt.clamp ? TextureWrap::Clamp : TextureWrap::Repeat;
+            t.image = image;
+            t.a = tint;
+            out.texture = t;
+        }
+    }
+    // Ambient: Ka under OpenGL's default ambient light, or the diffuse colour (the texture's
+    // mean for textured materials) when there is no Ka: never the course's flat 0.2 grey.
+    Vec3 meanDiffuse = out.texture ? tint * out.texture->image->average() : g.diffuse;
+    g.ambient = (entry.hasKa ? ka : meanDiffuse) * kMtlAmbientLight;
+    // illum 0 and 1 are MTL's models without highlights; Glint's specular is also its mirror.
+    bool noSpecular = entry.hasIllum && (m.illum == 0 || m.illum == 1);
+    g.specular = noSpecular ? Vec3(0) : ks;
+    if (ns < 0) {
+        warnings.push_back(
+            {at, "material " + quotedName + " has a negative Ns (shininess); using 0"});
+        ns = 0;
+    }
+    g.shininess = ns;
+    g.emission = ke;
+    if (d < 1) {
+        // Dissolve as a dielectric: what is not opaque is transmitted (refracted by Ni; with
+        // Ni 1, the default, it passes straight through), and the opaque part is diffuse.
+        d = std::max(d, 0.0);
+        g.transmission = Vec3(1 - d);
+        g.diffuse = g.diffuse * d;
+        g.ambient = g.ambient * d;
+        if (out.texture) out.texture->a = out.texture->a * d;
+        if (ni > 0) {
+            g.ior = ni;
+        } else {
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", ni);
+            warnings.push_back({at, "material " + quotedName + " has Ni " + value +
+                                        ", not an index of refraction; using 1"});
+            g.ior = 1;
+        }
+    }
+    return out;
+}
+
+FileLoc statementAt(std::string_view text, size_t offset, const std::string& file, int token) {
+    offset = std::min(offset, text.size());
+    // The statement's last byte is at offset - 1: step back over its line end, then to the
+    // start of the line.
+    size_t end = offset;
+    if (end > 0 && text[end - 1] == '\n') --end;
+    if (end > 0 && text[end - 1] == '\r') --end;
+    size_t start = end;
+    while (start > 0 && text[start - 1] != '\n' && text[start - 1] != '\r') --start;
+    int line = 1;
+    for (size_t i = 0; i < start; ++i)
+        if (text[i] == '\n' || (text[i] == '\r' && (i + 1 >= start || text[i + 1] != '\n'))) ++line;
+    // Column of the token numbered `token`.
+    size_t i = start;
+    for (int k = 0;; ++k) {
+        while (i < end && isBlank(text[i])) ++i;
+        if (k == token || i >= end) break;
+        while (i < end && !isBlank(text[i])) ++i;
+    }
+    return {file, line, static_cast<int>(i - start) + 1};
+}
+
+}  // namespace glint::obj
