@@ -16,12 +16,13 @@
 
 #include "demo_scene.h"
 #include "glint/accel/bvh.h"
+#include "glint/core/atomic_file.h"
 #include "glint/core/error.h"
 #include "glint/core/system.h"
-#include "glint/core/atomic_file.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/image_io.h"
 #include "glint/io/model_scene.h"
+#include "glint/render/integrator.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
 
@@ -36,7 +37,8 @@ struct Options {
     int threads = 0;
     std::string size;
     int maxDepth = -1;
-    int spp = 0;  ///< 0: the scene's `spp`, else 1.
+    std::string integrator;  ///< Empty: the scene's `integrator`, else whitted.
+    int spp = 0;             ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;
     double exposure = 0;  ///< EV: radiance times 2^exposure before writing.
     bool srgb = false;    ///< sRGB curve for 8-bit outputs.
@@ -189,6 +191,9 @@ void printStats(const glint::Scene& scene, double parse, double build, const gli
                 static_cast<unsigned long long>(r.rays.reflection),
                 static_cast<unsigned long long>(r.rays.total()));
     std::printf("Throughput  %.2f Mrays/s\n", mrays);
+    // Non-zero only through a bug: NaN or infinite radiance, repaired before the film.
+    std::printf("Repaired    %llu non-finite radiance values\n",
+                static_cast<unsigned long long>(r.rays.nonFinite));
 }
 
 int run(const Options& opt) {
@@ -231,6 +236,7 @@ int run(const Options& opt) {
         scene->height = height;
     }
     if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
+    if (!opt.integrator.empty()) scene->integrator = opt.integrator;
 
     // Where the image goes: -o, else the scene's output line, else <scene-stem>.png.
     std::string output = opt.output;
@@ -369,6 +375,16 @@ int main(int argc, char** argv) {
         ->check(integerIn(0, glint::kMaxDepthLimit))
         ->type_name("N");
 
+    app.add_option("--integrator", opt.integrator,
+                   "How light is computed, overriding the scene's 'integrator': " +
+                       glint::integratorNameList() + " (default: whitted, the course's)")
+        ->group(render)
+        ->check(CLI::IsMember([] {
+            std::vector<std::string> names;
+            for (const auto& i : glint::integrators()) names.emplace_back(i.name);
+            return names;
+        }()))
+        ->type_name("NAME");
     app.add_option("--spp", opt.spp,
                    "Camera rays per pixel, 1 to 65536: stratified, jittered, filtered "
                    "(default: the scene's spp, else 1, the pixel centre)")

@@ -15,15 +15,6 @@ namespace glint::test {
 
 namespace fs = std::filesystem;
 
-namespace {
-std::string readAll(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-}  // namespace
-
 CommandResult runGlint(const std::string& args, const std::string& workDir) {
     fs::create_directories(workDir);
     fs::path out = fs::path(workDir) / ".stdout", err = fs::path(workDir) / ".stderr";
@@ -32,11 +23,22 @@ CommandResult runGlint(const std::string& args, const std::string& workDir) {
     int status = std::system(cmd.c_str());
     CommandResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = readAll(out);
-    r.err = readAll(err);
+    r.out = readBytes(out.string());
+    r.err = readBytes(err.string());
     fs::remove(out);
     fs::remove(err);
     return r;
+}
+
+std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+    return haystack.find(needle) != std::string::npos;
 }
 
 void writeFile(const std::string& path, const std::string& text) {

@@ -21,4 +21,10 @@ void writeFile(const std::string& path, const std::string& text);
 /// A fresh, empty directory under the system's temporary directory, unique to this test.
 std::string freshDir(const std::string& name);
 
+/// The bytes of the file at `path` (empty if it cannot be read).
+std::string readBytes(const std::string& path);
+
+/// Whether `needle` occurs in `haystack`.
+bool contains(const std::string& haystack, const std::string& needle);
+
 }  // namespace glint::test

@@ -42,13 +42,6 @@ const char* const kScene =
     "specular 0.9 0.9 0.9\n"
     "sphere 1.2 0 -0.5 0.8\n";
 
-std::string readBytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 /// Regular files in `dir` other than the harness's own, sorted.
 std::vector<std::string> filesIn(const std::string& dir) {
     std::vector<std::string> names;
@@ -63,10 +56,6 @@ std::vector<std::string> lines(const std::string& text) {
     std::istringstream in(text);
     for (std::string line; std::getline(in, line);) out.push_back(line);
     return out;
-}
-
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
 }
 
 /// A directory holding kScene as scene.test.
@@ -267,6 +256,22 @@ TEST(Cli, MaxDepthOptionRejectsOutOfRangeOrNonIntegerValues) {
         EXPECT_TRUE(contains(r.err, "--maxdepth")) << r.err;
         EXPECT_TRUE(r.out.empty()) << r.out;
     }
+}
+
+TEST(Cli, IntegratorOptionOverridesTheScenesAndNamesTheChoicesWhenWrong) {
+    std::string dir = sceneDir("integrator");
+    writeFile(dir + "/named.test", std::string("integrator whitted\n") + kScene);
+    ASSERT_EQ(runGlint("-q scene.test -o default.pfm", dir).exitCode, 0);
+    ASSERT_EQ(runGlint("-q scene.test --integrator whitted -o option.pfm", dir).exitCode, 0);
+    ASSERT_EQ(runGlint("-q named.test -o named.pfm", dir).exitCode, 0);
+    EXPECT_EQ(readBytes(dir + "/default.pfm"), readBytes(dir + "/option.pfm"));
+    EXPECT_EQ(readBytes(dir + "/default.pfm"), readBytes(dir + "/named.pfm"));
+
+    CommandResult r = runGlint("scene.test --integrator raymarch", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "--integrator")) << r.err;
+    EXPECT_TRUE(contains(r.err, "whitted")) << r.err;
+    EXPECT_TRUE(contains(runGlint("--help", dir).out, "--integrator")) << "missing from --help";
 }
 
 TEST(Cli, OneAndTwoThreadsGiveByteIdenticalImages) {

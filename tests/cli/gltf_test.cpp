@@ -24,9 +24,6 @@ std::string dirWith(const std::string& name, std::initializer_list<const char*> 
     return dir;
 }
 
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
-}
 
 TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     std::string dir = dirWith("gltf-scene", {"scene.glb"});

@@ -23,9 +23,6 @@ std::string dirWith(const std::string& name, std::initializer_list<const char*> 
     return dir;
 }
 
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
-}
 
 /// Pixels of `img` whose colour is close to (r, g, b).
 int pixelsNear(const Image8& img, int r, int g, int b, int tolerance = 40) {

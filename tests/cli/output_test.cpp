@@ -40,16 +40,7 @@ const char* const kBrightScene =
     "emission 1.5 0.2 0.1\n"
     "sphere 1.2 0 -0.5 0.8\n";
 
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
-}
 
-std::string readBytes(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 std::string brightDir(const std::string& name) {
     std::string dir = freshDir(name);

@@ -19,10 +19,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     RenderResult result;
     result.film = Film(scene.width, scene.height);
     const Camera camera(*scene.camera, scene.width, scene.height);
-    const WhittedIntegrator integrator(scene, options.spp);
+    const std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {options.spp});
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
     // Per-sample random numbers only where something draws them.
-    const bool seeded = camera.hasLens() || integrator.usesRandomNumbers();
+    const bool seeded = camera.hasLens() || integrator->usesRandomNumbers();
     const double weight = 1.0 / sampler.samplesPerPixel();
 
     const int tile = std::max(1, options.tileSize);
@@ -82,8 +82,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 Hit hit = hits[k];
                 bool found = hit.t < std::numeric_limits<float>::infinity();
                 PathContext ctx{samples[i + k].rng, counts};
-                sum[samples[i + k].pixel] +=
-                    integrator.shade(rays[k], found ? &hit : nullptr, 0, ctx);
+                sum[samples[i + k].pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
             }
         }
         for (int y = 0; y < h; ++y)

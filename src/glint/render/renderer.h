@@ -8,7 +8,7 @@
 
 #include "glint/core/system.h"
 #include "glint/render/film.h"
-#include "glint/render/whitted.h"
+#include "glint/render/integrator.h"
 
 namespace glint {
 
@@ -37,7 +37,8 @@ struct RenderResult {
     int tilesDone = 0, tilesTotal = 0;
 };
 
-/// Renders `scene` (prepared, with a camera) at its width and height.
+/// Renders `scene` (prepared, with a camera) at its width and height with the integrator it
+/// names (Scene::integrator). Throws RenderError if there is no such integrator.
 RenderResult render(const Scene& scene, const RenderOptions& options);
 
 }  // namespace glint

@@ -195,7 +195,11 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, c
                 m.specular * trace(spawnRay(si.p, r, scene_.spawnOffset()), depth + 1, weight, ctx);
         }
     }
-    return finiteRadiance(color);
+    return finiteRadiance(color, ctx.counts);
+}
+
+Vec3 WhittedIntegrator::li(const Ray& ray, const Hit* hit, PathContext& ctx) const {
+    return shade(ray, hit, 0, 1, ctx);
 }
 
 Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double weight,

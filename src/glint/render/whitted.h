@@ -4,59 +4,29 @@
 /// Glint's extensions of it, following the lecture: refraction with Fresnel weighting, soft
 /// shadows from area lights, and a rough (GGX) specular lobe. See docs/scene-format.md.
 
-#include <cstdint>
-
-#include "glint/math/rng.h"
-#include "glint/scene/scene.h"
+#include "glint/render/integrator.h"
 
 namespace glint {
-
-/// Rays traced, by kind.
-struct RayCounts {
-    uint64_t camera = 0, shadow = 0, reflection = 0;
-
-    uint64_t total() const { return camera + shadow + reflection; }
-    RayCounts& operator+=(const RayCounts& o) {
-        camera += o.camera;
-        shadow += o.shadow;
-        reflection += o.reflection;
-        return *this;
-    }
-};
-
-/// What one camera sample carries through its tree of rays: its own random numbers (seeded
-/// from pixel, sample and seed, so images do not depend on threads) and its ray counts.
-struct PathContext {
-    Rng rng;
-    RayCounts& counts;
-    /// Refracted and reflected rays a sample may still spawn at transmissive surfaces, where
-    /// every hit splits in two: bounds the work of any scene at any depth.
-    int branchRaysLeft = 4096;
-};
 
 /// n of the n x n grid of shadow rays per area light and shading point: the scene's
 /// `lightsamples`, else about 16 shadow rays per pixel spread over the pixel's samples.
 int areaLightGrid(const Scene& scene, int spp);
 
-class WhittedIntegrator {
+class WhittedIntegrator final : public Integrator {
   public:
     /// The scene must be prepared and outlive the integrator. `spp` is the number of camera
     /// samples per pixel (it sets the default area-light grid).
     explicit WhittedIntegrator(const Scene& scene, int spp = 1);
 
-    /// Radiance along `ray`, which is at recursion `depth` (0 for camera rays). Counts the
-    /// rays it traces into `counts`, `ray` itself included.
-    Vec3 li(const Ray& ray, int depth, RayCounts& counts) const {
+    /// Radiance along `ray`, which is at recursion `depth` (0 for camera rays), tracing it
+    /// alone. Counts the rays it traces into `counts`, `ray` itself included.
+    Vec3 radiance(const Ray& ray, int depth, RayCounts& counts) const {
         PathContext ctx{Rng(), counts};
-        return li(ray, depth, ctx);
+        return trace(ray, depth, 1, ctx);
     }
-    Vec3 li(const Ray& ray, int depth, PathContext& ctx) const { return trace(ray, depth, 1, ctx); }
 
-    /// Radiance along `ray` given its closest hit (null: it hits nothing), found by the caller,
-    /// e.g. for a whole packet at once. Does not count `ray` itself.
-    Vec3 shade(const Ray& ray, const Hit* hit, int depth, PathContext& ctx) const {
-        return shade(ray, hit, depth, 1, ctx);
-    }
+    /// Integrator: radiance along the camera ray `ray` given its closest hit (null: none).
+    Vec3 li(const Ray& ray, const Hit* hit, PathContext& ctx) const override;
 
     /// The fraction of light that travels from `p` along unit `wi` for `distance`: 0 or 1
     /// past opaque surfaces; through transmissive ones, the product over the surfaces crossed
@@ -65,7 +35,7 @@ class WhittedIntegrator {
 
     /// Whether shading draws random numbers (area lights, rough materials); if not, paths
     /// need no seeded PathContext::rng.
-    bool usesRandomNumbers() const { return usesRandomNumbers_; }
+    bool usesRandomNumbers() const override { return usesRandomNumbers_; }
 
   private:
     Vec3 trace(const Ray& ray, int depth, double weight, PathContext& ctx) const;

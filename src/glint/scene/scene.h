@@ -45,6 +45,8 @@ class Scene {
 
     int width = 640, height = 480;
     int maxDepth = 5;    ///< Primary rays are depth 0; reflect while depth < maxDepth.
+    /// The integrator that renders the scene, by name (render/integrator.h; `integrator`).
+    std::string integrator = "whitted";
     std::string output;  ///< Output file the scene asks for; may be empty.
     std::optional<CameraSpec> camera;
     Background background;  ///< Black by default, as the course expects.

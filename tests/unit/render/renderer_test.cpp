@@ -7,6 +7,7 @@
 
 #include "glint/math/mat4.h"
 #include "glint/render/sampler.h"
+#include "glint/render/whitted.h"
 #include "unit/test_support.h"
 
 namespace glint {
@@ -70,7 +71,7 @@ TEST(Renderer, EachPixelIsTheIntegratorAtThePixelCentre) {
     int differing = 0;
     for (int y = 0; y < scene.height; ++y)
         for (int x = 0; x < scene.width; ++x) {
-            Vec3 expected = integrator.li(camera.generateRay(x + 0.5, y + 0.5), 0, counts);
+            Vec3 expected = integrator.radiance(camera.generateRay(x + 0.5, y + 0.5), 0, counts);
             differing += !(r.film.at(x, y) == expected);
         }
     EXPECT_EQ(differing, 0);
@@ -144,7 +145,7 @@ TEST(Renderer, OnePixelImageSeesWhatIsAtTheImageCentre) {
 
 TEST(Renderer, PacketsGiveExactlyTheImageOfOneRayAtATime) {
     // render() traces camera, shadow and mirror rays in packets; the reference below traces
-    // every ray alone with WhittedIntegrator::li(). They must agree bit for bit.
+    // every ray alone with WhittedIntegrator::radiance(). They must agree bit for bit.
     Scene scene;
     buildScene(scene);
     for (int spp : {1, 4}) {
@@ -162,7 +163,7 @@ TEST(Renderer, PacketsGiveExactlyTheImageOfOneRayAtATime) {
             for (int x = 0; x < scene.width; ++x) {
                 Vec3 sum;
                 sampler.forEachSample(x, y, [&](double px, double py) {
-                    sum += integrator.li(camera.generateRay(px, py), 0, counts);
+                    sum += integrator.radiance(camera.generateRay(px, py), 0, counts);
                 });
                 reference.at(x, y) = spp == 1 ? sum : sum * (1.0 / spp);
             }

@@ -52,7 +52,7 @@ Light directionalLight(const Vec3& towards, const Vec3& color) {
 Vec3 shade(Scene& scene, const Ray& ray, RayCounts* out = nullptr) {
     scene.prepare();
     RayCounts counts;
-    Vec3 c = WhittedIntegrator(scene).li(ray, 0, counts);
+    Vec3 c = WhittedIntegrator(scene).radiance(ray, 0, counts);
     if (out) *out = counts;
     return c;
 }

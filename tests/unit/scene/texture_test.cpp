@@ -136,7 +136,7 @@ void addTexturedFloor(Scene& scene, uint32_t material) {
 Vec3 shadeFromAbove(Scene& scene, double x, double y) {
     if (!scene.prepared()) scene.prepare();
     RayCounts counts;
-    return WhittedIntegrator(scene).li(Ray{{x, y, 5}, {0, 0, -1}}, 0, counts);
+    return WhittedIntegrator(scene).radiance(Ray{{x, y, 5}, {0, 0, -1}}, 0, counts);
 }
 
 TEST(TexturedShading, TheTextureReplacesTheDiffuseColour) {

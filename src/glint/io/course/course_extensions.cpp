@@ -1,5 +1,5 @@
 // Glint's extensions of the scene format: materials (transmission, ior, roughness), area
-// lights, sampling, the thin lens and the shapes (docs/scene-format.md).
+// lights, sampling, the thin lens, the integrator and the shapes (docs/scene-format.md).
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +8,7 @@
 
 #include "glint/geometry/polygon.h"
 #include "glint/io/course/course_parser.h"
+#include "glint/render/integrator.h"
 
 namespace glint::course {
 
@@ -78,6 +79,12 @@ void Parser::cmdLens() {
     if (ntok_ == 3 && !(d > 0)) fail(2, "focus distance must be positive, got " + quoted(2));
     apertureRadius_ = r;
     focusDistance_ = d;
+}
+
+void Parser::cmdIntegrator() {
+    if (!findIntegrator(tok_[1].text))
+        fail(1, "unknown integrator " + quoted(1) + " (Glint has " + integratorNameList() + ")");
+    scene_->integrator = std::string(tok_[1].text);
 }
 
 // ---- Shape extensions ---------------------------------------------------------------------

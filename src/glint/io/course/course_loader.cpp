@@ -57,6 +57,7 @@ const std::vector<Command>& Parser::commands() {
         {"spp", 1, 1, "samples", &Parser::cmdSpp},
         {"filter", 1, 2, "box|gaussian [radius]", &Parser::cmdFilter},
         {"lens", 1, 2, "aperture-radius [focus-distance]", &Parser::cmdLens},
+        {"integrator", 1, 1, "name", &Parser::cmdIntegrator},
         {"plane", 6, 6, "px py pz nx ny nz", &Parser::cmdPlane},
         {"box", 6, 6, "x0 y0 z0 x1 y1 z1", &Parser::cmdBox},
         {"cylinder", 7, 7, "x0 y0 z0 x1 y1 z1 radius", &Parser::cmdCylinder},

@@ -157,6 +157,7 @@ class Parser {
     void cmdSpp() { scene_->spp = static_cast<int>(integer(1, 1, 65536)); }
     void cmdFilter();
     void cmdLens();
+    void cmdIntegrator();
     // The shape extensions (docs/scene-format.md).
     void cmdPlane();
     void cmdBox();

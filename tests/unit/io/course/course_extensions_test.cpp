@@ -1,5 +1,5 @@
 // The loader's commands for Glint's extensions beyond Whitted: materials (transmission, ior,
-// roughness), area lights, sampling (spp, filter, lightsamples) and the thin lens.
+// roughness), area lights, sampling (spp, filter, lightsamples), the thin lens and the integrator.
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@ namespace {
 
 using namespace test;  // NOLINT: the loader test helpers
 
-TEST(Hw3Extensions, DefaultsLeaveTheCourseModelUnchanged) {
+TEST(CourseExtensions, DefaultsLeaveTheCourseModelUnchanged) {
     auto s = parseOk("sphere 0 0 0 1\n");
     const Material& m = s->materials.at(0);
     EXPECT_EQ(m.transmission, Vec3(0));
@@ -24,7 +24,7 @@ TEST(Hw3Extensions, DefaultsLeaveTheCourseModelUnchanged) {
     EXPECT_EQ(s->camera->apertureRadius, 0);
 }
 
-TEST(Hw3Extensions, TransmissionIorAndRoughnessAreMaterialState) {
+TEST(CourseExtensions, TransmissionIorAndRoughnessAreMaterialState) {
     auto s = parseOk(
         "transmission 0.9 0.8 0.7\nior 1.33\nroughness 0.25\nsphere 0 0 0 1\n"
         "transmission 0 0 0\nroughness 0\nsphere 3 0 0 1\n");
@@ -36,7 +36,7 @@ TEST(Hw3Extensions, TransmissionIorAndRoughnessAreMaterialState) {
     EXPECT_EQ(s->materials[1].ior, 1.33);  // state persists until changed
 }
 
-TEST(Hw3Extensions, MaterialErrors) {
+TEST(CourseExtensions, MaterialErrors) {
     expectError("ior 0\n", 1, 5, "ior must be positive");
     expectError("ior -1.5\n", 1, 5, "ior must be positive");
     expectError("roughness 1.5\n", 1, 11, "between 0 and 1");
@@ -44,7 +44,7 @@ TEST(Hw3Extensions, MaterialErrors) {
     expectError("transmission 1 1\n", 1, 1, "transmission expects 3 arguments");
 }
 
-TEST(Hw3Extensions, QuadLightIsALightAndAnEmittingSurface) {
+TEST(CourseExtensions, QuadLightIsALightAndAnEmittingSurface) {
     auto s = parseOk("translate 0 5 0\nquadLight -1 0 -1 2 0 0 0 0 2 4 4 4\n");
     ASSERT_EQ(s->lights.size(), 1u);
     const Light& l = s->lights[0];
@@ -64,7 +64,7 @@ TEST(Hw3Extensions, QuadLightIsALightAndAnEmittingSurface) {
     EXPECT_EQ(m.ambient, Vec3(0));
 }
 
-TEST(Hw3Extensions, QuadLightDoesNotDisturbTheCurrentMaterial) {
+TEST(CourseExtensions, QuadLightDoesNotDisturbTheCurrentMaterial) {
     auto s = parseOk(
         "diffuse 1 0 0\nsphere 0 0 0 1\nquadLight 0 5 0 1 0 0 0 0 1 1 1 1\n"
         "sphere 3 0 0 1\n");
@@ -74,14 +74,14 @@ TEST(Hw3Extensions, QuadLightDoesNotDisturbTheCurrentMaterial) {
     EXPECT_EQ(s->materials.at(si->material).emission, Vec3(0));
 }
 
-TEST(Hw3Extensions, QuadLightErrors) {
+TEST(CourseExtensions, QuadLightErrors) {
     expectError("quadLight 0 0 0 1 0 0 2 0 0 1 1 1\n", 1, 17, "zero or parallel");
     expectError("quadLight 0 0 0 0 0 0 0 0 1 1 1 1\n", 1, 17, "zero or parallel");
     expectError("quadLight 0 0 0 1 0 0 0 0 1 1 1\n", 1, 1, "quadLight expects 12 arguments");
     expectError("quadlight 0 0 0 1 0 0 0 0 1 1 1 1\n", 1, 1, "did you mean 'quadLight'");
 }
 
-TEST(Hw3Extensions, SamplingSettings) {
+TEST(CourseExtensions, SamplingSettings) {
     auto s = parseOk("spp 16\nlightsamples 3\nfilter gaussian\n");
     EXPECT_EQ(s->spp, 16);
     EXPECT_EQ(s->lightSamples, 3);
@@ -92,7 +92,7 @@ TEST(Hw3Extensions, SamplingSettings) {
     EXPECT_EQ(box->filter.radius, 1);
 }
 
-TEST(Hw3Extensions, SamplingErrors) {
+TEST(CourseExtensions, SamplingErrors) {
     expectError("spp 0\n", 1, 5, "out of range (1 to 65536)");
     expectError("spp 2.5\n", 1, 5, "expected an integer");
     expectError("lightsamples 65\n", 1, 14, "out of range (1 to 64)");
@@ -101,7 +101,15 @@ TEST(Hw3Extensions, SamplingErrors) {
     expectError("filter\n", 1, 1, "filter expects 1 or 2 arguments");
 }
 
-TEST(Hw3Extensions, LensSetsApertureAndFocusWhereverItAppears) {
+TEST(CourseExtensions, IntegratorNamesOneGlintHas) {
+    EXPECT_EQ(parseOk("sphere 0 0 0 1\n")->integrator, "whitted");
+    EXPECT_EQ(parseOk("integrator whitted\n")->integrator, "whitted");
+    expectError("integrator photon-mapping\n", 1, 12,
+                "unknown integrator 'photon-mapping' (Glint has whitted");
+    expectError("integrator\n", 1, 1, "integrator expects 1 argument (name), got 0");
+}
+
+TEST(CourseExtensions, LensSetsApertureAndFocusWhereverItAppears) {
     auto s = parseOk("lens 0.1 7.5\n");
     EXPECT_EQ(s->camera->apertureRadius, 0.1);
     EXPECT_EQ(s->camera->focusDistance, 7.5);

@@ -57,7 +57,7 @@ void expectHit(Scene& scene, const Vec3& origin, const Vec3& dir, const Vec3& p,
 
 // ---- Each command under the current transform, with the current material ----------------
 
-TEST(Hw3Shapes, PlaneThroughAPointWithAnyLengthNormalUnderTheTransform) {
+TEST(CourseShapes, PlaneThroughAPointWithAnyLengthNormalUnderTheTransform) {
     auto s = parseOk(
         "diffuse 1 0 0\npushTransform\ntranslate 0 2 0\nrotate 1 0 0 90\n"
         "plane 0 0 0 0 0 5\npopTransform\n");
@@ -72,21 +72,21 @@ TEST(Hw3Shapes, PlaneThroughAPointWithAnyLengthNormalUnderTheTransform) {
     EXPECT_TRUE(s->bvh().bounds().empty());         // not part of the scene bounds
 }
 
-TEST(Hw3Shapes, BoxFromTwoCornersInAnyOrderUnderNonUniformScale) {
+TEST(CourseShapes, BoxFromTwoCornersInAnyOrderUnderNonUniformScale) {
     auto s = parseOk("scale 2 1 1\nbox 1 1 1 -1 -1 -1\n");
     ASSERT_EQ(s->primitives.shapeCount(ShapeKind::Box), 1u);
     expectHit(*s, {10, 0.5, 0.5}, {-1, 0, 0}, {2, 0.5, 0.5}, {1, 0, 0});
     expectHit(*s, {0, 0, 0}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1});  // from inside
 }
 
-TEST(Hw3Shapes, CylinderBetweenTwoEndCentres) {
+TEST(CourseShapes, CylinderBetweenTwoEndCentres) {
     auto s = parseOk("cylinder 0 0 -1 0 0 1 0.5\n");
     ASSERT_EQ(s->primitives.shapeCount(ShapeKind::Cylinder), 1u);
     expectHit(*s, {0, 0, 5}, {0, 0, -1}, {0, 0, 1}, {0, 0, 1});
     expectHit(*s, {5, 0, 0}, {-1, 0, 0}, {0.5, 0, 0}, {1, 0, 0});
 }
 
-TEST(Hw3Shapes, ConeWithEitherEndPointedAndFrustums) {
+TEST(CourseShapes, ConeWithEitherEndPointedAndFrustums) {
     auto pointed = parseOk("cone 0 0 0 0 0 0 2 1\n");  // apex at the origin, base at z = 2
     ASSERT_EQ(pointed->primitives.shapeCount(ShapeKind::Cone), 1u);
     expectHit(*pointed, {0, 0, 5}, {0, 0, -1}, {0, 0, 2}, {0, 0, 1});
@@ -95,7 +95,7 @@ TEST(Hw3Shapes, ConeWithEitherEndPointedAndFrustums) {
     expectHit(*frustum, {0, 0, 5}, {0, 0, -1}, {0, 0, 2}, {0, 0, 1});
 }
 
-TEST(Hw3Shapes, DiskWithItsNormalUnderRotation) {
+TEST(CourseShapes, DiskWithItsNormalUnderRotation) {
     auto s = parseOk("rotate 0 1 0 90\ndisk 0 0 0 0 0 1 2\n");
     ASSERT_EQ(s->primitives.shapeCount(ShapeKind::Disk), 1u);
     // (0, 0, 1) rotated 90 degrees about y is (1, 0, 0).
@@ -103,7 +103,7 @@ TEST(Hw3Shapes, DiskWithItsNormalUnderRotation) {
     EXPECT_FALSE(shoot(*s, {5, 2.5, 0}, {-1, 0, 0}));
 }
 
-TEST(Hw3Shapes, PolygonIsTriangulatedWithTheVertexListAndTheCurrentTransform) {
+TEST(CourseShapes, PolygonIsTriangulatedWithTheVertexListAndTheCurrentTransform) {
     const std::string lShape =
         "vertex 0 0 0\nvertex 3 0 0\nvertex 3 1 0\nvertex 1 1 0\nvertex 1 3 0\nvertex 0 3 0\n";
     auto s = parseOk(lShape + "translate 0 0 -1\npolygon 0 1 2 3 4 5\n");
@@ -121,7 +121,7 @@ TEST(Hw3Shapes, PolygonIsTriangulatedWithTheVertexListAndTheCurrentTransform) {
     expectHit(*tri, {-2.9, 0.5, 5}, {0, 0, -1}, {-2.9, 0.5, 0}, {0, 0, -1});
 }
 
-TEST(Hw3Shapes, PolygonWithCollinearVerticesAndTheLargestVertexCount) {
+TEST(CourseShapes, PolygonWithCollinearVerticesAndTheLargestVertexCount) {
     auto s = parseOk(
         "vertex 0 0 0\nvertex 1 0 0\nvertex 2 0 0\nvertex 2 1 0\nvertex 0 1 0\n"
         "polygon 0 1 2 3 4\n");
@@ -141,7 +141,7 @@ TEST(Hw3Shapes, PolygonWithCollinearVerticesAndTheLargestVertexCount) {
     EXPECT_EQ(big->primitives.triangleCount(), 1022u);
 }
 
-TEST(Hw3Shapes, ShapesCountInTheMemoryEstimate) {
+TEST(CourseShapes, ShapesCountInTheMemoryEstimate) {
     std::string text = kCamera + "vertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\n";
     for (int i = 0; i < 4000; ++i) text += "cylinder 0 0 0 0 0 1 1\npolygon 0 1 2 3\n";
     std::vector<Diagnostic> warnings;
@@ -159,7 +159,7 @@ TEST(Hw3Shapes, ShapesCountInTheMemoryEstimate) {
 
 // ---- Errors -------------------------------------------------------------------------------
 
-TEST(Hw3Shapes, ArgumentCountsAndNumbersAreCheckedLikeEveryCommand) {
+TEST(CourseShapes, ArgumentCountsAndNumbersAreCheckedLikeEveryCommand) {
     expectError("box 0 0 0 1 1\n", 1, 1, "box expects 6 arguments (x0 y0 z0 x1 y1 z1), got 5");
     expectError("cylinder 0 0 0 0 0 1 1 1\n", 1, 24, "cylinder expects 7 arguments");
     expectError("cone 0 0 0 1 0 0 1\n", 1, 1, "cone expects 8 arguments (x0 y0 z0 r0 x1 y1 z1 r1)");
@@ -175,7 +175,7 @@ TEST(Hw3Shapes, ArgumentCountsAndNumbersAreCheckedLikeEveryCommand) {
     expectError("disk 0 0 0 0 0 1 x\n", 1, 18, "expected a number, got 'x'");
 }
 
-TEST(Hw3Shapes, DegenerateShapesPointAtTheArgumentAtFault) {
+TEST(CourseShapes, DegenerateShapesPointAtTheArgumentAtFault) {
     expectError("box 0 0 0 1 0 1\n", 1, 13,
                 "box has zero extent along y: both corners have y = '0'");
     expectError("cylinder 1 2 3 1 2 3 1\n", 1, 16, "the cylinder's end points coincide");
@@ -190,7 +190,7 @@ TEST(Hw3Shapes, DegenerateShapesPointAtTheArgumentAtFault) {
     expectError("plane 0 0 0 0 0 0\n", 1, 13, "plane normal must not be zero");
 }
 
-TEST(Hw3Shapes, TransformsAndCoordinateLimitsAreCheckedAsForSpheres) {
+TEST(CourseShapes, TransformsAndCoordinateLimitsAreCheckedAsForSpheres) {
     expectError("scale 1e10 1e10 1e10\nbox 0 0 0 1e9 1 1\n", 2, 1,
                 "the box reaches beyond the supported coordinate range (1e18)");
     expectError("cylinder 0 0 0 0 0 1 1e-20\n", 1, 1,
@@ -206,7 +206,7 @@ TEST(Hw3Shapes, TransformsAndCoordinateLimitsAreCheckedAsForSpheres) {
                 "the current transform is singular or not finite");
 }
 
-TEST(Hw3Shapes, PolygonErrorsNameTheVertexAtFault) {
+TEST(CourseShapes, PolygonErrorsNameTheVertexAtFault) {
     const std::string square = "vertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\n";
     expectError(square + "polygon 0 1 2 4\n", 5, 15,
                 "vertex index '4' is out of range: 4 vertices are defined (0 to 3)");
@@ -227,7 +227,7 @@ TEST(Hw3Shapes, PolygonErrorsNameTheVertexAtFault) {
                 "vertex '0' to '1'");
 }
 
-TEST(Hw3Shapes, CommandNamesIncludeTheShapes) {
+TEST(CourseShapes, CommandNamesIncludeTheShapes) {
     auto names = courseCommandNames();
     for (const char* name : {"plane", "box", "cylinder", "cone", "disk", "polygon"})
         EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;

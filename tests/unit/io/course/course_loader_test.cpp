@@ -36,7 +36,7 @@ Material materialAt(Scene& scene, double x, double y) {
 
 // ---- general settings -------------------------------------------------------------------
 
-TEST(Hw3Loader, ReadsSizeMaxDepthAndOutput) {
+TEST(CourseLoader, ReadsSizeMaxDepthAndOutput) {
     auto s = parseOk("size 320 200\nmaxdepth 3\noutput picture.png\n");
     EXPECT_EQ(s->width, 320);
     EXPECT_EQ(s->height, 200);
@@ -46,7 +46,7 @@ TEST(Hw3Loader, ReadsSizeMaxDepthAndOutput) {
     EXPECT_EQ(parseOk("maxdepth 64\n")->maxDepth, 64);
 }
 
-TEST(Hw3Loader, DefaultsAreMaxDepthFiveNoOutputBlackBackgroundNoLights) {
+TEST(CourseLoader, DefaultsAreMaxDepthFiveNoOutputBlackBackgroundNoLights) {
     auto s = parseOk("");
     EXPECT_EQ(s->maxDepth, 5);
     EXPECT_EQ(s->output, "");
@@ -56,7 +56,7 @@ TEST(Hw3Loader, DefaultsAreMaxDepthFiveNoOutputBlackBackgroundNoLights) {
     EXPECT_EQ(s->primitives.size(), 0u);
 }
 
-TEST(Hw3Loader, MaxDepthAboveSixtyFourIsClampedWithAWarning) {
+TEST(CourseLoader, MaxDepthAboveSixtyFourIsClampedWithAWarning) {
     std::unique_ptr<Scene> s;
     Diagnostic w = warningOf("maxdepth 65\n", &s);
     EXPECT_EQ(s->maxDepth, 64);
@@ -65,7 +65,7 @@ TEST(Hw3Loader, MaxDepthAboveSixtyFourIsClampedWithAWarning) {
     EXPECT_THAT(w.message, HasSubstr("64"));
 }
 
-TEST(Hw3Loader, CameraIsStoredAsGivenWithAnyNonParallelUp) {
+TEST(CourseLoader, CameraIsStoredAsGivenWithAnyNonParallelUp) {
     std::vector<Diagnostic> w;
     auto s = parse("camera 1 2 3 4 5 6 0 1 0 30\n", w);
     ASSERT_TRUE(s->camera);
@@ -78,7 +78,7 @@ TEST(Hw3Loader, CameraIsStoredAsGivenWithAnyNonParallelUp) {
     EXPECT_TRUE(w.empty());
 }
 
-TEST(Hw3Loader, BackgroundTakesOneColourOrAGradientFromDownToUp) {
+TEST(CourseLoader, BackgroundTakesOneColourOrAGradientFromDownToUp) {
     auto flat = parseOk("background 0.1 0.2 0.3\n");
     EXPECT_EQ(flat->background.down, Vec3(0.1, 0.2, 0.3));
     EXPECT_EQ(flat->background.up, Vec3(0.1, 0.2, 0.3));
@@ -87,7 +87,7 @@ TEST(Hw3Loader, BackgroundTakesOneColourOrAGradientFromDownToUp) {
     EXPECT_EQ(grad->background.up, Vec3(0.4, 0.5, 0.6));
 }
 
-TEST(Hw3Loader, CommandNamesListEveryCommand) {
+TEST(CourseLoader, CommandNamesListEveryCommand) {
     auto names = courseCommandNames();
     for (const char* c :
          {"size",         "maxdepth",     "output",    "camera",       "sphere",
@@ -100,13 +100,13 @@ TEST(Hw3Loader, CommandNamesListEveryCommand) {
 
 // ---- geometry and transforms ------------------------------------------------------------
 
-TEST(Hw3Loader, SphereHasItsCentreAndRadius) {
+TEST(CourseLoader, SphereHasItsCentreAndRadius) {
     auto s = parseOk("sphere 1 2 3 0.5\n");
     ASSERT_EQ(s->primitives.sphereCount(), 1u);
     expectBounds(s->primitives.bounds(0), {0.5, 1.5, 2.5}, {1.5, 2.5, 3.5});
 }
 
-TEST(Hw3Loader, NonUniformScaleMakesAnEllipsoid) {
+TEST(CourseLoader, NonUniformScaleMakesAnEllipsoid) {
     auto s = parseOk("scale 2 1 0.5\nsphere 0 0 0 1\n");
     expectBounds(s->primitives.bounds(0), {-2, -1, -0.5}, {2, 1, 0.5});
     // The top of the ellipsoid is at z = 0.5 and faces +z.
@@ -119,7 +119,7 @@ TEST(Hw3Loader, NonUniformScaleMakesAnEllipsoid) {
     expectBounds(r->primitives.bounds(0), {-1, -3, -1}, {1, 3, 1});
 }
 
-TEST(Hw3Loader, TransformsRightMultiplySoTheLastCommandActsFirst) {
+TEST(CourseLoader, TransformsRightMultiplySoTheLastCommandActsFirst) {
     // Scaled first (centre 1 -> 2, radius 2), then translated by 1.
     auto s = parseOk("translate 1 0 0\nscale 2 2 2\nsphere 1 0 0 1\n");
     expectBounds(s->primitives.bounds(0), {1, -2, -2}, {5, 2, 2});
@@ -128,7 +128,7 @@ TEST(Hw3Loader, TransformsRightMultiplySoTheLastCommandActsFirst) {
     expectBounds(t->primitives.bounds(0), {2, -2, -2}, {6, 2, 2});
 }
 
-TEST(Hw3Loader, RotateIsInDegreesCounterClockwiseAboutTheAxis) {
+TEST(CourseLoader, RotateIsInDegreesCounterClockwiseAboutTheAxis) {
     auto z = parseOk("rotate 0 0 1 90\nsphere 2 0 0 0.5\n");  // x axis -> y axis
     expectBounds(z->primitives.bounds(0), {-0.5, 1.5, -0.5}, {0.5, 2.5, 0.5});
     auto x = parseOk("rotate 1 0 0 90\nsphere 0 2 0 0.5\n");  // y axis -> z axis
@@ -137,7 +137,7 @@ TEST(Hw3Loader, RotateIsInDegreesCounterClockwiseAboutTheAxis) {
     expectBounds(unnormalised->primitives.bounds(0), {-2.5, -0.5, -0.5}, {-1.5, 0.5, 0.5});
 }
 
-TEST(Hw3Loader, PopTransformRestoresThePushedMatrix) {
+TEST(CourseLoader, PopTransformRestoresThePushedMatrix) {
     auto s = parseOk(
         "translate 1 0 0\npushTransform\ntranslate 10 0 0\npushTransform\ntranslate 100 0 0\n"
         "sphere 0 0 0 1\npopTransform\nsphere 0 0 0 1\npopTransform\nsphere 0 0 0 1\n");
@@ -147,14 +147,14 @@ TEST(Hw3Loader, PopTransformRestoresThePushedMatrix) {
     EXPECT_NEAR(s->primitives.bounds(2).lo.x, 0, 1e-5);
 }
 
-TEST(Hw3Loader, TriangleUsesTheVertexPileWithZeroBasedIndices) {
+TEST(CourseLoader, TriangleUsesTheVertexPileWithZeroBasedIndices) {
     auto s =
         parseOk("maxverts 4\nvertex 9 9 9\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 2 0\ntri 1 2 3\n");
     ASSERT_EQ(s->primitives.triangleCount(), 1u);
     expectBounds(s->primitives.bounds(0), {0, 0, 0}, {1, 2, 0});
 }
 
-TEST(Hw3Loader, TriangleFaceNormalFollowsTheVertexOrderAndIsNotFlipped) {
+TEST(CourseLoader, TriangleFaceNormalFollowsTheVertexOrderAndIsNotFlipped) {
     auto ccw = parseOk(kVerts + "tri 0 1 2\n");
     auto si = shoot(*ccw, {0.25, 0.25, 5}, {0, 0, -1});
     ASSERT_TRUE(si);
@@ -167,7 +167,7 @@ TEST(Hw3Loader, TriangleFaceNormalFollowsTheVertexOrderAndIsNotFlipped) {
     expectNear(si->ng, {0, 0, -1});
 }
 
-TEST(Hw3Loader, TriangleTakesTheTransformInEffectWhenIssuedNotWhenVerticesWereDefined) {
+TEST(CourseLoader, TriangleTakesTheTransformInEffectWhenIssuedNotWhenVerticesWereDefined) {
     auto s = parseOk(
         "pushTransform\nscale 10 10 10\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\npopTransform\n"
         "tri 0 1 2\ntranslate 0 0 -2\ntri 0 1 2\n");
@@ -176,7 +176,7 @@ TEST(Hw3Loader, TriangleTakesTheTransformInEffectWhenIssuedNotWhenVerticesWereDe
     expectBounds(s->primitives.bounds(1), {0, 0, -2}, {1, 1, -2});
 }
 
-TEST(Hw3Loader, TriNormalInterpolatesNormalisedVertexNormals) {
+TEST(CourseLoader, TriNormalInterpolatesNormalisedVertexNormals) {
     // At (1, 0.5) the barycentrics are 0.25 (A), 0.5 (B), 0.25 (C). B's normal (3, 0, 0) is
     // normalised to (1, 0, 0) first, so the blend is (0.5, 0, 0.5), normalised.
     auto s = parseOk(
@@ -190,7 +190,7 @@ TEST(Hw3Loader, TriNormalInterpolatesNormalisedVertexNormals) {
     expectNear(si->n, {std::sqrt(0.5), 0, std::sqrt(0.5)}, 1e-6);
 }
 
-TEST(Hw3Loader, TriNormalNormalsUseTheInverseTransposeOfTheTransform) {
+TEST(CourseLoader, TriNormalNormalsUseTheInverseTransposeOfTheTransform) {
     // Scale x by 2: the normal (1, 0, 1) becomes (0.5, 0, 1), not (2, 0, 1).
     auto s = parseOk(
         "vertexnormal 0 0 0 1 0 1\nvertexnormal 1 0 0 1 0 1\nvertexnormal 0 1 0 1 0 1\n"
@@ -201,20 +201,20 @@ TEST(Hw3Loader, TriNormalNormalsUseTheInverseTransposeOfTheTransform) {
     expectNear(si->n, normalize(Vec3(0.5, 0, 1)), 1e-6);
 }
 
-TEST(Hw3Loader, VertexAndVertexNormalPilesAreSeparate) {
+TEST(CourseLoader, VertexAndVertexNormalPilesAreSeparate) {
     // Three vertexnormal entries do not make 'tri 0 1 2' valid, and vice versa.
     expectError(kNormalVerts + "tri 0 1 2\n", 4, 5, "vertex");
     expectError(kVerts + "trinormal 0 1 2\n", 4, 11, "vertexnormal");
 }
 
-TEST(Hw3Loader, HugeMaxVertsIsOnlyAHint) {
+TEST(CourseLoader, HugeMaxVertsIsOnlyAHint) {
     auto s = parseOk("maxverts 999999999999\nmaxvertnorms 999999999999\n" + kVerts + "tri 0 1 2\n");
     EXPECT_EQ(s->primitives.triangleCount(), 1u);
 }
 
 // ---- materials --------------------------------------------------------------------------
 
-TEST(Hw3Loader, MaterialStateAppliesToEachPrimitiveAsItIsCreated) {
+TEST(CourseLoader, MaterialStateAppliesToEachPrimitiveAsItIsCreated) {
     auto s = parseOk(
         "diffuse 1 0 0\nspecular 0 1 0\nshininess 7\nemission 0 0 1\nsphere -3 0 0 1\n"
         "ambient 0 1 0\ndiffuse 0 0 1\nsphere 3 0 0 1\n");
@@ -231,7 +231,7 @@ TEST(Hw3Loader, MaterialStateAppliesToEachPrimitiveAsItIsCreated) {
     EXPECT_EQ(b.shininess, 7);
 }
 
-TEST(Hw3Loader, UnsetMaterialIsAmbientPointTwoAndOtherwiseBlack) {
+TEST(CourseLoader, UnsetMaterialIsAmbientPointTwoAndOtherwiseBlack) {
     auto s = parseOk("vertex -1 -1 0\nvertex 1 -1 0\nvertex 0 1 0\ntri 0 1 2\n");
     Material m = materialAt(*s, 0, 0);
     EXPECT_EQ(m.ambient, Vec3(0.2));
@@ -240,7 +240,7 @@ TEST(Hw3Loader, UnsetMaterialIsAmbientPointTwoAndOtherwiseBlack) {
     EXPECT_EQ(m.emission, Vec3(0));
 }
 
-TEST(Hw3Loader, PushAndPopDoNotSaveOrRestoreMaterials) {
+TEST(CourseLoader, PushAndPopDoNotSaveOrRestoreMaterials) {
     auto s = parseOk(
         "diffuse 1 0 0\npushTransform\ndiffuse 0 1 0\nambient 0 0 1\npopTransform\n"
         "sphere 0 0 0 1\n");
@@ -251,7 +251,7 @@ TEST(Hw3Loader, PushAndPopDoNotSaveOrRestoreMaterials) {
 
 // ---- lights -----------------------------------------------------------------------------
 
-TEST(Hw3Loader, DirectionalLightPointsTowardsTheLightTransformedAsAVectorAndNormalised) {
+TEST(CourseLoader, DirectionalLightPointsTowardsTheLightTransformedAsAVectorAndNormalised) {
     auto s = parseOk("directional 0 0 2 1 0.5 0.25\n");
     ASSERT_EQ(s->lights.size(), 1u);
     EXPECT_EQ(s->lights[0].kind, Light::Kind::Directional);
@@ -268,7 +268,7 @@ TEST(Hw3Loader, DirectionalLightPointsTowardsTheLightTransformedAsAVectorAndNorm
     expectNear(s->lights[1].direction, normalize(Vec3(1, 2, 0)));
 }
 
-TEST(Hw3Loader, PointLightPositionIsTransformed) {
+TEST(CourseLoader, PointLightPositionIsTransformed) {
     auto s = parseOk("translate 1 2 3\nrotate 0 0 1 90\npoint 1 0 0 0.1 0.2 0.3\n");
     ASSERT_EQ(s->lights.size(), 1u);
     EXPECT_EQ(s->lights[0].kind, Light::Kind::Point);
@@ -276,7 +276,7 @@ TEST(Hw3Loader, PointLightPositionIsTransformed) {
     EXPECT_EQ(s->lights[0].color, Vec3(0.1, 0.2, 0.3));
 }
 
-TEST(Hw3Loader, AttenuationDefaultsToNoneAndIsCapturedWhenALightIsDeclared) {
+TEST(CourseLoader, AttenuationDefaultsToNoneAndIsCapturedWhenALightIsDeclared) {
     auto s = parseOk(
         "point 0 0 0 1 1 1\nattenuation 1 0.1 0.05\npoint 0 0 0 1 1 1\nattenuation 0 0 1\n");
     ASSERT_EQ(s->lights.size(), 2u);
@@ -286,7 +286,7 @@ TEST(Hw3Loader, AttenuationDefaultsToNoneAndIsCapturedWhenALightIsDeclared) {
 
 // ---- lexing -----------------------------------------------------------------------------
 
-TEST(Hw3Loader, LexerSkipsCommentsBlankLinesTabsAndTrailingSpaces) {
+TEST(CourseLoader, LexerSkipsCommentsBlankLinesTabsAndTrailingSpaces) {
     auto s = parseOk(
         "# a comment\n\n   \t  \n   # an indented comment\n\tsize\t+320  240   \n"
         "sphere +1 .5 -.5 +.25 # centre and radius\n");
@@ -296,7 +296,7 @@ TEST(Hw3Loader, LexerSkipsCommentsBlankLinesTabsAndTrailingSpaces) {
     expectBounds(s->primitives.bounds(0), {0.75, 0.25, -0.75}, {1.25, 0.75, -0.25});
 }
 
-TEST(Hw3Loader, CrlfLineEndingsAreAcceptedAndEveryLineCounts) {
+TEST(CourseLoader, CrlfLineEndingsAreAcceptedAndEveryLineCounts) {
     std::vector<Diagnostic> w;
     auto s = parse("size 4 3\r\n# comment\r\n\r\noutput a.png\r\n" + std::string("camera 0 0 5 ") +
                        "0 0 0 0 1 0 45\r\n",
@@ -312,7 +312,7 @@ TEST(Hw3Loader, CrlfLineEndingsAreAcceptedAndEveryLineCounts) {
 
 // ---- errors -----------------------------------------------------------------------------
 
-TEST(Hw3Loader, UnknownCommandIsAnErrorSuggestingOnlyNearMisses) {
+TEST(CourseLoader, UnknownCommandIsAnErrorSuggestingOnlyNearMisses) {
     Diagnostic d = errorOf("size 4 3\nsphre 0 0 0 1\n");
     EXPECT_EQ(d.loc.line, 2);
     EXPECT_EQ(d.loc.column, 1);
@@ -328,7 +328,7 @@ TEST(Hw3Loader, UnknownCommandIsAnErrorSuggestingOnlyNearMisses) {
     EXPECT_THAT(d.message, Not(HasSubstr("did you mean")));
 }
 
-TEST(Hw3Loader, TooFewArgumentsPointAtTheCommand) {
+TEST(CourseLoader, TooFewArgumentsPointAtTheCommand) {
     Diagnostic d = errorOf("size 4 3\n  sphere 0 0 0\n");
     EXPECT_EQ(d.loc.line, 2);
     EXPECT_EQ(d.loc.column, 3);
@@ -337,7 +337,7 @@ TEST(Hw3Loader, TooFewArgumentsPointAtTheCommand) {
     expectError("camera 0 0 5 0 0 0 0 1 0\n", 1, 1, "got 9");
 }
 
-TEST(Hw3Loader, TooManyArgumentsPointAtTheFirstExtraOne) {
+TEST(CourseLoader, TooManyArgumentsPointAtTheFirstExtraOne) {
     expectError("sphere 0 0 0 1 2\n", 1, 16, "got 5");
     expectError("pushTransform 1\n", 1, 15, "got 1");
     expectError("camera 0 0 5 0 0 0 0 1 0 45 9\n", 1, 29, "got 11");
@@ -351,14 +351,14 @@ TEST(Hw3Loader, TooManyArgumentsPointAtTheFirstExtraOne) {
     EXPECT_EQ(errorOf("background 1 2 3 4 5\n").loc.line, 1);
 }
 
-TEST(Hw3Loader, NonNumbersAreErrorsAtTheirColumn) {
+TEST(CourseLoader, NonNumbersAreErrorsAtTheirColumn) {
     expectError("sphere 0 0 zero 1\n", 1, 12, "expected a number, got 'zero'");
     expectError("translate 1 +-1 0\n", 1, 13, "expected a number");
     expectError("translate 1 2 +\n", 1, 15, "expected a number");
     expectError("vertex 1 2 3x\n", 1, 12, "expected a number");
 }
 
-TEST(Hw3Loader, NanInfinityAndOverflowAreRejected) {
+TEST(CourseLoader, NanInfinityAndOverflowAreRejected) {
     expectError("sphere 0 0 0 nan\n", 1, 14, "nan");
     expectError("translate inf 0 0\n", 1, 11, "inf");
     expectError("sphere 1e999 0 0 1\n", 1, 8, "out of range");
@@ -366,14 +366,14 @@ TEST(Hw3Loader, NanInfinityAndOverflowAreRejected) {
     expectError("diffuse 0 0 -1e39\n", 1, 13, "too large");
 }
 
-TEST(Hw3Loader, IntegersAreRequiredForCountsAndIndices) {
+TEST(CourseLoader, IntegersAreRequiredForCountsAndIndices) {
     expectError("size 640.5 480\n", 1, 6, "integer");
     expectError("maxdepth 2.0\n", 1, 10, "integer");
     expectError("maxverts -1\n", 1, 10, "out of range");
     expectError("maxdepth -1\n", 1, 10, "out of range");
 }
 
-TEST(Hw3Loader, ImageSizeMustBePositiveAndBounded) {
+TEST(CourseLoader, ImageSizeMustBePositiveAndBounded) {
     expectError("size 0 480\n", 1, 6, "out of range");
     expectError("size 640 -480\n", 1, 10, "out of range");
     expectError("size 100000 100000\n", 1, 6, "out of range");
@@ -382,29 +382,29 @@ TEST(Hw3Loader, ImageSizeMustBePositiveAndBounded) {
     EXPECT_THAT(d.message, HasSubstr("too large"));
 }
 
-TEST(Hw3Loader, TriangleIndexOutOfRangeNamesTheBadIndex) {
+TEST(CourseLoader, TriangleIndexOutOfRangeNamesTheBadIndex) {
     expectError(kVerts + "tri 0 1 3\n", 4, 9, "out of range");
     expectError(kVerts + "tri 0 -1 2\n", 4, 7, "out of range");
     expectError("tri 0 0 0\n", 1, 5, "no vertex");
     expectError("vertex 0 0 0\ntri 0 0 99999999999999999999\n", 2, 9, "out of range");
 }
 
-TEST(Hw3Loader, TriNormalIndexOutOfRangeNamesTheBadIndex) {
+TEST(CourseLoader, TriNormalIndexOutOfRangeNamesTheBadIndex) {
     expectError(kNormalVerts + "trinormal 0 1 5\n", 4, 15, "out of range");
     expectError("trinormal 0 1 2\n", 1, 11, "no vertexnormal");
 }
 
-TEST(Hw3Loader, DegenerateTransformsAreRejectedWhereGiven) {
+TEST(CourseLoader, DegenerateTransformsAreRejectedWhereGiven) {
     expectError("scale 1 0 1\n", 1, 9, "zero");
     expectError("scale 1 1 -0\n", 1, 11, "zero");
     expectError("rotate 0 0 0 45\n", 1, 8, "axis");
 }
 
-TEST(Hw3Loader, TransformThatUnderflowsToSingularIsReportedAtThePrimitive) {
+TEST(CourseLoader, TransformThatUnderflowsToSingularIsReportedAtThePrimitive) {
     expectError("scale 1e-200 1 1\nscale 1e-200 1 1\nsphere 0 0 0 1\n", 3, 1, "singular");
 }
 
-TEST(Hw3Loader, GeometryThatATransformPushesBeyondFloatRangeIsAnError) {
+TEST(CourseLoader, GeometryThatATransformPushesBeyondFloatRangeIsAnError) {
     // Each number is below the float limit, but the transformed geometry (a vertex at 4e38, a
     // radius of 1e60) would be infinite in the float storage the numbers are checked against.
     EXPECT_EQ(
@@ -413,7 +413,7 @@ TEST(Hw3Loader, GeometryThatATransformPushesBeyondFloatRangeIsAnError) {
     EXPECT_EQ(errorOf("scale 1e30 1e30 1e30\nsphere 0 0 0 1e30\n" + kCamera).loc.line, 2);
 }
 
-TEST(Hw3Loader, GeometryBeyondTheCoordinateLimitIsAnErrorAtTheCommand) {
+TEST(CourseLoader, GeometryBeyondTheCoordinateLimitIsAnErrorAtTheCommand) {
     // 1e18 is the documented limit for world coordinates (float search stays finite).
     expectError("translate 2e18 0 0\n" + kVerts + "tri 0 1 2\n" + kCamera, 5, 5,
                 "supported coordinate range");
@@ -425,20 +425,20 @@ TEST(Hw3Loader, GeometryBeyondTheCoordinateLimitIsAnErrorAtTheCommand) {
     EXPECT_EQ(scene->primitives.triangleCount(), 1u);
 }
 
-TEST(Hw3Loader, TinyRotationAxesAreNormalisedWithoutUnderflow) {
+TEST(CourseLoader, TinyRotationAxesAreNormalisedWithoutUnderflow) {
     // (1e-200, 0, 0) is a valid axis: squaring it would underflow to a zero length.
     auto scene = parseOk("rotate 0 0 1e-200 90\nsphere 2 0 0 0.5\n");
     // The sphere at x = 2 turns to y = 2.
     expectBounds(scene->primitives.bounds(0), {-0.5, 1.5, -0.5}, {0.5, 2.5, 0.5});
 }
 
-TEST(Hw3Loader, NumbersThatUnderflowReadAsZero) {
+TEST(CourseLoader, NumbersThatUnderflowReadAsZero) {
     auto scene = parseOk("sphere 1e-400 0 0 1\n");
     expectBounds(scene->primitives.bounds(0), {-1, -1, -1}, {1, 1, 1});
     expectError("sphere 1e400 0 0 1\n" + kCamera, 1, 8, "out of range");
 }
 
-TEST(Hw3Loader, HugeMaxDepthIsClampedLikeAnyOtherAboveTheLimit) {
+TEST(CourseLoader, HugeMaxDepthIsClampedLikeAnyOtherAboveTheLimit) {
     std::unique_ptr<Scene> scene;
     Diagnostic w = warningOf("maxdepth 99999999999\n", &scene);
     EXPECT_EQ(scene->maxDepth, kMaxDepthLimit);
@@ -446,18 +446,18 @@ TEST(Hw3Loader, HugeMaxDepthIsClampedLikeAnyOtherAboveTheLimit) {
     EXPECT_THAT(w.message, HasSubstr("using 64"));
 }
 
-TEST(Hw3Loader, BackgroundWithFourOrFiveNumbersPointsAtTheFourth) {
+TEST(CourseLoader, BackgroundWithFourOrFiveNumbersPointsAtTheFourth) {
     expectError("background 1 1 1 1\n" + kCamera, 1, 18, "3 or 6 arguments");
     expectError("background 1 1 1 1 1\n" + kCamera, 1, 18, "3 or 6 arguments");
 }
 
-TEST(Hw3Loader, MaxVertsGivenAfterTheCountIsPassedStillWarns) {
+TEST(CourseLoader, MaxVertsGivenAfterTheCountIsPassedStillWarns) {
     Diagnostic w = warningOf(kVerts + "maxverts 1\nvertex 2 2 2\n");
     EXPECT_EQ(w.loc.line, 5);
     EXPECT_THAT(w.message, HasSubstr("maxverts 1"));
 }
 
-TEST(Hw3Loader, DegenerateTrianglesAreSkippedWithOneWarning) {
+TEST(CourseLoader, DegenerateTrianglesAreSkippedWithOneWarning) {
     std::vector<Diagnostic> warnings;
     auto scene = parse(
         "vertex 0 0 0\nvertex 1 1 1\nvertex 2 2 2\nvertex 0 1 0\n"
@@ -470,7 +470,7 @@ TEST(Hw3Loader, DegenerateTrianglesAreSkippedWithOneWarning) {
     EXPECT_EQ(scene->primitives.triangleCount(), 1u);
 }
 
-TEST(Hw3Loader, ScenesNeedingMoreMemoryThanAvailableAreRefusedBeforeAllocating) {
+TEST(CourseLoader, ScenesNeedingMoreMemoryThanAvailableAreRefusedBeforeAllocating) {
     // 20,000 spheres need several megabytes; allow one.
     std::string text = kCamera;
     for (int i = 0; i < 20000; ++i) text += "sphere 0 0 0 1\n";
@@ -489,24 +489,24 @@ TEST(Hw3Loader, ScenesNeedingMoreMemoryThanAvailableAreRefusedBeforeAllocating) 
     EXPECT_EQ(scene->primitives.sphereCount(), 20000u);
 }
 
-TEST(Hw3Loader, MemoryEstimateGrowsWithThePrimitives) {
+TEST(CourseLoader, MemoryEstimateGrowsWithThePrimitives) {
     EXPECT_GT(Scene::estimateBytes(1000, 0), Scene::estimateBytes(100, 0));
     EXPECT_GT(Scene::estimateBytes(0, 10), Scene::estimateBytes(0, 1));
     // At least what the primitives and a BVH of the measured 57 bytes per triangle take.
     EXPECT_GE(Scene::estimateBytes(1000000, 0), size_t{1000000} * (36 + 57));
 }
 
-TEST(Hw3Loader, Utf8ByteOrderMarkIsSkipped) {
+TEST(CourseLoader, Utf8ByteOrderMarkIsSkipped) {
     auto scene = parseOk("\xEF\xBB\xBFsize 32 16\n");
     EXPECT_EQ(scene->width, 32);
 }
 
-TEST(Hw3Loader, PopTransformOnAnEmptyStackIsAnError) {
+TEST(CourseLoader, PopTransformOnAnEmptyStackIsAnError) {
     expectError("popTransform\n", 1, 1, "pushTransform");
     expectError("pushTransform\npopTransform\n popTransform\n", 3, 2, "pushTransform");
 }
 
-TEST(Hw3Loader, BadCamerasAreRejected) {
+TEST(CourseLoader, BadCamerasAreRejected) {
     expectError("camera 0 0 5 0 0 5 0 1 0 45\n", 1, 14, "from equals at");
     expectError("camera 0 0 5 0 0 0 0 0 1 45\n", 1, 20, "parallel");
     expectError("camera 0 0 5 0 0 0 0 0 0 45\n", 1, 20, "up vector");
@@ -515,7 +515,7 @@ TEST(Hw3Loader, BadCamerasAreRejected) {
     expectError("camera 0 0 5 0 0 0 0 1 0 -30\n", 1, 26, "fovy");
 }
 
-TEST(Hw3Loader, NegativeRadiusShininessAttenuationAndZeroLightDirectionAreRejected) {
+TEST(CourseLoader, NegativeRadiusShininessAttenuationAndZeroLightDirectionAreRejected) {
     expectError("sphere 0 0 0 -1\n", 1, 14, "radius");
     expectError("shininess -1\n", 1, 11, "shininess");
     expectError("attenuation 1 -0.1 0\n", 1, 15, "negative");
@@ -523,7 +523,7 @@ TEST(Hw3Loader, NegativeRadiusShininessAttenuationAndZeroLightDirectionAreReject
     expectError("directional 0 0 0 1 1 1\n", 1, 13, "direction");
 }
 
-TEST(Hw3Loader, MissingCameraIsReportedOneLinePastTheEnd) {
+TEST(CourseLoader, MissingCameraIsReportedOneLinePastTheEnd) {
     expectError("size 10 10\nsphere 0 0 0 1\n", 3, 1, "no camera");
     expectError("size 10 10\n# last", 3, 1, "no camera");
     expectError("", 1, 1, "no camera");
@@ -531,7 +531,7 @@ TEST(Hw3Loader, MissingCameraIsReportedOneLinePastTheEnd) {
 
 // ---- warnings ---------------------------------------------------------------------------
 
-TEST(Hw3Loader, ZeroRadiusSphereIsSkippedWithAWarning) {
+TEST(CourseLoader, ZeroRadiusSphereIsSkippedWithAWarning) {
     std::unique_ptr<Scene> s;
     Diagnostic w = warningOf("sphere 0 0 0 0\nsphere 5 0 0 1\n", &s);
     EXPECT_EQ(w.loc.line, 1);
@@ -541,7 +541,7 @@ TEST(Hw3Loader, ZeroRadiusSphereIsSkippedWithAWarning) {
     EXPECT_NEAR(s->primitives.bounds(0).lo.x, 4, 1e-5);
 }
 
-TEST(Hw3Loader, SecondCameraReplacesTheFirstWithAWarning) {
+TEST(CourseLoader, SecondCameraReplacesTheFirstWithAWarning) {
     std::vector<Diagnostic> warnings;
     auto s = parse("camera 0 0 5 0 0 0 0 1 0 45\n\ncamera 1 1 1 0 0 0 0 1 0 60\n", warnings);
     ASSERT_EQ(warnings.size(), 1u);
@@ -552,7 +552,7 @@ TEST(Hw3Loader, SecondCameraReplacesTheFirstWithAWarning) {
     EXPECT_EQ(s->camera->fovyDegrees, 60);
 }
 
-TEST(Hw3Loader, MoreVerticesThanMaxVertsWarnsOnce) {
+TEST(CourseLoader, MoreVerticesThanMaxVertsWarnsOnce) {
     std::unique_ptr<Scene> s;
     Diagnostic w = warningOf(
         "maxverts 2\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 1 1 0\ntri 0 1 3\n", &s);
@@ -567,7 +567,7 @@ TEST(Hw3Loader, MoreVerticesThanMaxVertsWarnsOnce) {
     EXPECT_THAT(n.message, HasSubstr("maxvertnorms 1"));
 }
 
-TEST(Hw3Loader, OutputWithAnUnsupportedExtensionWarnsButIsKept) {
+TEST(CourseLoader, OutputWithAnUnsupportedExtensionWarnsButIsKept) {
     std::unique_ptr<Scene> s;
     Diagnostic w = warningOf("output scene.jpg\n", &s);
     EXPECT_EQ(w.loc.line, 1);
@@ -577,7 +577,7 @@ TEST(Hw3Loader, OutputWithAnUnsupportedExtensionWarnsButIsKept) {
     EXPECT_EQ(parseOk("output SCENE.PNG\n")->output, "SCENE.PNG");  // no warning
 }
 
-TEST(Hw3Loader, ZeroLengthVertexNormalWarnsAndFallsBackToTheFaceNormal) {
+TEST(CourseLoader, ZeroLengthVertexNormalWarnsAndFallsBackToTheFaceNormal) {
     std::vector<Diagnostic> warnings;
     auto s = parse(
         "vertexnormal 0 0 0 0 0 0\nvertexnormal 1 0 0 0 0 0\nvertexnormal 0 1 0 0 0 0\n"
@@ -607,7 +607,7 @@ Diagnostic loadErrorOf(const std::string& path) {
     return {};
 }
 
-class Hw3LoaderFile : public ::testing::Test {
+class CourseLoaderFile : public ::testing::Test {
   protected:
     void SetUp() override {
         dir_ = fs::temp_directory_path() /
@@ -624,7 +624,7 @@ class Hw3LoaderFile : public ::testing::Test {
     fs::path dir_;
 };
 
-TEST_F(Hw3LoaderFile, LoadsAFileAndNamesItInDiagnostics) {
+TEST_F(CourseLoaderFile, LoadsAFileAndNamesItInDiagnostics) {
     std::vector<Diagnostic> warnings;
     std::string good = write("good.test", "size 8 6\nsphere 0 0 0 0\n" + kCamera);
     auto s = loadCourseScene(good, warnings);
@@ -640,7 +640,7 @@ TEST_F(Hw3LoaderFile, LoadsAFileAndNamesItInDiagnostics) {
     EXPECT_EQ(d.loc.column, 14);
 }
 
-TEST_F(Hw3LoaderFile, MissingFileIsASceneErrorWithoutALine) {
+TEST_F(CourseLoaderFile, MissingFileIsASceneErrorWithoutALine) {
     std::string path = (dir_ / "missing.test").string();
     Diagnostic d = loadErrorOf(path);
     EXPECT_EQ(d.loc.file, path);
@@ -648,7 +648,7 @@ TEST_F(Hw3LoaderFile, MissingFileIsASceneErrorWithoutALine) {
     EXPECT_THAT(d.message, HasSubstr("cannot read"));
 }
 
-TEST_F(Hw3LoaderFile, DirectoryIsASceneErrorWithoutALine) {
+TEST_F(CourseLoaderFile, DirectoryIsASceneErrorWithoutALine) {
     Diagnostic d = loadErrorOf(dir_.string());
     EXPECT_EQ(d.loc.line, 0);
     EXPECT_THAT(d.message, HasSubstr("directory"));

@@ -49,7 +49,7 @@ std::optional<SurfaceInteraction> down(Scene& s, double x, double y, double z = 
     return shoot(s, {x, y, z}, {0, 0, -1});
 }
 
-TEST(Hw3Meshes, MeshIsPlacedByTheCurrentTransformWithTheCurrentMaterial) {
+TEST(CourseMeshes, MeshIsPlacedByTheCurrentTransformWithTheCurrentMaterial) {
     auto s = parseIn(
         "diffuse 0.1 0.2 0.3\npushTransform\ntranslate 5 0 1\nscale 2 3 1\nmesh quad.obj\n"
         "popTransform\n");
@@ -63,7 +63,7 @@ TEST(Hw3Meshes, MeshIsPlacedByTheCurrentTransformWithTheCurrentMaterial) {
     EXPECT_FALSE(down(*s, 0.5, 0.5, 0));  // not at the origin any more
 }
 
-TEST(Hw3Meshes, TheSameMeshTwiceIsStoredOnceAndInstanced) {
+TEST(CourseMeshes, TheSameMeshTwiceIsStoredOnceAndInstanced) {
     auto s = parseIn("mesh quad.obj\ntranslate 10 0 0\nmesh quad.obj\n");
     EXPECT_EQ(s->primitives.triangleCount(), 0u);
     EXPECT_EQ(s->primitives.instanceCount(), 2u);
@@ -74,9 +74,9 @@ TEST(Hw3Meshes, TheSameMeshTwiceIsStoredOnceAndInstanced) {
     EXPECT_FALSE(down(*s, 5.5, 0.5));
 }
 
-class Hw3MeshFiles : public test::TempDirTest {};
+class CourseMeshFiles : public test::TempDirTest {};
 
-TEST_F(Hw3MeshFiles, DegenerateTrianglesAreReportedOnceAtTheFirstMeshCommand) {
+TEST_F(CourseMeshFiles, DegenerateTrianglesAreReportedOnceAtTheFirstMeshCommand) {
     // One face of zero area (collinear corners) and one proper face; placed twice (instanced).
     std::ofstream(path("line.obj")) << "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n";
     std::vector<Diagnostic> warnings;
@@ -92,13 +92,13 @@ TEST_F(Hw3MeshFiles, DegenerateTrianglesAreReportedOnceAtTheFirstMeshCommand) {
               "once)");
 }
 
-TEST(Hw3Meshes, AMeshPlacedOnceIsFlattened) {
+TEST(CourseMeshes, AMeshPlacedOnceIsFlattened) {
     auto s = parseIn("mesh quad.obj\n");
     EXPECT_EQ(s->primitives.triangleCount(), 2u);
     EXPECT_EQ(s->primitives.instanceCount(), 0u);
 }
 
-TEST(Hw3Meshes, PlacementsUnderDifferentDefaultMaterialsAreNotShared) {
+TEST(CourseMeshes, PlacementsUnderDifferentDefaultMaterialsAreNotShared) {
     // quad.obj has no MTL materials: each placement's triangles take the current material.
     auto s = parseIn(
         "diffuse 1 0 0\nmesh quad.obj\ntranslate 10 0 0\ndiffuse 0 1 0\n"
@@ -110,7 +110,7 @@ TEST(Hw3Meshes, PlacementsUnderDifferentDefaultMaterialsAreNotShared) {
     expectNear(s->materials[down(*s, 20.5, 0.5)->material].diffuse, {0, 1, 0});
 }
 
-TEST(Hw3Meshes, MtlMaterialsOverrideTheCurrentMaterialPerGroup) {
+TEST(CourseMeshes, MtlMaterialsOverrideTheCurrentMaterialPerGroup) {
     auto s = parseIn("diffuse 0.3 0.3 0.9\nmesh groups.obj\nsphere 0 0 -20 1\n");
     auto diffuseAt = [&](double x) { return s->materials[down(*s, x, 0.2)->material].diffuse; };
     expectNear(diffuseAt(0.2), {0.3, 0.3, 0.9});  // before any usemtl: the scene's material
@@ -122,7 +122,7 @@ TEST(Hw3Meshes, MtlMaterialsOverrideTheCurrentMaterialPerGroup) {
     expectNear(s->materials[sphere->material].diffuse, {0.3, 0.3, 0.9});
 }
 
-TEST(Hw3Meshes, TextureAppliesToMeshesWithCoordinates) {
+TEST(CourseMeshes, TextureAppliesToMeshesWithCoordinates) {
     auto s = parseIn("texture quadrants.png clamp\ndiffuse 1 1 1\nmesh uvquad.obj\n");
     auto hit = down(*s, -0.5, 0.5);
     ASSERT_TRUE(hit);
@@ -134,7 +134,7 @@ TEST(Hw3Meshes, TextureAppliesToMeshesWithCoordinates) {
     expectNear(t.eval(true, hit->u, hit->v, hit->p, m.diffuse), {1, 0, 0});
 }
 
-TEST(Hw3Meshes, TextureNoneAndWrapModes) {
+TEST(CourseMeshes, TextureNoneAndWrapModes) {
     auto s = parseIn(
         "texture quadrants.png\nmesh uvquad.obj\ntexture none\ntranslate 5 0 0\n"
         "mesh uvquad.obj\n");
@@ -144,7 +144,7 @@ TEST(Hw3Meshes, TextureNoneAndWrapModes) {
     EXPECT_EQ(s->materials[down(*s, 5, 0)->material].texture, 0u);
 }
 
-TEST(Hw3Meshes, ImageTexturesOnSurfacesWithoutCoordinatesWarnAtTheTextureLine) {
+TEST(CourseMeshes, ImageTexturesOnSurfacesWithoutCoordinatesWarnAtTheTextureLine) {
     std::vector<Diagnostic> warnings;
     auto s = parseIn("texture quadrants.png\nsphere 0 0 0 1\nsphere 3 0 0 1\nmesh uvquad.obj\n",
                      &warnings);
@@ -154,7 +154,7 @@ TEST(Hw3Meshes, ImageTexturesOnSurfacesWithoutCoordinatesWarnAtTheTextureLine) {
     EXPECT_THAT(warnings[0].message, HasSubstr("2 surfaces show the diffuse colour"));
 }
 
-TEST(Hw3Meshes, CheckerUsesCoordinatesOnMeshesAndWorldCellsElsewhere) {
+TEST(CourseMeshes, CheckerUsesCoordinatesOnMeshesAndWorldCellsElsewhere) {
     auto s = parseIn("checker 1 1 1 0 0 0 0.5\nmesh uvquad.obj\nplane 0 -2 0 0 1 0\n");
     auto colourAt = [&](const SurfaceInteraction& si) {
         const Material& m = s->materials[si.material];
@@ -169,20 +169,20 @@ TEST(Hw3Meshes, CheckerUsesCoordinatesOnMeshesAndWorldCellsElsewhere) {
     expectNear(colourAt(floorAt(3.5, 3)), {0, 0, 0});
 }
 
-TEST(Hw3Meshes, CheckerShadesARender) {
+TEST(CourseMeshes, CheckerShadesARender) {
     auto s = parseIn(
         "ambient 0 0 0\ndiffuse 0 0 0\nchecker 0.8 0.2 0.2 0.1 0.1 0.6 1\n"
         "directional 0 1 0 1 1 1\nplane 0 0 0 0 1 0\n");
     s->prepare();
     RayCounts counts;
     WhittedIntegrator w(*s);
-    Vec3 a = w.li(Ray{{0.1, 3, 0.1}, {0, -1, 0}}, 0, counts);
-    Vec3 b = w.li(Ray{{1.1, 3, 0.1}, {0, -1, 0}}, 0, counts);
+    Vec3 a = w.radiance(Ray{{0.1, 3, 0.1}, {0, -1, 0}}, 0, counts);
+    Vec3 b = w.radiance(Ray{{1.1, 3, 0.1}, {0, -1, 0}}, 0, counts);
     expectNear(a, {0.8, 0.2, 0.2});
     expectNear(b, {0.1, 0.1, 0.6});
 }
 
-TEST(Hw3Meshes, Errors) {
+TEST(CourseMeshes, Errors) {
     Diagnostic d = errorIn("sphere 0 0 0 1\nmesh nowhere.obj\n");
     EXPECT_EQ(d.loc.file, kSceneFile);
     EXPECT_EQ(d.loc.line, 2);
@@ -216,7 +216,7 @@ TEST(Hw3Meshes, Errors) {
     EXPECT_THAT(errorIn("mesh\n").message, HasSubstr("mesh expects 1 argument (file.obj), got 0"));
 }
 
-TEST(Hw3Meshes, ReadingFilesCanBeTurnedOff) {
+TEST(CourseMeshes, ReadingFilesCanBeTurnedOff) {
     LoadLimits noFiles;
     noFiles.readFiles = false;
     EXPECT_THAT(errorIn("mesh quad.obj\n", noFiles).message, HasSubstr("reading files is off"));
