@@ -379,11 +379,13 @@ int main(int argc, char** argv) {
                    "How light is computed, overriding the scene's 'integrator': " +
                        glint::integratorNameList() + " (default: whitted, the course's)")
         ->group(render)
-        ->check(CLI::IsMember([] {
-            std::vector<std::string> names;
-            for (const auto& i : glint::integrators()) names.emplace_back(i.name);
-            return names;
-        }()))
+        ->check(CLI::Validator(
+            [](std::string& name) -> std::string {
+                if (glint::findIntegrator(name)) return {};
+                return "unknown integrator '" + name + "' (Glint has " +
+                       glint::integratorNameList() + ")";
+            },
+            "", ""))
         ->type_name("NAME");
     app.add_option("--spp", opt.spp,
                    "Camera rays per pixel, 1 to 65536: stratified, jittered, filtered "
