@@ -1,0 +1,28 @@
+# Checks that no file under src/glint includes upward: a file in one layer may include only its
+# own layer and the ones below, in this order (docs/design.md, "Layers"):
+#   math < core < geometry < accel < scene < render < io
+# Run as: cmake -DSRC=<repo>/src/glint -P check_includes.cmake (CTest does, as layering.includes).
+set(layers math core geometry accel scene render io)
+file(GLOB_RECURSE files RELATIVE ${SRC} ${SRC}/*.h ${SRC}/*.cpp ${SRC}/*.inl)
+set(problems "")
+foreach(f IN LISTS files)
+    string(REGEX MATCH "^[a-z]+" layer "${f}")
+    list(FIND layers "${layer}" rank)
+    if(rank LESS 0)
+        string(APPEND problems "  ${f}: in no known layer\n")
+        continue()
+    endif()
+    file(STRINGS ${SRC}/${f} includes REGEX "^#include \"glint/")
+    foreach(line IN LISTS includes)
+        string(REGEX MATCH "glint/([a-z]+)/" _ "${line}")
+        list(FIND layers "${CMAKE_MATCH_1}" target)
+        if(target GREATER rank)
+            string(APPEND problems "  ${f} (${layer}) includes ${CMAKE_MATCH_1}: ${line}\n")
+        endif()
+    endforeach()
+endforeach()
+list(LENGTH files count)
+if(problems)
+    message(FATAL_ERROR "Upward includes (the layers are ${layers}):\n${problems}")
+endif()
+message(STATUS "${count} files, no upward include")
