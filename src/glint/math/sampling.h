@@ -1,6 +1,7 @@
 #pragma once
 /// Maps from uniform random numbers in [0, 1) to points and directions.
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -8,6 +9,12 @@
 #include "glint/math/vec3.h"
 
 namespace glint {
+
+/// A point of the unit square [0, 1)^2: two uniform random numbers, the input of the 2D maps
+/// below and of the samplers of lights and BSDFs.
+struct Point2 {
+    double x = 0, y = 0;
+};
 
 /// A point uniformly distributed on the unit disk, by Shirley and Chiu's concentric map
 /// ("A Low Distortion Map Between Disk and Square", 1997): strata of the square stay compact.
@@ -24,6 +31,14 @@ inline std::pair<double, double> sampleUniformDisk(double u, double v) {
         phi = 2 * kQuarterPi - kQuarterPi * (a / b);
     }
     return {r * std::cos(phi), r * std::sin(phi)};
+}
+
+/// A unit direction about +z with density cos(theta) / pi over the upper hemisphere, by
+/// Malley's method: the concentric disk point lifted onto the hemisphere. z may be 0 (density
+/// 0) at the disk's rim.
+inline Vec3 sampleCosineHemisphere(Point2 u) {
+    auto [x, y] = sampleUniformDisk(u.x, u.y);
+    return {x, y, std::sqrt(std::max(0.0, 1 - x * x - y * y))};
 }
 
 /// An orthonormal basis (t, b, n) around the unit vector n (Duff et al., "Building an

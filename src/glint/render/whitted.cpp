@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "glint/core/spawn.h"
 #include "glint/render/optics.h"
@@ -27,19 +28,19 @@ constexpr double kMinBranchWeight = 1e-3;
     return std::numbers::pi * ggx.d(h) * ggx.g2(f.toLocal(wo), f.toLocal(wi)) / (4 * nDotV);
 }
 
-/// One light's specular and diffuse term at a point it reaches (N.L > 0, unblocked):
-/// Blinn-Phong as the course has it, or the GGX lobe for rough materials.
+/// One light's specular and diffuse term at a point it reaches from unit direction `wi`
+/// (N.L > 0, unblocked) with `radiance` (the light's colour over the attenuation, or an area
+/// light's L / pdf): Blinn-Phong as the course has it, or the GGX lobe for rough materials.
 inline Vec3 lightTerm(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
-                      const LightSample& ls, double nDotL) {
+                      const Vec3& wi, const Vec3& radiance, double nDotL) {
     if (m.roughness > 0)
-        return ls.radiance *
-               (m.diffuse * nDotL + m.specular * ggxSpecular(si, wo, ls.wi, m.roughness));
-    Vec3 sum = ls.wi + wo;
+        return radiance * (m.diffuse * nDotL + m.specular * ggxSpecular(si, wo, wi, m.roughness));
+    Vec3 sum = wi + wo;
     double len = length(sum);
     // When the light is exactly opposite the viewer (seen through a back face), L + V is zero
     // and has no direction: there is no highlight then.
     double nDotH = len > 0 ? std::max(dot(si.n, sum / len), 0.0) : 0.0;
-    return ls.radiance * (m.diffuse * nDotL + m.specular * std::pow(nDotH, m.shininess));
+    return radiance * (m.diffuse * nDotL + m.specular * std::pow(nDotH, m.shininess));
 }
 
 }  // namespace
@@ -99,42 +100,53 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
                                                                   Vec3& color,
                                                                   PathContext& ctx) const {
     for (const Light& light : scene_.lights) {
-        if (!light.isArea()) {
-            LightSample ls = light.sample(si.p);
-            double nDotL = dot(si.n, ls.wi);
-            // A light behind the surface contributes nothing, specular included.
-            if (!(nDotL > 0)) continue;
-            if (!anyTransmissive_) {  // the course's case, kept lean
-                ctx.counts.shadow++;
-                if (scene_.bvh().occluded(spawnRay(si.p, ls.wi, scene_.spawnOffset(), ls.distance)))
-                    continue;
-                color += lightTerm(si, wo, m, ls, nDotL);
-                continue;
-            }
-            Vec3 t = transmittance(si.p, ls.wi, ls.distance, ctx.counts);
-            if (t == Vec3(0)) continue;
-            color += lightTerm(si, wo, m, ls, nDotL) * t;
+        if (!light.isDelta()) {
+            areaLight(light, si, wo, m, color, ctx);
             continue;
         }
-        // An n x n stratified, jittered grid over the parallelogram.
-        const int n = areaGrid_;
-        const double inv = 1.0 / (n * n);
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                double s = (i + static_cast<double>(ctx.rng.uniform())) / n;
-                double tt = (j + static_cast<double>(ctx.rng.uniform())) / n;
-                LightSample ls = light.sampleQuad(si.p, s, tt);
-                double nDotL = dot(si.n, ls.wi);
-                if (!(nDotL > 0) || ls.radiance == Vec3(0)) continue;
-                // Back off at the light's end too: the light's own surface lies there.
-                Vec3 onLight = si.p + ls.wi * ls.distance;
-                double end = ls.distance - spawnOffset(onLight, scene_.spawnOffset());
-                Vec3 t = transmittance(si.p, ls.wi, end, ctx.counts);
-                if (t == Vec3(0)) continue;
-                ls.radiance = ls.radiance * inv;
-                color += lightTerm(si, wo, m, ls, nDotL) * t;
-            }
+        std::optional<LightLiSample> ls = light.sampleLi(si.p, {});
+        if (!ls) continue;
+        // Copies, so that the sample stays in registers (its address never escapes).
+        const Vec3 wi = ls->wi, radiance = ls->L;
+        const double distance = ls->distance;
+        double nDotL = dot(si.n, wi);
+        // A light behind the surface contributes nothing, specular included.
+        if (!(nDotL > 0)) continue;
+        if (!anyTransmissive_) {  // the course's case, kept lean
+            ctx.counts.shadow++;
+            if (scene_.bvh().occluded(spawnRay(si.p, wi, scene_.spawnOffset(), distance))) continue;
+            color += lightTerm(si, wo, m, wi, radiance, nDotL);
+            continue;
+        }
+        Vec3 t = transmittance(si.p, wi, distance, ctx.counts);
+        if (t == Vec3(0)) continue;
+        color += lightTerm(si, wo, m, wi, radiance, nDotL) * t;
     }
+}
+
+void WhittedIntegrator::areaLight(const Light& light, const SurfaceInteraction& si, const Vec3& wo,
+                                  const Material& m, Vec3& color, PathContext& ctx) const {
+    // An n x n stratified, jittered grid over the parallelogram, each point weighted by
+    // L / pdf = L * invPdf, which is the course's L * (A cos(theta_light) / r^2) to the bit.
+    const int n = areaGrid_;
+    const double inv = 1.0 / (n * n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            double s = (i + static_cast<double>(ctx.rng.uniform())) / n;
+            double tt = (j + static_cast<double>(ctx.rng.uniform())) / n;
+            std::optional<LightLiSample> ls = light.sampleLi(si.p, {s, tt});
+            if (!ls) continue;
+            double nDotL = dot(si.n, ls->wi);
+            Vec3 radiance = finiteRadiance(ls->L * ls->invPdf);
+            if (!(nDotL > 0) || radiance == Vec3(0)) continue;
+            // Back off at the light's end too: the light's own surface lies there.
+            Vec3 onLight = si.p + ls->wi * ls->distance;
+            double end = ls->distance - spawnOffset(onLight, scene_.spawnOffset());
+            Vec3 t = transmittance(si.p, ls->wi, end, ctx.counts);
+            if (t == Vec3(0)) continue;
+            radiance = radiance * inv;
+            color += lightTerm(si, wo, m, ls->wi, radiance, nDotL) * t;
+        }
 }
 
 Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, const Material& m,

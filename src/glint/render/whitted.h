@@ -55,6 +55,11 @@ class WhittedIntegrator final : public Integrator {
     /// Adds every light's contribution at the hit to `color`.
     void directLight(const SurfaceInteraction& si, const Vec3& wo, const Material& m, Vec3& color,
                      PathContext& ctx) const;
+    /// directLight() for one area light: out of line, so that the point and directional
+    /// lights' loop stays lean.
+    [[gnu::noinline]] void areaLight(const Light& light, const SurfaceInteraction& si,
+                                     const Vec3& wo, const Material& m, Vec3& color,
+                                     PathContext& ctx) const;
     /// Refraction (with its Fresnel-weighted reflection) or the GGX lobe's reflected ray at a
     /// hit, recursively traced. The course's mirror ray is traced inline by shade().
     Vec3 indirect(const Ray& ray, const SurfaceInteraction& si, const Material& m, int depth,

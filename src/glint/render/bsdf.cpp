@@ -1,0 +1,159 @@
+#include "glint/render/bsdf.h"
+
+#include <algorithm>
+#include <numbers>
+
+#include "glint/render/optics.h"
+
+namespace glint {
+namespace {
+
+using enum BsdfFlags;
+
+/// `v` mirrored in the surface plane: two-sided lobes evaluate a wo below the surface as its
+/// image above.
+Vec3 flipZ(const Vec3& v) { return {v.x, v.y, -v.z}; }
+bool sameHemisphere(const Vec3& a, const Vec3& b) { return a.z * b.z > 0; }
+/// The mirror direction of wo about the normal +z.
+Vec3 mirror(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
+
+/// Schlick's Fresnel approximation for cosine `cosH` between the direction and the normal.
+Vec3 schlick(const Vec3& f0, double cosH) {
+    double m = std::clamp(1 - cosH, 0.0, 1.0);
+    double m5 = (m * m) * (m * m) * m;
+    return f0 + (Vec3(1) - f0) * m5;
+}
+
+/// The GGX reflection BRDF D G2 F / (4 cos_o cos_i) for o, i above the surface and their unit
+/// half-vector h.
+Vec3 ggxReflection(const Ggx& ggx, const Vec3& f0, const Vec3& o, const Vec3& i, const Vec3& h) {
+    return schlick(f0, dot(o, h)) * (ggx.d(h) * ggx.g2(o, i) / (4 * o.z * i.z));
+}
+
+/// The density of the visible-normal sampling of reflections: D_o(h) / (4 o.h) with
+/// D_o(h) = G1(o) (o.h) D(h) / cos_o (Heitz 2018, eq. 3), for o above the surface.
+double ggxReflectionPdf(const Ggx& ggx, const Vec3& o, const Vec3& h) {
+    return ggx.g1(o) * ggx.d(h) / (4 * o.z);
+}
+
+}  // namespace
+
+// ---- Lambertian ----
+
+Vec3 Lambertian::eval(const Vec3& wo, const Vec3& wi) const {
+    return sameHemisphere(wo, wi) ? albedo * std::numbers::inv_pi : Vec3(0);
+}
+
+double Lambertian::pdf(const Vec3& wo, const Vec3& wi) const {
+    return sameHemisphere(wo, wi) ? std::abs(wi.z) * std::numbers::inv_pi : 0;
+}
+
+std::optional<BsdfSample> Lambertian::sample(const Vec3& wo, double, Point2 u) const {
+    if (wo.z == 0) return std::nullopt;
+    Vec3 wi = sampleCosineHemisphere(u);
+    if (wo.z < 0) wi = flipZ(wi);
+    double pdf = std::abs(wi.z) * std::numbers::inv_pi;
+    if (!(pdf > 0)) return std::nullopt;
+    return BsdfSample{wi, albedo * std::numbers::inv_pi, pdf, Reflection | Diffuse};
+}
+
+// ---- Conductor ----
+
+Vec3 Conductor::eval(const Vec3& wo, const Vec3& wi) const {
+    if (alpha == 0 || !sameHemisphere(wo, wi)) return Vec3(0);
+    Vec3 o = wo.z > 0 ? wo : flipZ(wo), i = wo.z > 0 ? wi : flipZ(wi);
+    return ggxReflection(Ggx{alpha}, f0, o, i, normalize(o + i));
+}
+
+double Conductor::pdf(const Vec3& wo, const Vec3& wi) const {
+    if (alpha == 0 || !sameHemisphere(wo, wi)) return 0;
+    Vec3 o = wo.z > 0 ? wo : flipZ(wo), i = wo.z > 0 ? wi : flipZ(wi);
+    return ggxReflectionPdf(Ggx{alpha}, o, normalize(o + i));
+}
+
+std::optional<BsdfSample> Conductor::sample(const Vec3& wo, double, Point2 u) const {
+    if (wo.z == 0) return std::nullopt;
+    Vec3 o = wo.z > 0 ? wo : flipZ(wo);
+    if (alpha == 0) return BsdfSample{mirror(wo), schlick(f0, o.z) / o.z, 1, Reflection | Specular};
+    Ggx ggx{alpha};
+    Vec3 h = ggx.sampleVisibleNormal(o, u.x, u.y);
+    Vec3 i = normalize(h * (2 * dot(o, h)) - o);
+    if (!(i.z > 0)) return std::nullopt;  // reflected below the surface: shadowed
+    double pdf = ggxReflectionPdf(ggx, o, h);
+    if (!(pdf > 0)) return std::nullopt;
+    return BsdfSample{wo.z > 0 ? i : flipZ(i), ggxReflection(ggx, f0, o, i, h), pdf,
+                      Reflection | Glossy};
+}
+
+// ---- Dielectric ----
+
+std::optional<BsdfSample> Dielectric::sample(const Vec3& wo, double uc, Point2) const {
+    if (wo.z == 0) return std::nullopt;
+    bool outside = wo.z > 0;
+    double etaRel = outside ? 1 / eta : eta;  // index on wo's side over the other side's
+    double cosO = std::abs(wo.z);
+    double r = fresnelDielectric(cosO, etaRel);  // 1 under total internal reflection
+    if (uc < r) return BsdfSample{mirror(wo), tint * (r / cosO), r, Reflection | Specular};
+    Vec3 wi;
+    if (!refract(-wo, Vec3(0, 0, outside ? 1 : -1), etaRel, wi)) return std::nullopt;
+    double t = 1 - r;
+    // Radiance is scaled by (n_o / n_i)^2 = etaRel^2 through the boundary.
+    return BsdfSample{wi, tint * (t * etaRel * etaRel / std::abs(wi.z)), t,
+                      Transmission | Specular};
+}
+
+// ---- DiffuseSpecular ----
+
+double DiffuseSpecular::specularProbability() const {
+    double s = specular.x + specular.y + specular.z;
+    double d = diffuse.x + diffuse.y + diffuse.z;
+    return s > 0 ? s / (s + d) : 0;
+}
+
+Vec3 DiffuseSpecular::eval(const Vec3& wo, const Vec3& wi) const {
+    Vec3 f = Lambertian{diffuse}.eval(wo, wi);
+    if (alpha > 0) f += specular * Conductor{Vec3(1), alpha}.eval(wo, wi);
+    return f;
+}
+
+double DiffuseSpecular::pdf(const Vec3& wo, const Vec3& wi) const {
+    double ps = specularProbability();
+    double pdf = (1 - ps) * Lambertian{diffuse}.pdf(wo, wi);
+    if (alpha > 0) pdf += ps * Conductor{Vec3(1), alpha}.pdf(wo, wi);
+    return pdf;
+}
+
+std::optional<BsdfSample> DiffuseSpecular::sample(const Vec3& wo, double uc, Point2 u) const {
+    double ps = specularProbability();
+    std::optional<BsdfSample> s = uc < ps ? Conductor{Vec3(1), alpha}.sample(wo, uc, u)
+                                          : Lambertian{diffuse}.sample(wo, uc, u);
+    if (!s) return std::nullopt;
+    if (s->isSpecular()) {  // the mirror: a delta, chosen with probability ps
+        s->f = s->f * specular;
+        s->pdf *= ps;
+        return s;
+    }
+    // Either lobe could have drawn wi: the mixture's value and density (one-sample MIS).
+    s->f = eval(wo, s->wi);
+    s->pdf = pdf(wo, s->wi);
+    return s;
+}
+
+// ---- The course's material ----
+
+Bsdf bsdfFromMaterial(const Material& m) {
+    auto unit = [](const Vec3& c) { return min(max(c, Vec3(0)), Vec3(1)); };
+    if (m.transmissive()) return {Dielectric{m.ior, unit(m.transmission)}};
+    Vec3 d = unit(m.diffuse), s = unit(m.specular);
+    if (s == Vec3(0)) return {Lambertian{d}};
+    for (int c = 0; c < 3; ++c) {
+        double sum = d[c] + s[c];
+        if (sum > 1) {
+            d[c] /= sum;
+            s[c] /= sum;
+        }
+    }
+    return {DiffuseSpecular{d, s, m.roughness}};
+}
+
+}  // namespace glint

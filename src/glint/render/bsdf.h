@@ -1,0 +1,157 @@
+#pragma once
+/// Bidirectional scattering distribution functions (BSDFs) for a physically based integrator,
+/// in lajolla's style: a std::variant of small value structs, dispatched without allocation
+/// or virtual calls. Everything is in a local shading frame whose normal is +z; wo and wi are
+/// unit directions pointing away from the surface (wo towards the viewer, wi towards the
+/// light), as in pbrt.
+///
+/// Conventions (pbrt-v4's):
+///  - eval(wo, wi) is f, in 1 / sr; the integrand is f |cos theta_i| L_i.
+///  - sample(wo, uc, u) draws wi with density pdf (1 / sr) and returns f there: f |cos| / pdf
+///    is the estimator's weight. Delta lobes (perfect mirrors and refraction) have no density:
+///    eval() and pdf() are 0 for them, and sample() returns f and pdf as the delta's
+///    coefficients (the discrete probability of choosing that lobe), whose ratio is still the
+///    weight.
+///  - Transport: the functions are for radiance, traced from the camera (pbrt's
+///    TransportMode::Radiance). Refraction into a medium of higher index compresses the
+///    light's solid angle, so the transmitted f carries the factor (n_o / n_i)^2, n_o on wo's
+///    side (1 / 2.25 for light leaving glass towards a viewer in air). Glint traces no paths
+///    from the lights, so importance transport (which omits the factor) is not provided.
+///  - Opaque lobes are two-sided: a wo below the surface sees the mirror image of the lobe.
+///
+/// The Whitted integrator does not use these: the course's Blinn-Phong term is not a BSDF.
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <variant>
+
+#include "glint/math/sampling.h"
+#include "glint/math/vec3.h"
+#include "glint/scene/material.h"
+
+namespace glint {
+
+/// What kind of scattering a sampled direction comes from (pbrt's BxDFFlags): reflection or
+/// transmission, and diffuse, glossy or specular (a delta).
+enum class BsdfFlags : uint8_t {
+    None = 0,
+    Reflection = 1,
+    Transmission = 2,
+    Diffuse = 4,
+    Glossy = 8,
+    Specular = 16,
+};
+constexpr BsdfFlags operator|(BsdfFlags a, BsdfFlags b) {
+    return static_cast<BsdfFlags>(static_cast<uint8_t>(a) | static_cast<uint8_t>(b));
+}
+/// Whether `flags` has any of the bits of `bits`.
+constexpr bool hasAny(BsdfFlags flags, BsdfFlags bits) {
+    return (static_cast<uint8_t>(flags) & static_cast<uint8_t>(bits)) != 0;
+}
+
+/// A direction drawn by a BSDF.
+struct BsdfSample {
+    Vec3 wi;  ///< Unit, local frame.
+    Vec3 f;   ///< BSDF value (delta lobes: its coefficient), 1 / sr.
+    /// Density of wi over solid angle, 1 / sr (delta lobes: the probability of the lobe).
+    double pdf = 0;
+    BsdfFlags flags = BsdfFlags::None;
+
+    bool isSpecular() const { return hasAny(flags, BsdfFlags::Specular); }
+    bool isTransmission() const { return hasAny(flags, BsdfFlags::Transmission); }
+    /// The estimator's weight f |cos theta_i| / pdf.
+    Vec3 weight() const { return f * (std::abs(wi.z) / pdf); }
+};
+
+/// Ideal diffuse reflection: f = albedo / pi, sampled with a cosine-weighted density.
+struct Lambertian {
+    Vec3 albedo;  ///< Directional albedo, each channel in [0, 1].
+
+    Vec3 eval(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
+    double pdf(const Vec3& wo, const Vec3& wi) const;
+};
+
+/// A metal: Schlick's approximation of the Fresnel reflectance, F = f0 + (1 - f0)(1 - cos)^5
+/// (Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", 1994) with cos the
+/// angle between wo and the micro-normal. alpha = 0 is a perfect mirror (a delta lobe);
+/// alpha > 0 the GGX (Trowbridge-Reitz) microfacet BRDF with separable Smith masking,
+/// D G2 F / (4 cos_o cos_i) (Walter et al., EGSR 2007), sampled through the distribution of
+/// visible normals (optics.h): its weight is F G1(wi). Single scattering only: rough lobes
+/// lose the energy of light that would scatter between microfacets more than once.
+struct Conductor {
+    Vec3 f0;           ///< Reflectance at normal incidence, each channel in [0, 1].
+    double alpha = 0;  ///< GGX roughness in [0, 1].
+
+    Vec3 eval(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
+    double pdf(const Vec3& wo, const Vec3& wi) const;
+};
+
+/// A smooth boundary between the outside (+z, index 1) and a dielectric of index `eta`:
+/// specular reflection and refraction, one chosen with the exact Fresnel reflectance R as its
+/// probability (uc < R reflects), so each weight is `tint` (times the radiance factor of
+/// refraction, see above). `tint` scales both, as the course's `transmission` does. A rough
+/// dielectric (GGX reflection and transmission, Walter et al. 2007) is left for the path
+/// tracer's issue.
+struct Dielectric {
+    double eta = 1.5;  ///< Index of refraction inside (below the surface) over outside.
+    Vec3 tint{1};      ///< Each channel in [0, 1].
+
+    Vec3 eval(const Vec3&, const Vec3&) const { return Vec3(0); }
+    std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
+    double pdf(const Vec3&, const Vec3&) const { return 0; }
+};
+
+/// The course's opaque material made physical: a Lambertian lobe of albedo `diffuse` plus
+/// `specular` times a lobe of constant reflectance 1, the perfect mirror (alpha = 0, the
+/// course's mirror ray) or the GGX lobe (alpha > 0). Energy-conserving when diffuse +
+/// specular <= 1 in each channel. The lobe sampled is chosen by uc, in proportion to the
+/// summed channels of the two colours.
+struct DiffuseSpecular {
+    Vec3 diffuse, specular;
+    double alpha = 0;  ///< GGX roughness in [0, 1] of the specular lobe.
+
+    Vec3 eval(const Vec3& wo, const Vec3& wi) const;
+    std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
+    double pdf(const Vec3& wo, const Vec3& wi) const;
+
+  private:
+    double specularProbability() const;
+};
+
+/// A BSDF: one of the value structs above.
+struct Bsdf {
+    std::variant<Lambertian, Conductor, Dielectric, DiffuseSpecular> lobe;
+
+    /// f(wo, wi) in 1 / sr; 0 for delta lobes.
+    Vec3 eval(const Vec3& wo, const Vec3& wi) const {
+        return std::visit([&](const auto& b) { return b.eval(wo, wi); }, lobe);
+    }
+    /// A direction wi for `wo` drawn with the uniform numbers `uc` (which lobe) and `u` (where
+    /// in it); none if the draw leaves the hemisphere the lobe scatters into, or wo lies in
+    /// the surface.
+    std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const {
+        return std::visit([&](const auto& b) { return b.sample(wo, uc, u); }, lobe);
+    }
+    /// The density (1 / sr) with which sample(wo, ...) draws wi; 0 for delta lobes.
+    double pdf(const Vec3& wo, const Vec3& wi) const {
+        return std::visit([&](const auto& b) { return b.pdf(wo, wi); }, lobe);
+    }
+};
+
+/// The BSDF standing for the flat course material `m` (its `diffuse` already replaced by a
+/// texture's value where it has one), so that a physically based integrator never gains
+/// energy. Colours are clamped to [0, 1] first (the course allows any value); then:
+///  - transmission T != 0: Dielectric{ior, T}; diffuse and specular are dropped (the
+///    dielectric reflects by Fresnel; the course's specular on glass stands in for
+///    highlights), as is roughness until the rough dielectric exists;
+///  - specular S == 0: Lambertian{diffuse};
+///  - otherwise DiffuseSpecular{D, S, roughness}, where a channel with D + S > 1 has both
+///    divided by D + S.
+/// Ambient, emission and shininess are not scattering: integrators take emission from the
+/// material itself.
+Bsdf bsdfFromMaterial(const Material& m);
+
+}  // namespace glint

@@ -1,0 +1,411 @@
+// BSDFs: sample() against pdf() by chi-square tests, white furnaces, reciprocity, the delta
+// lobes against Schlick, Fresnel and Snell, and the course material's mapping.
+
+#include "glint/render/bsdf.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "glint/math/rng.h"
+#include "glint/render/optics.h"
+#include "unit/statistics.h"
+
+namespace glint {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// The unit direction at polar angle theta and azimuth phi (degrees) about +z.
+Vec3 direction(double thetaDegrees, double phiDegrees = 30) {
+    double t = thetaDegrees * kPi / 180, p = phiDegrees * kPi / 180;
+    return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+Point2 uniform2(Rng& rng) { return {rng.uniform(), rng.uniform()}; }
+
+// ---- Chi-square tests of sample() against pdf() ----
+
+/// Pearson's test over (cos theta, phi) bins of the whole sphere, plus one bin for the draws
+/// that give no direction with a density (none, or a delta lobe), whose expected share is
+/// 1 - the integral of pdf.
+constexpr int kCosBins = 20, kPhiBins = 40;
+constexpr long kSamples = 1'000'000;
+/// Probability of any false failure among the chi-square tests below.
+constexpr double kAlpha = 0.01;
+
+int binOf(const Vec3& w) {
+    int c = std::clamp(static_cast<int>((w.z + 1) / 2 * kCosBins), 0, kCosBins - 1);
+    double phi = std::atan2(w.y, w.x);
+    if (phi < 0) phi += 2 * kPi;
+    int p = std::clamp(static_cast<int>(phi / (2 * kPi) * kPhiBins), 0, kPhiBins - 1);
+    return c * kPhiBins + p;
+}
+
+struct ChiSquareRun {
+    test::ChiSquareResult result;
+    double worstMismatch = 0;  ///< Largest relative difference of a sample's f, pdf from eval, pdf.
+};
+
+/// Draws kSamples directions from `sampler` for `wo` and tests them against the density of
+/// `density` (the same BSDF, except when a test checks that a wrong density is caught).
+ChiSquareRun chiSquare(const Bsdf& sampler, const Bsdf& density, const Vec3& wo, uint64_t seed) {
+    const int bins = kCosBins * kPhiBins;
+    std::vector<double> observed(bins + 1, 0), expected(bins + 1, 0);
+    ChiSquareRun run;
+    auto relative = [](double a, double b) {
+        return std::abs(a - b) / std::max(std::abs(b), 1e-300);
+    };
+    Rng rng(seed);
+    for (long k = 0; k < kSamples; ++k) {
+        double uc = rng.uniform();
+        std::optional<BsdfSample> s = sampler.sample(wo, uc, uniform2(rng));
+        if (!s || s->isSpecular()) {
+            observed[bins] += 1;
+            continue;
+        }
+        observed[binOf(s->wi)] += 1;
+        Vec3 f = sampler.eval(wo, s->wi);
+        double worst = std::max({relative(s->pdf, sampler.pdf(wo, s->wi)), relative(s->f.x, f.x),
+                                 relative(s->f.y, f.y), relative(s->f.z, f.z)});
+        run.worstMismatch = std::max(run.worstMismatch, worst);
+    }
+    double inside = 0;
+    for (int c = 0; c < kCosBins; ++c)
+        for (int p = 0; p < kPhiBins; ++p) {
+            double c0 = -1 + 2.0 * c / kCosBins, c1 = -1 + 2.0 * (c + 1) / kCosBins;
+            double p0 = 2 * kPi * p / kPhiBins, p1 = 2 * kPi * (p + 1) / kPhiBins;
+            auto overPhi = [&](double cosTheta) {
+                double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+                auto pdf = [&](double phi) {
+                    Vec3 wi(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+                    return density.pdf(wo, wi);
+                };
+                return test::integrate(pdf, p0, p1, 1e-10);
+            };
+            // d(solid angle) = d(cos theta) d(phi).
+            double mass = test::integrate(overPhi, c0, c1, 1e-8);
+            expected[c * kPhiBins + p] = mass * kSamples;
+            inside += mass;
+        }
+    expected[bins] = std::max(0.0, 1 - inside) * kSamples;
+    run.result = test::chiSquareTest(observed, expected);
+    return run;
+}
+
+struct ChiCase {
+    std::string name;
+    Bsdf bsdf;
+    Vec3 wo;
+    uint64_t seed = 0;  ///< Its own random numbers: the tests are independent.
+};
+
+std::vector<ChiCase> chiCases() {
+    std::vector<ChiCase> cases;
+    for (double theta : {10.0, 60.0, 120.0})  // 120: wo below, the lobe's mirror image
+        cases.push_back(
+            {"lambert_" + std::to_string(int(theta)), {Lambertian{Vec3(0.8)}}, direction(theta)});
+    for (double alpha : {0.1, 0.3, 0.7, 1.0})
+        for (double theta : {0.0, 40.0, 80.0})
+            cases.push_back(
+                {"ggx_a" + std::to_string(int(alpha * 100)) + "_" + std::to_string(int(theta)),
+                 {Conductor{Vec3(0.9, 0.6, 0.3), alpha}},
+                 direction(theta)});
+    cases.push_back({"ggx_a30_below", {Conductor{Vec3(1), 0.3}}, direction(140)});
+    for (double theta : {30.0, 70.0})
+        cases.push_back({"diffuse_glossy_" + std::to_string(int(theta)),
+                         {DiffuseSpecular{Vec3(0.5), Vec3(0.4), 0.2}},
+                         direction(theta)});
+    cases.push_back(
+        {"diffuse_mirror_45", {DiffuseSpecular{Vec3(0.5), Vec3(0.4), 0}}, direction(45)});
+    for (size_t k = 0; k < cases.size(); ++k) cases[k].seed = 1000 + k;
+    return cases;
+}
+
+void PrintTo(const ChiCase& c, std::ostream* os) { *os << c.name; }
+
+class ChiSquare : public testing::TestWithParam<ChiCase> {};
+
+TEST_P(ChiSquare, SampledDirectionsFollowThePdf) {
+    const ChiCase& c = GetParam();
+    const double level = test::sidak(kAlpha, static_cast<int>(chiCases().size()));
+    ChiSquareRun run = chiSquare(c.bsdf, c.bsdf, c.wo, c.seed);
+    std::printf("%s: chi2 %.1f, %d dof, p-value %.4f (significance %.2e per test)\n",
+                c.name.c_str(), run.result.chi2, run.result.dof, run.result.pValue, level);
+    EXPECT_FALSE(run.result.outsideSupport) << c.name;
+    EXPECT_GT(run.result.pValue, level) << c.name << ": chi2 " << run.result.chi2 << ", "
+                                        << run.result.dof << " degrees of freedom";
+    // What sample() returns is what eval() and pdf() say.
+    EXPECT_LT(run.worstMismatch, 1e-9) << c.name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Bsdf, ChiSquare, testing::ValuesIn(chiCases()),
+                         [](const testing::TestParamInfo<ChiCase>& p) { return p.param.name; });
+
+TEST(ChiSquarePower, ADensityOfTheWrongRoughnessOrShapeIsRejected) {
+    const double level = test::sidak(kAlpha, static_cast<int>(chiCases().size()));
+    // GGX drawn with alpha 0.3, tested against the density for 0.32.
+    ChiSquareRun ggx =
+        chiSquare({Conductor{Vec3(1), 0.3}}, {Conductor{Vec3(1), 0.32}}, direction(40), 7);
+    EXPECT_LT(ggx.result.pValue, level) << "chi2 " << ggx.result.chi2;
+    // Cosine-weighted directions tested against the mixture's density with a mirror share of
+    // 5% (the diffuse density scaled by 0.95 and 5% expected in the "no density" bin).
+    ChiSquareRun lambert = chiSquare(
+        {Lambertian{Vec3(1)}}, {DiffuseSpecular{Vec3(0.95), Vec3(0.05), 0}}, direction(40), 7);
+    EXPECT_LT(lambert.result.pValue, level) << "chi2 " << lambert.result.chi2;
+    std::printf("wrong alpha: p-value %.3g; wrong mass: p-value %.3g\n", ggx.result.pValue,
+                lambert.result.pValue);
+}
+
+TEST(ChiSquareStatistics, PValuesMatchTablesOfTheChiSquareDistribution) {
+    // 95th percentiles (any statistics table).
+    EXPECT_NEAR(test::chiSquarePValue(3.841459, 1), 0.05, 1e-6);
+    EXPECT_NEAR(test::chiSquarePValue(18.307038, 10), 0.05, 1e-6);
+    EXPECT_NEAR(test::chiSquarePValue(124.342113, 100), 0.05, 1e-6);
+    // The median of 2 degrees of freedom is 2 ln 2 (the exponential distribution).
+    EXPECT_NEAR(test::chiSquarePValue(2 * std::log(2.0), 2), 0.5, 1e-12);
+    EXPECT_NEAR(test::sidak(0.01, 1), 0.01, 1e-15);
+    EXPECT_NEAR(test::sidak(0.01, 19), 5.288e-4, 1e-6);
+}
+
+// ---- White furnace: directional albedo, the mean of f |cos| / pdf ----
+
+/// The directional albedo for `wo`, per channel, from n samples.
+std::array<test::MeanEstimate, 3> albedo(const Bsdf& bsdf, const Vec3& wo, long n, uint64_t seed) {
+    std::array<test::MeanEstimate, 3> e;
+    Rng rng(seed);
+    for (long k = 0; k < n; ++k) {
+        double uc = rng.uniform();
+        std::optional<BsdfSample> s = bsdf.sample(wo, uc, uniform2(rng));
+        Vec3 w = s ? s->weight() : Vec3(0);
+        for (int c = 0; c < 3; ++c) e[c].add(w[c]);
+    }
+    return e;
+}
+
+TEST(WhiteFurnace, LambertOfAlbedoOneAndMirrorsOfReflectanceOneReflectEverything) {
+    Rng rng(3);
+    for (double theta : {0.0, 30.0, 60.0, 89.0, 100.0, 170.0}) {
+        for (const Bsdf& b : {Bsdf{Lambertian{Vec3(1)}}, Bsdf{Conductor{Vec3(1), 0}},
+                              Bsdf{DiffuseSpecular{Vec3(0.6), Vec3(0.4), 0}}})
+            for (int k = 0; k < 1000; ++k) {
+                double uc = rng.uniform();
+                std::optional<BsdfSample> s = b.sample(direction(theta), uc, uniform2(rng));
+                if (!s) continue;  // the disk's rim, density 0: never in practice
+                // Every sample's weight is exactly the albedo, so their mean is too.
+                EXPECT_NEAR(s->weight().x, 1, 1e-12) << theta;
+                EXPECT_NEAR(s->weight().z, 1, 1e-12) << theta;
+            }
+    }
+}
+
+TEST(WhiteFurnace, SmoothDielectricConservesEnergyAndCompressesRefractedRadiance) {
+    Rng rng(5);
+    for (double eta : {1.5, 1.33, 1 / 1.5})
+        for (double theta : {0.0, 30.0, 60.0, 85.0, 120.0, 150.0, 175.0}) {
+            Dielectric d{eta, Vec3(1)};
+            Vec3 wo = direction(theta);
+            double etaRel = wo.z > 0 ? 1 / eta : eta;  // wo's side over the other side
+            test::MeanEstimate radiance;
+            for (int k = 0; k < 20000; ++k) {
+                double uc = rng.uniform();
+                std::optional<BsdfSample> s = d.sample(wo, uc, uniform2(rng));
+                ASSERT_TRUE(s);
+                double w = s->weight().x;
+                // Energy: every reflection keeps its weight 1, every refraction changes only
+                // the solid angle, by etaRel^2.
+                EXPECT_NEAR(s->isTransmission() ? w / (etaRel * etaRel) : w, 1, 1e-12);
+                radiance.add(w);
+            }
+            double r = fresnelDielectric(std::abs(wo.z), etaRel);
+            EXPECT_NEAR(radiance.mean(), r + (1 - r) * etaRel * etaRel,
+                        4 * radiance.standardError() + 1e-12)
+                << "eta " << eta << ", theta " << theta;
+        }
+}
+
+/// The GGX conductor's directional albedo with F = 1, by quadrature of D G2 / (4 cos_o) over
+/// the hemisphere (the BRDF times cos_i), from optics.h's D and G alone.
+double ggxAlbedoByQuadrature(double alpha, const Vec3& wo) {
+    Ggx ggx{alpha};
+    auto overPhi = [&](double cosI) {
+        double sinI = std::sqrt(std::max(0.0, 1 - cosI * cosI));
+        auto f = [&](double phi) {
+            Vec3 wi(sinI * std::cos(phi), sinI * std::sin(phi), cosI);
+            Vec3 h = normalize(wo + wi);
+            return ggx.d(h) * ggx.g2(wo, wi) / (4 * wo.z);
+        };
+        return test::integrate(f, 0, 2 * kPi, 1e-10, 16);
+    };
+    return test::integrate(overPhi, 0, 1, 1e-8, 16);
+}
+
+TEST(WhiteFurnace, GgxConductorLosesOnlyWhatSingleScatteringMisses) {
+    uint64_t seed = 11;
+    for (double alpha : {0.1, 0.3, 0.6, 1.0})
+        for (double theta : {0.0, 45.0, 75.0}) {
+            Vec3 wo = direction(theta);
+            double exact = ggxAlbedoByQuadrature(alpha, wo);
+            test::MeanEstimate e = albedo({Conductor{Vec3(1), alpha}}, wo, 200000, seed++)[0];
+            std::printf("alpha %.1f, theta %2.0f: albedo %.5f +- %.5f (quadrature %.5f)\n", alpha,
+                        theta, e.mean(), e.standardError(), exact);
+            EXPECT_NEAR(e.mean(), exact, 4 * e.standardError() + 1e-6) << alpha << " " << theta;
+            EXPECT_LE(exact, 1 + 1e-6);
+        }
+}
+
+TEST(WhiteFurnace, NoBsdfReflectsMoreThanItReceives) {
+    std::vector<Bsdf> bsdfs = {
+        {Conductor{Vec3(0.95, 0.64, 0.54), 0.05}},
+        {Conductor{Vec3(0.95, 0.64, 0.54), 0.5}},
+        {DiffuseSpecular{Vec3(0.7), Vec3(0.3), 0.3}},
+        {Dielectric{1.5, Vec3(1, 0.8, 0.5)}},
+        // The course's materials at their worst: colours beyond 1 and below 0.
+        bsdfFromMaterial([] {
+            Material m;
+            m.diffuse = {5, 1, 0.2};
+            m.specular = {2, -1, 0.9};
+            m.roughness = 0.4;
+            return m;
+        }()),
+        bsdfFromMaterial([] {
+            Material m;
+            m.diffuse = {1, 1, 1};
+            m.specular = {1, 1, 1};
+            return m;
+        }()),
+    };
+    for (size_t k = 0; k < bsdfs.size(); ++k)
+        for (double theta : {0.0, 50.0, 85.0, 130.0}) {
+            auto e = albedo(bsdfs[k], direction(theta), 100000, 13);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_LE(e[c].mean(), 1 + 4 * e[c].standardError() + 1e-12)
+                    << "bsdf " << k << ", theta " << theta << ", channel " << c;
+        }
+}
+
+// ---- Reciprocity ----
+
+TEST(Reciprocity, ReflectionIsTheSameBothWays) {
+    std::vector<Bsdf> bsdfs = {{Lambertian{Vec3(0.8)}},
+                               {Conductor{Vec3(0.9, 0.5, 0.2), 0.25}},
+                               {DiffuseSpecular{Vec3(0.3), Vec3(0.6), 0.5}}};
+    Rng rng(17);
+    for (const Bsdf& b : bsdfs)
+        for (int k = 0; k < 1000; ++k) {
+            Vec3 wo = direction(89 * rng.uniform(), 360 * rng.uniform());
+            Vec3 wi = direction(89 * rng.uniform(), 360 * rng.uniform());
+            if (k % 2) wo.z = -wo.z, wi.z = -wi.z;  // both below: two-sided lobes
+            Vec3 a = b.eval(wo, wi), c = b.eval(wi, wo);
+            ASSERT_GT(a.x, 0);
+            EXPECT_NEAR(a.x, c.x, 1e-12 * a.x);
+            EXPECT_NEAR(a.z, c.z, 1e-12 * a.z);
+            // Nothing crosses an opaque surface.
+            EXPECT_EQ(b.eval(wo, Vec3(wi.x, wi.y, -wi.z)), Vec3(0));
+            EXPECT_EQ(b.pdf(wo, Vec3(wi.x, wi.y, -wi.z)), 0);
+        }
+}
+
+// ---- Delta lobes ----
+
+TEST(Conductor, PerfectMirrorReflectsAboutTheNormalWithSchlicksReflectance) {
+    Conductor c{Vec3(0.9, 0.5, 0.04), 0};
+    for (double theta : {0.0, 30.0, 70.0, 89.0, 110.0}) {
+        Vec3 wo = direction(theta);
+        std::optional<BsdfSample> s = c.sample(wo, 0.5, {0.3, 0.7});
+        ASSERT_TRUE(s);
+        EXPECT_TRUE(s->isSpecular());
+        EXPECT_FALSE(s->isTransmission());
+        EXPECT_NEAR(s->wi.x, -wo.x, 1e-15);
+        EXPECT_NEAR(s->wi.y, -wo.y, 1e-15);
+        EXPECT_NEAR(s->wi.z, wo.z, 1e-15);
+        double m = 1 - std::abs(wo.z);
+        double schlickBlue = 0.04 + 0.96 * std::pow(m, 5);
+        EXPECT_NEAR(s->weight().z, schlickBlue, 1e-12);
+        EXPECT_NEAR(s->weight().x, 0.9 + 0.1 * std::pow(m, 5), 1e-12);
+        EXPECT_EQ(c.eval(wo, s->wi), Vec3(0));
+        EXPECT_EQ(c.pdf(wo, s->wi), 0);
+    }
+}
+
+TEST(Dielectric, ReflectsWithTheFresnelProbabilityAndRefractsBySnellsLaw) {
+    Dielectric glass{1.5, Vec3(0.9, 0.8, 0.7)};
+    for (double theta : {0.0, 20.0, 45.0, 80.0, 160.0, 140.0}) {
+        Vec3 wo = direction(theta);
+        bool outside = wo.z > 0;
+        double nO = outside ? 1 : 1.5, nI = outside ? 1.5 : 1;  // wo's side, the other side
+        double r = fresnelDielectric(std::abs(wo.z), nO / nI);
+        ASSERT_LT(r, 1) << theta;
+        std::optional<BsdfSample> refl = glass.sample(wo, r * 0.999, {});
+        std::optional<BsdfSample> refr = glass.sample(wo, r + (1 - r) * 0.001, {});
+        ASSERT_TRUE(refl && refr);
+        EXPECT_FALSE(refl->isTransmission());
+        EXPECT_TRUE(refr->isTransmission() && refr->isSpecular());
+        EXPECT_NEAR(refl->pdf, r, 1e-15);
+        EXPECT_NEAR(refr->pdf, 1 - r, 1e-15);
+        EXPECT_NEAR(refl->wi.z, wo.z, 1e-15);
+        // Snell: n sin is conserved, the azimuth turns by half a circle, the side changes.
+        double sinO = std::hypot(wo.x, wo.y), sinI = std::hypot(refr->wi.x, refr->wi.y);
+        EXPECT_NEAR(nO * sinO, nI * sinI, 1e-12);
+        if (sinO > 0) {
+            EXPECT_NEAR(dot(Vec3(wo.x, wo.y, 0), refr->wi), -sinO * sinI, 1e-12);
+        }
+        EXPECT_LT(wo.z * refr->wi.z, 0);
+        // Weights: the tint, and through the boundary also the radiance factor (nO / nI)^2.
+        EXPECT_NEAR(refl->weight().y, 0.8, 1e-12);
+        EXPECT_NEAR(refr->weight().y, 0.8 * (nO / nI) * (nO / nI), 1e-12);
+        EXPECT_EQ(glass.eval(wo, refr->wi), Vec3(0));
+        EXPECT_EQ(glass.pdf(wo, refr->wi), 0);
+    }
+}
+
+TEST(Dielectric, BeyondTheCriticalAngleInsideEverythingIsReflected) {
+    Dielectric glass{1.5, Vec3(1)};
+    double critical = std::asin(1 / 1.5) * 180 / kPi;  // 41.8 degrees
+    Vec3 wo = direction(180 - (critical + 1));         // inside, below the surface
+    for (double uc : {0.0, 0.5, 0.999999}) {
+        std::optional<BsdfSample> s = glass.sample(wo, uc, {});
+        ASSERT_TRUE(s);
+        EXPECT_FALSE(s->isTransmission());
+        EXPECT_NEAR(s->weight().x, 1, 1e-12);
+    }
+}
+
+// ---- The course's material ----
+
+TEST(BsdfFromMaterial, PicksTheLobesAndNeverLetsTheColoursSumAboveOne) {
+    Material m;
+    m.diffuse = {0.5, 1.5, -1};
+    Bsdf b = bsdfFromMaterial(m);
+    ASSERT_TRUE(std::holds_alternative<Lambertian>(b.lobe));
+    EXPECT_EQ(std::get<Lambertian>(b.lobe).albedo, Vec3(0.5, 1, 0));
+
+    m.diffuse = {0.8, 0.2, 0};
+    m.specular = {0.6, 0.2, 0.5};
+    m.roughness = 0.3;
+    b = bsdfFromMaterial(m);
+    ASSERT_TRUE(std::holds_alternative<DiffuseSpecular>(b.lobe));
+    const auto& ds = std::get<DiffuseSpecular>(b.lobe);
+    EXPECT_NEAR(ds.diffuse.x, 0.8 / 1.4, 1e-15);  // 0.8 + 0.6 > 1: both scaled
+    EXPECT_NEAR(ds.specular.x, 0.6 / 1.4, 1e-15);
+    EXPECT_EQ(ds.diffuse.y, 0.2);  // 0.2 + 0.2 <= 1: kept
+    EXPECT_EQ(ds.specular.z, 0.5);
+    EXPECT_EQ(ds.alpha, 0.3);
+
+    m.transmission = {1, 0.9, 2};
+    m.ior = 1.33;
+    b = bsdfFromMaterial(m);
+    ASSERT_TRUE(std::holds_alternative<Dielectric>(b.lobe));
+    EXPECT_EQ(std::get<Dielectric>(b.lobe).eta, 1.33);
+    EXPECT_EQ(std::get<Dielectric>(b.lobe).tint, Vec3(1, 0.9, 1));
+}
+
+}  // namespace
+}  // namespace glint
