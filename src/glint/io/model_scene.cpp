@@ -110,10 +110,12 @@ ModelScene emptyModelScene(int width, int height) {
 
 ModelScene gltfModelScene(const GltfModel& model, int width, int height) {
     ModelScene out = emptyModelScene(width, height);
+    SceneBuilder builder;
+    builder.scene().width = out.scene->width;
+    builder.scene().height = out.scene->height;
+    placeGltf(builder, model, Transform(), builder.addMaterial(lightGrey()));
+    out.scene = builder.finish();
     Scene& scene = *out.scene;
-    MeshPlacer placer;
-    placeGltf(placer, model, Transform(), scene.addMaterial(lightGrey()));
-    placer.place(scene);
     Framing framing;
     std::string has;  // what the file brought, for the note
     if (model.camera) {

@@ -11,12 +11,12 @@
 #include <limits>
 #include <system_error>
 
+#include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/geometry/polygon.h"
 #include "glint/io/course/course_parser.h"
-#include "glint/io/image/image_io.h"
-#include "glint/core/mapped_file.h"
 #include "glint/io/course/numbers.h"
+#include "glint/io/image/image_io.h"
 
 namespace glint {
 namespace course {
@@ -140,9 +140,26 @@ std::unique_ptr<Scene> Parser::run() {
                                             : std::string()) +
                              "), more than the " + formatBytes(static_cast<double>(available)) +
                              " available");
-    scene_->primitives.reserve(counts.triangles, counts.spheres, counts.shapes);
+    builder_.reserve(counts.triangles, counts.spheres, counts.shapes);
     vertices_.reserve(counts.vertices);
     size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
+    try {
+        readLines(pos);
+    } catch (const BuildError& e) {
+        fail(0, e.what());  // what the builder refused, at the command that asked
+    }
+    if (!scene().camera) {
+        // Point just past the last line, where the missing command would go.
+        throw SceneError({file_, line_ + 1, 1},
+                         "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
+                         "upx upy upz fovy')");
+    }
+    std::unique_ptr<Scene> scene = builder_.finish(&warnings_);
+    if (!imageTextures_.empty()) checkTextureCoordinates(*scene);
+    return scene;
+}
+
+void Parser::readLines(size_t pos) {
     while (pos < text_.size()) {
         size_t end = text_.find('\n', pos);
         if (end == std::string_view::npos) end = text_.size();
@@ -178,17 +195,6 @@ std::unique_ptr<Scene> Parser::run() {
                         std::to_string(args));
         (this->*cmd->handler)();
     }
-    if (!scene_->camera) {
-        // Point just past the last line, where the missing command would go.
-        throw SceneError({file_, line_ + 1, 1},
-                         "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
-                         "upx upy upz fovy')");
-    }
-    meshPlacer_.place(*scene_, &warnings_);
-    if (!imageTextures_.empty()) checkTextureCoordinates();
-    scene_->camera->apertureRadius = apertureRadius_;
-    scene_->camera->focusDistance = focusDistance_;
-    return std::move(scene_);
 }
 
 void Parser::tokenize(std::string_view line) {
@@ -250,15 +256,6 @@ long long Parser::integer(int i, long long lo, long long hi) const {
     return v;
 }
 
-const Transform& Parser::bakeTransform() {
-    if (!transformValid_) {
-        transform_ = Transform::fromMatrix(stack_.back());
-        transformValid_ = true;
-    }
-    if (!transform_) fail(0, "the current transform is singular or not finite");
-    return *transform_;
-}
-
 uint32_t Parser::vertexIndex(int i, size_t count, const char* one, const char* many) const {
     long long v = integer(i, 0, std::numeric_limits<uint32_t>::max());
     if (static_cast<size_t>(v) >= count) {
@@ -314,12 +311,13 @@ using course::Command;
 using course::Parser;
 
 std::unique_ptr<Scene> parseCourseScene(std::string_view text, const std::string& fileName,
-                                     std::vector<Diagnostic>& warnings, const LoadLimits& limits) {
+                                        std::vector<Diagnostic>& warnings,
+                                        const LoadLimits& limits) {
     return Parser(text, fileName, warnings, limits).run();
 }
 
 std::unique_ptr<Scene> loadCourseScene(const std::string& path, std::vector<Diagnostic>& warnings,
-                                    const LoadLimits& limits) {
+                                       const LoadLimits& limits) {
     if (std::string problem = inputFileProblem(path); !problem.empty())
         throw SceneError({path, 0, 0}, "cannot read scene: " + problem);
     try {

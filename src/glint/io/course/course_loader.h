@@ -17,12 +17,12 @@ namespace glint {
 /// the scene would need more memory than `limits` allow; appends warnings to `warnings`. The
 /// scene is not yet prepared (see Scene::prepare).
 std::unique_ptr<Scene> parseCourseScene(std::string_view text, const std::string& fileName,
-                                     std::vector<Diagnostic>& warnings,
-                                     const LoadLimits& limits = {});
+                                        std::vector<Diagnostic>& warnings,
+                                        const LoadLimits& limits = {});
 
 /// Reads and parses the file at `path`. Throws SceneError if it cannot be read or is malformed.
 std::unique_ptr<Scene> loadCourseScene(const std::string& path, std::vector<Diagnostic>& warnings,
-                                    const LoadLimits& limits = {});
+                                       const LoadLimits& limits = {});
 
 /// Every command name the loader accepts.
 std::vector<std::string_view> courseCommandNames();

@@ -14,9 +14,9 @@
 #include <optional>
 #include <system_error>
 
+#include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/io/gltf/gltf_internal.h"
-#include "glint/core/mapped_file.h"
 
 namespace glint {
 namespace gltf {
@@ -86,11 +86,6 @@ Vec3 applyVector(const Mat4& m, const Vec3& v) {
             m.m[2][0] * v.x + m.m[2][1] * v.y + m.m[2][2] * v.z};
 }
 
-bool inRange(const Vec3& p) {
-    return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
-           std::abs(p.z) <= kMaxCoordinate;
-}
-
 /// A node's transform relative to its parent: its matrix, or translation x rotation x scale.
 Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label) {
     auto numbers = [&](const std::vector<double>& v, size_t count, const char* what) {
@@ -148,8 +143,8 @@ std::optional<GltfCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
     Vec3 eye = applyPoint(world, Vec3(0)), forward = applyVector(world, {0, 0, -1});
     Vec3 up = applyVector(world, {0, 1, 0});
     double fl = length(forward), ul = length(up);
-    if (!isFinite(eye) || !inRange(eye) || !(fl > 0) || !std::isfinite(fl) || !(ul > 0) ||
-        !std::isfinite(ul) || !(length(cross(forward / fl, up / ul)) > 1e-6)) {
+    if (!isFinite(eye) || !withinCoordinateRange(eye) || !(fl > 0) || !std::isfinite(fl) ||
+        !(ul > 0) || !std::isfinite(ul) || !(length(cross(forward / fl, up / ul)) > 1e-6)) {
         ctx.warn(out.description +
                  ": its node's transform gives it no position or view "
                  "direction: it is ignored");
@@ -196,7 +191,7 @@ std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
         out.kind = Light::Kind::Point;
         out.position = applyPoint(world, Vec3(0));
         out.attenuation = {0, 0, 1};
-        if (isFinite(out.position) && inRange(out.position)) return out;
+        if (isFinite(out.position) && withinCoordinateRange(out.position)) return out;
     } else if (l.type == "directional") {
         out.kind = Light::Kind::Directional;
         Vec3 towards = applyVector(world, {0, 0, 1});  // it shines along its node's -z
@@ -384,7 +379,7 @@ bool isGltfFile(const std::string& path) {
     return ext == ".gltf" || ext == ".glb";
 }
 
-void placeGltf(MeshPlacer& placer, const GltfModel& model, const Transform& worldFromModel,
+void placeGltf(SceneBuilder& builder, const GltfModel& model, const Transform& worldFromModel,
                uint32_t defaultMaterial, const FileLoc& where, const std::string& what) {
     // One MeshData per glTF mesh, placed once per node: the placer stores a mesh that several
     // nodes place once.
@@ -397,7 +392,7 @@ void placeGltf(MeshPlacer& placer, const GltfModel& model, const Transform& worl
             throw SceneError({model.name, 0, 0},
                              "node " + std::to_string(p.node) +
                                  ": its transform, with the scene's, is singular or too large");
-        placer.add(model.meshes[p.mesh], *t, defaultMaterial, where, what);
+        builder.placeMesh(model.meshes[p.mesh], *t, defaultMaterial, where, what);
     }
 }
 

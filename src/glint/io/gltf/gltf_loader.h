@@ -16,6 +16,7 @@
 #include "glint/scene/camera.h"
 #include "glint/scene/light.h"
 #include "glint/scene/mesh.h"
+#include "glint/scene/scene_builder.h"
 
 namespace glint {
 
@@ -73,12 +74,12 @@ GltfModel loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
 /// Whether `path`'s extension is .gltf or .glb (any case).
 bool isGltfFile(const std::string& path);
 
-/// Hands every placement of `model` to `placer` under `worldFromModel` (the scene's transform
+/// Hands every placement of `model` to `builder` under `worldFromModel` (the scene's transform
 /// of the whole asset): a glTF mesh that several nodes place is then stored once and instanced.
 /// Triangles without a glTF material take `defaultMaterial`; `where` and `what` prefix errors
 /// about the placements (MeshPlacer::add). Throws SceneError if a composed transform is
-/// singular. `model` must live until the placer has placed.
-void placeGltf(MeshPlacer& placer, const GltfModel& model, const Transform& worldFromModel,
+/// singular. `model` must live until the builder has finished.
+void placeGltf(SceneBuilder& builder, const GltfModel& model, const Transform& worldFromModel,
                uint32_t defaultMaterial, const FileLoc& where = {}, const std::string& what = {});
 
 }  // namespace glint
