@@ -13,7 +13,7 @@
 
 #include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/course/course_loader.h"
-#include "glint/io/model_scene.h"
+#include "glint/scene/model_framing.h"
 #include "glint/io/obj/obj_loader.h"
 #include "glint/render/renderer.h"
 
@@ -138,7 +138,7 @@ bool gltfLoadsAndRendersFinite(const std::string& input, const std::string& name
     options.limits.readFiles = false;
     options.limits.memoryBytes = size_t(64) << 20;
     std::vector<Diagnostic> warnings;
-    GltfModel model;
+    Model model;
     try {
         model = parseGltf(input, name, warnings, options);
     } catch (const SceneError&) {
@@ -146,7 +146,7 @@ bool gltfLoadsAndRendersFinite(const std::string& input, const std::string& name
     }
     ModelScene m;
     try {
-        m = gltfModelScene(model, 8, 8);
+        m = frameModelScene(model, 8, 8);
     } catch (const SceneError&) {
         return true;
     }

@@ -22,30 +22,29 @@ void Parser::cmdMesh() {
     uint32_t material = builder_.materialId();
     if (!limits_.readFiles) fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
     std::string path = scenePath(tok_[1].text);
-    const bool gltf = isGltfFile(path);
-    if (!meshes_.count(path) && !gltfModels_.count(path)) {
+    auto it = models_.find(path);
+    if (it == models_.end()) {
         if (std::string problem = inputFileProblem(path); !problem.empty())
             fail(1, "cannot read mesh " + quoted(1) + " (" + path + "): " + problem);
         // Errors inside the mesh file name that file (and its line and column for OBJ).
-        if (gltf) {
+        Model model;
+        if (isGltfFile(path)) {
             GltfOptions options;
             options.limits = limits_;
-            gltfModels_.emplace(path, loadGltf(path, warnings_, options));
+            model = loadGltf(path, warnings_, options);
         } else {
             ObjOptions options;
             options.limits = limits_;
-            meshes_.emplace(path, loadObj(path, warnings_, options));
+            model = singleMeshModel(loadObj(path, warnings_, options));
         }
+        it = models_.emplace(path, std::move(model)).first;
     }
     // Placed when the file ends (SceneBuilder::finish), so that a mesh placed several times is
     // stored once. A glTF asset's meshes are placed by its nodes, under the current transform;
     // its cameras and lights are the scene's business, and are not used.
     const std::string what = "mesh " + quoted(1);
     try {
-        if (gltf)
-            placeGltf(builder_, gltfModels_.at(path), t, material, loc(tok_[0].column), what);
-        else
-            builder_.placeMesh(meshes_.at(path), t, material, loc(tok_[0].column), what);
+        placeModel(builder_, it->second, t, material, loc(tok_[0].column), what);
     } catch (const SceneError& e) {
         fail(0, what + ": " + e.diagnostic().message);
     }

@@ -15,9 +15,9 @@
 #include "glint/core/error.h"
 #include "glint/geometry/shape_search.h"
 #include "glint/io/course/course_loader.h"
-#include "glint/io/gltf/gltf_loader.h"
 #include "glint/math/mat4.h"
 #include "glint/scene/mesh.h"
+#include "glint/scene/model.h"
 #include "glint/scene/scene.h"
 #include "glint/scene/scene_builder.h"
 
@@ -167,8 +167,7 @@ class Parser {
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
-    std::map<std::string, MeshData> meshes_;       ///< Read by `mesh`, by path: each read once.
-    std::map<std::string, GltfModel> gltfModels_;  ///< The same for glTF files.
+    std::map<std::string, Model> models_;  ///< Read by `mesh`, by path: each read once.
     std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
     std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
 };

@@ -127,10 +127,10 @@ Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string&
 }
 
 /// The camera of node `node`, if it is one Glint can use.
-std::optional<GltfCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
-                                     const std::string& node) {
+std::optional<ModelCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
+                                      const std::string& node) {
     const tinygltf::Camera& c = ctx.model.cameras[static_cast<size_t>(index)];
-    GltfCamera out;
+    ModelCamera out;
     out.description = describe("camera", static_cast<size_t>(index), c.name) + " (" + node + ")";
     if (c.type != "perspective") {
         ctx.warn(out.description + " is " + c.type +
@@ -212,7 +212,7 @@ std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
 
 /// Walks the default scene's node trees (or every root node when the file has no scene):
 /// placements, the first perspective camera and the lights.
-void walkNodes(Context& ctx, GltfModel& out) {
+void walkNodes(Context& ctx, Model& out) {
     const auto& nodes = ctx.model.nodes;
     const auto& scenes = ctx.model.scenes;
     std::vector<int> roots;
@@ -291,11 +291,11 @@ void walkNodes(Context& ctx, GltfModel& out) {
 
 /// Reads every mesh a placement uses, once, after checking what they and their placements
 /// need of memory.
-void readMeshes(Context& ctx, GltfModel& out) {
+void readMeshes(Context& ctx, Model& out) {
     const size_t meshes = ctx.model.meshes.size();
     out.meshes.resize(meshes);
     std::vector<std::optional<MeshCounts>> counts(meshes);
-    for (const GltfPlacement& p : out.placements)
+    for (const ModelPlacement& p : out.placements)
         if (!counts[p.mesh]) counts[p.mesh] = countMesh(ctx, static_cast<int>(p.mesh));
     double meshBytes = 0, placed = 0, placedNormals = 0, placedUvs = 0;
     size_t maxPositions = 0, maxNormals = 0;
@@ -310,7 +310,7 @@ void readMeshes(Context& ctx, GltfModel& out) {
     // A mesh placed once becomes the scene's triangles; a mesh placed several times is stored
     // once and placed by instances (MeshPlacer), each the size of a shape.
     std::vector<size_t> uses(meshes);
-    for (const GltfPlacement& p : out.placements) ++uses[p.mesh];
+    for (const ModelPlacement& p : out.placements) ++uses[p.mesh];
     double instances = 0;
     for (size_t m = 0; m < meshes; ++m)
         if (uses[m] > 0) {
@@ -341,26 +341,20 @@ void readMeshes(Context& ctx, GltfModel& out) {
 }  // namespace
 }  // namespace gltf
 
-size_t GltfModel::triangles() const {
-    size_t n = 0;
-    for (const GltfPlacement& p : placements) n += meshes[p.mesh].triangles.size();
-    return n;
-}
-
-GltfModel parseGltf(std::string_view bytes, const std::string& fileName,
-                    std::vector<Diagnostic>& warnings, const GltfOptions& options) {
+Model parseGltf(std::string_view bytes, const std::string& fileName,
+                std::vector<Diagnostic>& warnings, const GltfOptions& options) {
     gltf::Context ctx(fileName, warnings, options);
     gltf::parseContainer(ctx, bytes);
     gltf::checkAsset(ctx);
-    GltfModel out;
+    Model out;
     out.name = fileName;
     gltf::walkNodes(ctx, out);
     gltf::readMeshes(ctx, out);
     return out;
 }
 
-GltfModel loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
-                   const GltfOptions& options) {
+Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
+               const GltfOptions& options) {
     if (std::string problem = inputFileProblem(path); !problem.empty())
         throw SceneError({path, 0, 0}, "cannot read glTF: " + problem);
     try {
@@ -377,23 +371,6 @@ bool isGltfFile(const std::string& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return ext == ".gltf" || ext == ".glb";
-}
-
-void placeGltf(SceneBuilder& builder, const GltfModel& model, const Transform& worldFromModel,
-               uint32_t defaultMaterial, const FileLoc& where, const std::string& what) {
-    // One MeshData per glTF mesh, placed once per node: the placer stores a mesh that several
-    // nodes place once.
-    const bool identity = worldFromModel.isIdentity();
-    for (const GltfPlacement& p : model.placements) {
-        std::optional<Transform> t =
-            identity ? p.worldFromObject
-                     : Transform::fromMatrix(worldFromModel.matrix() * p.worldFromObject.matrix());
-        if (!t)
-            throw SceneError({model.name, 0, 0},
-                             "node " + std::to_string(p.node) +
-                                 ": its transform, with the scene's, is singular or too large");
-        builder.placeMesh(model.meshes[p.mesh], *t, defaultMaterial, where, what);
-    }
 }
 
 }  // namespace glint
