@@ -16,12 +16,12 @@
 
 #include "demo_scene.h"
 #include "glint/accel/bvh.h"
+#include "glint/core/atomic_file.h"
 #include "glint/core/error.h"
 #include "glint/core/system.h"
-#include "glint/core/atomic_file.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/image_io.h"
-#include "glint/io/model_scene.h"
+#include "glint/io/registry.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
 
@@ -211,12 +211,13 @@ int run(const Options& opt) {
     try {
         if (demo) {
             scene = glint::parseCourseScene(glint::kDemoScene, "demo.test", warnings);
-        } else if (glint::isModelFile(opt.scene)) {
-            glint::ModelScene m = glint::loadModelScene(opt.scene, warnings, width, height);
+        } else {
+            glint::LoadOptions options;
+            options.width = width;
+            options.height = height;
+            glint::ModelScene m = glint::loadSceneFile(opt.scene, warnings, options);
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
-        } else {
-            scene = glint::loadCourseScene(opt.scene, warnings);
         }
     } catch (const glint::SceneError& e) {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());

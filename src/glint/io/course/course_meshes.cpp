@@ -5,9 +5,8 @@
 #include <string>
 
 #include "glint/io/course/course_parser.h"
-#include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/image/texture_io.h"
-#include "glint/io/obj/obj_loader.h"
+#include "glint/io/registry.h"
 
 namespace glint::course {
 
@@ -26,18 +25,10 @@ void Parser::cmdMesh() {
     if (it == models_.end()) {
         if (std::string problem = inputFileProblem(path); !problem.empty())
             fail(1, "cannot read mesh " + quoted(1) + " (" + path + "): " + problem);
+        FormatChoice format = chooseFormat(path, FileUse::Model, warnings_);
+        if (!format.format) fail(0, "mesh " + quoted(1) + ": " + format.problem);
         // Errors inside the mesh file name that file (and its line and column for OBJ).
-        Model model;
-        if (isGltfFile(path)) {
-            GltfOptions options;
-            options.limits = limits_;
-            model = loadGltf(path, warnings_, options);
-        } else {
-            ObjOptions options;
-            options.limits = limits_;
-            model = singleMeshModel(loadObj(path, warnings_, options));
-        }
-        it = models_.emplace(path, std::move(model)).first;
+        it = models_.emplace(path, format.format->loadModel(path, warnings_, limits_)).first;
     }
     // Placed when the file ends (SceneBuilder::finish), so that a mesh placed several times is
     // stored once. A glTF asset's meshes are placed by its nodes, under the current transform;

@@ -366,11 +366,4 @@ Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
     }
 }
 
-bool isGltfFile(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".gltf" || ext == ".glb";
-}
-
 }  // namespace glint

@@ -40,7 +40,4 @@ Model parseGltf(std::string_view bytes, const std::string& fileName,
 Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
                const GltfOptions& options = {});
 
-/// Whether `path`'s extension is .gltf or .glb (any case).
-bool isGltfFile(const std::string& path);
-
 }  // namespace glint

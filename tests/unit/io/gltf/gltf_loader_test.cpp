@@ -15,8 +15,8 @@
 #include <string>
 
 #include "glint/io/course/course_loader.h"
-#include "glint/io/model_scene.h"
 #include "glint/io/obj/obj_loader.h"
+#include "glint/io/registry.h"
 #include "unit/io/gltf/gltf_test_support.h"
 #include "unit/test_support.h"
 
@@ -90,7 +90,7 @@ TEST(GltfLoader, WithoutScenesEveryRootNodeIsPlaced) {
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
         "nodes": [{"mesh": 0, "children": [1]}, {"mesh": 0, "translation": [5, 0, 0]},
                   {"mesh": 0, "translation": [0, 5, 0]}])",
-                                     kTriangle));
+                                 kTriangle));
     ASSERT_EQ(model.placements.size(), 3u);  // node 0, its child 1, and root node 2
     expectNear(model.placements[2].worldFromObject.point(Vec3(0)), {0, 5, 0});
 }
@@ -349,8 +349,8 @@ TEST(GltfLoader, SpotLightsAreLitAsPointLightsAndOrthographicCamerasIgnored) {
             {"type": "spot", "intensity": 2, "spot": {"outerConeAngle": 0.5}}]}},
         "nodes": [{"mesh": 0, "camera": 0},
                   {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}])",
-                                     kTriangle),
-                            &warnings);
+                                 kTriangle),
+                        &warnings);
     EXPECT_FALSE(model.camera);
     ASSERT_EQ(model.lights.size(), 1u);
     EXPECT_EQ(model.lights[0].kind, Light::Kind::Point);
