@@ -43,6 +43,7 @@ struct Options {
     bool check = false;
     bool stats = false;
     bool quiet = false;
+    bool lenient = false;
 };
 
 // Interrupts. The first SIGINT or SIGTERM asks the render to stop: workers finish their
@@ -215,6 +216,7 @@ int run(const Options& opt) {
             glint::LoadOptions options;
             options.width = width;
             options.height = height;
+            options.lenient = opt.lenient;
             glint::ModelScene m = glint::loadSceneFile(opt.scene, warnings, options);
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
@@ -337,6 +339,12 @@ int main(int argc, char** argv) {
     app.add_option("SCENE", opt.scene,
                    "Scene file to render (CSE167x .test format), or an .obj, .gltf or .glb "
                    "model to frame");
+
+    const char* input = "Input";
+    app.add_flag("--lenient", opt.lenient,
+                 "Skip unknown commands and ignore unmatched popTransforms in scene files, with "
+                 "a warning, as the course's own parser did (default: they are errors)")
+        ->group(input);
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,

@@ -56,7 +56,10 @@ bool blenderMagic(std::string_view head, uint64_t) { return head.starts_with("BL
 
 std::unique_ptr<Scene> loadCourse(const std::string& path, std::vector<Diagnostic>& warnings,
                                   const LoadOptions& options) {
-    return loadCourseScene(path, warnings, options.limits);
+    CourseOptions course;
+    course.limits = options.limits;
+    course.lenient = options.lenient;
+    return loadCourseScene(path, warnings, course);
 }
 
 Model loadObjModel(const std::string& path, std::vector<Diagnostic>& warnings,

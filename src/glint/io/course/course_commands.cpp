@@ -143,7 +143,10 @@ void Parser::cmdScale() {
 }
 
 void Parser::cmdPopTransform() {
-    if (!builder_.popTransform()) fail(0, "popTransform without a matching pushTransform");
+    if (builder_.popTransform()) return;
+    const std::string what = "popTransform without a matching pushTransform";
+    if (!lenient_) fail(0, what + " (--lenient ignores it)");
+    warnRepeated("popTransform", what + " ignored", "");
 }
 
 void Parser::cmdDirectional() {
@@ -160,6 +163,7 @@ void Parser::cmdDirectional() {
 void Parser::cmdPoint() {
     Vec3 position = transform().point(vec3(1));
     builder_.addPointLight(position, colour(4));
+    if (pointLights_++ == 0) firstPointLine_ = line_;
 }
 
 void Parser::cmdAttenuation() {
@@ -167,6 +171,17 @@ void Parser::cmdAttenuation() {
     for (int k = 0; k < 3; ++k)
         if (a[k] < 0) fail(k + 1, "attenuation coefficients must not be negative");
     if (a == Vec3(0)) fail(1, "attenuation coefficients must not all be zero");
+    if (pointLights_ > 0 && !(a == builder_.attenuation()) && !warnedAttenuation_) {
+        // The point lights above keep the attenuation they were declared with.
+        warn(0,
+             "attenuation applies only to point lights declared after it: " +
+                 (pointLights_ == 1
+                      ? "the one on line " + std::to_string(firstPointLine_) + " keeps its own"
+                      : "the " + std::to_string(pointLights_) + " declared before it, from line " +
+                            std::to_string(firstPointLine_) + ", keep theirs") +
+                 " (reported once)");
+        warnedAttenuation_ = true;
+    }
     builder_.setAttenuation(a);
 }
 

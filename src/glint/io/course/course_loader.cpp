@@ -149,8 +149,10 @@ std::unique_ptr<Scene> Parser::run() {
         fail(0, e.what());  // what the builder refused, at the command that asked
     }
     if (!scene().camera) {
-        // Point just past the last line, where the missing command would go.
-        throw SceneError({file_, line_ + 1, 1},
+        // At the first command: the camera usually comes first.
+        FileLoc first = firstCommand();
+        if (first.line == 0) throw SceneError({file_, 0, 0}, "the scene file has no commands");
+        throw SceneError(first,
                          "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
                          "upx upy upz fovy')");
     }
@@ -174,7 +176,10 @@ void Parser::readLines(size_t pos) {
                 cmd = &c;
                 break;
             }
-        if (!cmd) unknownCommand();
+        if (!cmd) {
+            unknownCommand();
+            continue;
+        }
         int args = ntok_ - 1;
         if (args < cmd->minArgs || args > cmd->maxArgs) {
             // "1 or 2" for filter and lens, "3 or 6" for background, "3 to 1024" for polygon.
@@ -300,9 +305,35 @@ void Parser::unknownCommand() {
             best = c.name;
         }
     }
-    std::string msg = "unknown command " + quoted(0);
-    if (!best.empty()) msg += "; did you mean '" + std::string(best) + "'?";
-    fail(0, msg);
+    std::string suggestion = best.empty() ? "" : "; did you mean '" + std::string(best) + "'?";
+    if (!lenient_)
+        fail(0,
+             "unknown command " + quoted(0) + " (--lenient skips unknown commands)" + suggestion);
+    warnRepeated(std::string(tok_[0].text), "unknown command " + quoted(0) + " skipped",
+                 suggestion);
+}
+
+void Parser::warnRepeated(const std::string& key, const std::string& head,
+                          const std::string& tail) {
+    auto [it, first] = repeated_.try_emplace(key, warnings_.size(), 1);
+    if (first) {
+        warn(0, head + tail);
+        return;
+    }
+    auto& [index, count] = it->second;
+    warnings_[index].message = head + " (" + std::to_string(++count) + " times; first here)" + tail;
+}
+
+FileLoc Parser::firstCommand() {
+    line_ = 0;
+    for (size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0; pos < text_.size();) {
+        size_t end = std::min(text_.find('\n', pos), text_.size());
+        ++line_;
+        tokenize(text_.substr(pos, end - pos));
+        if (ntok_ > 0) return loc(tok_[0].column);
+        pos = end + 1;
+    }
+    return {file_, 0, 0};
 }
 
 }  // namespace course
@@ -312,17 +343,17 @@ using course::Parser;
 
 std::unique_ptr<Scene> parseCourseScene(std::string_view text, const std::string& fileName,
                                         std::vector<Diagnostic>& warnings,
-                                        const LoadLimits& limits) {
-    return Parser(text, fileName, warnings, limits).run();
+                                        const CourseOptions& options) {
+    return Parser(text, fileName, warnings, options).run();
 }
 
 std::unique_ptr<Scene> loadCourseScene(const std::string& path, std::vector<Diagnostic>& warnings,
-                                       const LoadLimits& limits) {
+                                       const CourseOptions& options) {
     if (std::string problem = inputFileProblem(path); !problem.empty())
         throw SceneError({path, 0, 0}, "cannot read scene: " + problem);
     try {
         MappedFile file(path);
-        return parseCourseScene(file.text(), path, warnings, limits);
+        return parseCourseScene(file.text(), path, warnings, options);
     } catch (const std::system_error& e) {
         throw SceneError({path, 0, 0},
                          std::string("cannot read scene: ") + std::strerror(e.code().value()));

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "glint/core/error.h"
@@ -49,8 +50,12 @@ constexpr long long kMaxVertexReserve = 1 << 20;
 class Parser {
   public:
     Parser(std::string_view text, const std::string& file, std::vector<Diagnostic>& warnings,
-           const LoadLimits& limits)
-        : text_(text), file_(file), warnings_(warnings), limits_(limits) {}
+           const CourseOptions& options)
+        : text_(text),
+          file_(file),
+          warnings_(warnings),
+          limits_(options.limits),
+          lenient_(options.lenient) {}
 
     std::unique_ptr<Scene> run();
     static const std::vector<Command>& commands();
@@ -68,6 +73,12 @@ class Parser {
     void warn(int token, const std::string& message) {
         warnings_.push_back({loc(tok_[token].column), message});
     }
+    /// Warns at the command of a problem that may recur, once per `key`: the warning, at its
+    /// first occurrence, reads `head`, then "(N times; first here)" once it recurs, then
+    /// `tail`.
+    void warnRepeated(const std::string& key, const std::string& head, const std::string& tail);
+    /// Where the first command is, or line 0 if the text has none.
+    FileLoc firstCommand();
     std::string quoted(int token) const {
         std::string q(1, '\'');  // built by appending: GCC 12 warns falsely on "'" + string
         q.append(tok_[token].text).push_back('\'');
@@ -150,12 +161,14 @@ class Parser {
             warnedDegenerate_ = true;
         }
     }
+    /// Fails at an unknown command, or when lenient warns and returns.
     void unknownCommand();
 
     std::string_view text_;
     const std::string& file_;
     std::vector<Diagnostic>& warnings_;
     LoadLimits limits_;
+    bool lenient_;
     SceneBuilder builder_;
 
     int line_ = 0;
@@ -167,6 +180,10 @@ class Parser {
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
+    int pointLights_ = 0, firstPointLine_ = 0;  ///< For the attenuation warning.
+    bool warnedAttenuation_ = false;
+    /// Warnings of problems that recur (warnRepeated), by key: the warning and its count.
+    std::map<std::string, std::pair<size_t, int>> repeated_;
     std::map<std::string, Model> models_;  ///< Read by `mesh`, by path: each read once.
     std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
     std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
