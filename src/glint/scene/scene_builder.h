@@ -70,6 +70,11 @@ class SceneBuilder {
         materialChanged_ = true;
         return material_;
     }
+    /// Replaces the whole current material.
+    void setMaterial(const Material& m) {
+        material_ = m;
+        materialChanged_ = true;
+    }
     /// The id of the current material, added to the scene when it changed since last asked
     /// (Scene::addMaterial reuses the last material when it is equal).
     uint32_t materialId() {

@@ -33,11 +33,25 @@ Transform translation(double x, double y, double z) {
     return *Transform::fromMatrix(Mat4::translate(x, y, z));
 }
 
-/// The world-space bounds of what `model` becomes placed by `worldFromModel`.
-Bounds3f placedBounds(const Model& model, const Transform& worldFromModel) {
+/// A model `name` of the triangle placed by each of `placements` (nodes 1, 2, ...).
+Model triangles(const std::string& name, const std::vector<Transform>& placements) {
+    Model model;
+    model.name = name;
+    model.meshes.push_back(triangle());
+    for (const Transform& t : placements)
+        model.placements.push_back({0, t, static_cast<uint32_t>(model.placements.size() + 1)});
+    return model;
+}
+
+/// Expects what `model` becomes, placed by `worldFromModel`, to lie in [lo, hi] (within `eps`:
+/// instances have padded bounds).
+void expectPlacedBounds(const Model& model, const Transform& worldFromModel, const Vec3& lo,
+                        const Vec3& hi, double eps) {
     SceneBuilder builder;
     placeModel(builder, model, worldFromModel, builder.materialId());
-    return builder.finish()->primitives.bounds();
+    Bounds3f b = builder.finish()->primitives.bounds();
+    expectNear(Vec3(b.lo), lo, eps);
+    expectNear(Vec3(b.hi), hi, eps);
 }
 
 TEST(Model, OneMeshIsPlacedOnceAsItIs) {
@@ -46,36 +60,26 @@ TEST(Model, OneMeshIsPlacedOnceAsItIs) {
     ASSERT_EQ(model.placements.size(), 1u);
     EXPECT_TRUE(model.placements[0].worldFromObject.isIdentity());
     EXPECT_EQ(model.triangles(), 1u);
-    Bounds3f b = placedBounds(model, translation(5, 0, 0));
-    expectNear(Vec3(b.lo), {5, 0, 0}, 1e-6);
-    expectNear(Vec3(b.hi), {6, 1, 0}, 1e-6);
+    expectPlacedBounds(model, translation(5, 0, 0), {5, 0, 0}, {6, 1, 0}, 1e-6);
 }
 
 TEST(Model, PlacementsComposeWithTheScenesTransform) {
-    Model model;
-    model.name = "two.gltf";
-    model.meshes.push_back(triangle());
-    model.placements.push_back({0, translation(0, 10, 0), 3});
-    model.placements.push_back({0, translation(0, 20, 0), 4});
+    Model model = triangles("two.gltf", {translation(0, 10, 0), translation(0, 20, 0)});
     EXPECT_EQ(model.triangles(), 2u);
-    Bounds3f b = placedBounds(model, translation(5, 0, 0));  // instances: padded bounds
-    expectNear(Vec3(b.lo), {5, 10, 0}, 1e-4);
-    expectNear(Vec3(b.hi), {6, 21, 0}, 1e-4);
+    expectPlacedBounds(model, translation(5, 0, 0), {5, 10, 0}, {6, 21, 0}, 1e-4);
 }
 
 TEST(Model, ASingularCompositionNamesTheNode) {
-    Model model;
-    model.name = "big.gltf";
-    model.meshes.push_back(triangle());
-    model.placements.push_back({0, *Transform::fromMatrix(Mat4::scale(1e-200, 1, 1)), 7});
+    const Transform thin = *Transform::fromMatrix(Mat4::scale(1e-200, 1, 1));
+    Model model = triangles("big.gltf", {translation(0, 1, 0), thin});
     SceneBuilder builder;
     try {
-        placeModel(builder, model, *Transform::fromMatrix(Mat4::scale(1e-200, 1, 1)), 0);
+        placeModel(builder, model, thin, 0);
         FAIL() << "no SceneError";
     } catch (const SceneError& e) {
         EXPECT_EQ(e.diagnostic().loc.file, "big.gltf");
         EXPECT_EQ(e.diagnostic().message,
-                  "node 7: its transform, with the scene's, is singular or too large");
+                  "node 2: its transform, with the scene's, is singular or too large");
     }
 }
 

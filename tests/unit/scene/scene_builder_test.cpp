@@ -60,6 +60,9 @@ TEST(SceneBuilder, TheCurrentMaterialIsAddedOnceUntilItChanges) {
     b.editMaterial().diffuse = Vec3(1, 0, 0);
     EXPECT_EQ(b.materialId(), red);
     EXPECT_EQ(b.scene().materials.size(), 2u);
+    b.setMaterial(Material{});  // the whole material: the first one again, added anew
+    EXPECT_EQ(b.scene().materials[b.materialId()], Material{});
+    EXPECT_EQ(b.scene().materials.size(), 3u);
 }
 
 TEST(SceneBuilder, AnotherMaterialMakesTheCurrentOneBeAddedAgain) {

@@ -21,6 +21,20 @@ std::unique_ptr<Scene> parseLenient(const std::string& body, std::vector<Diagnos
     return parseCourseScene(body + kCamera, "t.test", warnings, options);
 }
 
+/// The error that parsing `text` (no camera added) leniently reports; the warnings before it
+/// go to `warnings`.
+Diagnostic lenientError(const std::string& text, std::vector<Diagnostic>& warnings) {
+    CourseOptions options;
+    options.lenient = true;
+    try {
+        parseCourseScene(text, "t.test", warnings, options);
+    } catch (const SceneError& e) {
+        return e.diagnostic();
+    }
+    ADD_FAILURE() << "no SceneError for:\n" << text;
+    return {};
+}
+
 std::vector<std::string> formatted(const std::vector<Diagnostic>& warnings) {
     std::vector<std::string> out;
     for (const Diagnostic& d : warnings) out.push_back(d.format("warning"));
@@ -79,15 +93,8 @@ TEST(CourseLenient, APopOnAnEmptyStackIsIgnoredWithOneWarning) {
 
 TEST(CourseLenient, OtherErrorsStayErrors) {
     std::vector<Diagnostic> w;
-    CourseOptions options;
-    options.lenient = true;
-    try {
-        parseCourseScene("area\nsphere 0 0 0\n", "t.test", w, options);
-        FAIL() << "no SceneError";
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.diagnostic().format("error"),
-                  "t.test:2:1: error: sphere expects 4 arguments (x y z radius), got 3");
-    }
+    EXPECT_EQ(lenientError("area\nsphere 0 0 0\n", w).format("error"),
+              "t.test:2:1: error: sphere expects 4 arguments (x y z radius), got 3");
     EXPECT_EQ(w.size(), 1u);  // the warnings so far are kept
 }
 
@@ -99,15 +106,9 @@ TEST(CourseScene, AnEmptyFileAndAMissingCameraPointInsideTheFile) {
               "atz upx upy upz fovy')");
     // With lenient, a file of unknown commands has commands, and no camera.
     std::vector<Diagnostic> w;
-    CourseOptions options;
-    options.lenient = true;
-    try {
-        parseCourseScene("# c\narea\n", "t.test", w, options);
-        FAIL() << "no SceneError";
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.diagnostic().loc.line, 2);
-        EXPECT_THAT(e.diagnostic().message, ::testing::HasSubstr("no camera"));
-    }
+    Diagnostic d = lenientError("# c\narea\n", w);
+    EXPECT_EQ(d.loc.line, 2);
+    EXPECT_THAT(d.message, ::testing::HasSubstr("no camera"));
 }
 
 TEST(CourseAttenuation, AfterAPointLightItWarnsThatItReachesOnlyLaterOnes) {
