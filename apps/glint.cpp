@@ -21,7 +21,7 @@
 #include "glint/core/system.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/image_io.h"
-#include "glint/io/model_scene.h"
+#include "glint/io/registry.h"
 #include "glint/render/integrator.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
@@ -45,6 +45,7 @@ struct Options {
     bool check = false;
     bool stats = false;
     bool quiet = false;
+    bool lenient = false;
 };
 
 // Interrupts. The first SIGINT or SIGTERM asks the render to stop: workers finish their
@@ -216,12 +217,14 @@ int run(const Options& opt) {
     try {
         if (demo) {
             scene = glint::parseCourseScene(glint::kDemoScene, "demo.test", warnings);
-        } else if (glint::isModelFile(opt.scene)) {
-            glint::ModelScene m = glint::loadModelScene(opt.scene, warnings, width, height);
+        } else {
+            glint::LoadOptions options;
+            options.width = width;
+            options.height = height;
+            options.lenient = opt.lenient;
+            glint::ModelScene m = glint::loadSceneFile(opt.scene, warnings, options);
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
-        } else {
-            scene = glint::loadCourseScene(opt.scene, warnings);
         }
     } catch (const glint::SceneError& e) {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
@@ -342,6 +345,12 @@ int main(int argc, char** argv) {
     app.add_option("SCENE", opt.scene,
                    "Scene file to render (CSE167x .test format), or an .obj, .gltf or .glb "
                    "model to frame");
+
+    const char* input = "Input";
+    app.add_flag("--lenient", opt.lenient,
+                 "Skip unknown commands and ignore unmatched popTransforms in scene files, with "
+                 "a warning, as the course's own parser did (default: they are errors)")
+        ->group(input);
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,

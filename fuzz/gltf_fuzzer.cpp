@@ -1,5 +1,5 @@
 // libFuzzer harness for the glTF loader (io/gltf/gltf_loader.h) and the scenes made of glTF models
-// (io/model_scene.h).
+// (scene/model_framing.h).
 //
 // An input is a glTF asset: JSON text, or a binary .glb (recognised by its magic). No file is
 // ever read (LoadLimits::readFiles is off): only data: URI buffers and images and a .glb's own
@@ -19,7 +19,7 @@
 #include "fuzz_render.h"
 #include "glint/core/error.h"
 #include "glint/io/gltf/gltf_loader.h"
-#include "glint/io/model_scene.h"
+#include "glint/scene/model_framing.h"
 #include "glint/render/renderer.h"
 
 namespace {
@@ -35,7 +35,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     options.limits.readFiles = false;
     options.limits.memoryBytes = size_t(64) << 20;
     std::vector<glint::Diagnostic> warnings;
-    glint::GltfModel model;
+    glint::Model model;
     try {
         model = glint::parseGltf(input, "fuzz.gltf", warnings, options);
     } catch (const glint::SceneError& e) {
@@ -47,7 +47,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
     glint::ModelScene m;
     try {
-        m = glint::gltfModelScene(model, kSide, kSide);
+        m = glint::frameModelScene(model, kSide, kSide);
     } catch (const glint::SceneError&) {
         return 0;  // beyond the coordinate range, or nothing of non-zero area
     }

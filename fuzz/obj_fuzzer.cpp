@@ -16,7 +16,7 @@
 
 #include "fuzz_render.h"
 #include "glint/core/error.h"
-#include "glint/io/model_scene.h"
+#include "glint/scene/model_framing.h"
 #include "glint/io/obj/obj_loader.h"
 #include "glint/render/renderer.h"
 

@@ -78,15 +78,20 @@ TEST(CliModel, ExtensionIsCaseInsensitiveAndCheckSummarises) {
               "output QUAD.png\n");
 }
 
+TEST(CliModel, AMissingMaterialLibraryIsAWarningAndTheModelRenders) {
+    std::string dir = dirWith("nomtl", {"missing-mtl.obj"});
+    CommandResult r = runGlint("-q missing-mtl.obj --size 40x30", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err,
+              "missing-mtl.obj:1:8: warning: cannot read material library 'nowhere.mtl' "
+              "(nowhere.mtl): No such file or directory; faces that use its materials take the "
+              "default material\n");
+    EXPECT_TRUE(fs::exists(dir + "/missing-mtl.png"));
+}
+
 TEST(CliModel, BrokenModelsAreErrorsNamingTheFileAndLine) {
-    std::string dir = dirWith("broken", {"missing-mtl.obj", "out-of-range.obj"});
-    CommandResult r = runGlint("missing-mtl.obj", dir);
-    EXPECT_EQ(r.exitCode, 1);
-    EXPECT_TRUE(contains(r.err,
-                         "missing-mtl.obj:1:8: error: cannot read material library "
-                         "'nowhere.mtl'"))
-        << r.err;
-    r = runGlint("out-of-range.obj", dir);
+    std::string dir = dirWith("broken", {"out-of-range.obj"});
+    CommandResult r = runGlint("out-of-range.obj", dir);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_TRUE(contains(r.err, "out-of-range.obj:5:7: error: vertex index '9' is out of range"))
         << r.err;

@@ -42,11 +42,13 @@ TEST_P(SceneErrorMessage, ExitsOneWithFileLineColumnMessageAndWritesNothing) {
 
 const ErrorCase kErrorCases[] = {
     {"UnknownCommandSuggestsTheNearestOne", kHead + "sphre 0 0 0 1\n",
-     "e.test:3:1: error: unknown command 'sphre'; did you mean 'sphere'?"},
+     "e.test:3:1: error: unknown command 'sphre' (--lenient skips unknown commands); did you "
+     "mean 'sphere'?"},
     {"UnknownCommandIsCaseSensitiveButSuggestsTheSpelling", kHead + "PushTransform\n",
-     "e.test:3:1: error: unknown command 'PushTransform'; did you mean 'pushTransform'?"},
+     "e.test:3:1: error: unknown command 'PushTransform' (--lenient skips unknown commands); "
+     "did you mean 'pushTransform'?"},
     {"UnknownCommandFarFromAnyHasNoSuggestion", kHead + "frobnicate 1 2\n",
-     "e.test:3:1: error: unknown command 'frobnicate'"},
+     "e.test:3:1: error: unknown command 'frobnicate' (--lenient skips unknown commands)"},
     {"TooFewArgumentsPointsAtTheCommand", kHead + "  sphere 0 0 0\n",
      "e.test:3:3: error: sphere expects 4 arguments (x y z radius), got 3"},
     {"TooManyArgumentsPointsAtTheFirstExtra", kHead + "sphere 0 0 0 1 2\n",
@@ -89,7 +91,7 @@ const ErrorCase kErrorCases[] = {
     {"FovyOutOfRange", "camera 0 0 5 0 0 0 0 1 0 180\n",
      "e.test:1:26: error: fovy must be between 0 and 180 degrees, got '180'"},
     {"PopTransformOnEmptyStack", kHead + "pushTransform\npopTransform\npopTransform\n",
-     "e.test:5:1: error: popTransform without a matching pushTransform"},
+     "e.test:5:1: error: popTransform without a matching pushTransform (--lenient ignores it)"},
     {"NegativeSphereRadius", kHead + "sphere 0 0 0 -1\n",
      "e.test:3:14: error: sphere radius must not be negative, got '-1'"},
     {"ZeroDirectionalLight", kHead + "directional 0 0 0 1 1 1\n",
@@ -98,15 +100,17 @@ const ErrorCase kErrorCases[] = {
      "e.test:3:13: error: attenuation coefficients must not all be zero"},
     {"NegativeShininess", kHead + "shininess -2\n",
      "e.test:3:11: error: shininess must not be negative, got '-2'"},
-    {"MissingCameraPointsPastTheLastLine", "size 64 48\nsphere 0 0 0 1\n",
-     "e.test:3:1: error: the scene has no camera (add 'camera fromx fromy fromz atx aty atz upx "
+    {"MissingCameraPointsAtTheFirstCommand", "# a ball\n  size 64 48\nsphere 0 0 0 1\n",
+     "e.test:2:3: error: the scene has no camera (add 'camera fromx fromy fromz atx aty atz upx "
      "upy upz fovy')"},
+    {"EmptyFileSaysSo", "# nothing yet\n\n", "e.test: error: the scene file has no commands"},
     {"CrlfLinesReportTheSameColumns",
      "size 64 48\r\ncamera 0 0 5 0 0 0 0 1 0 45\r\nsphere 0 0 x 1\r\n",
      "e.test:3:12: error: expected a number, got 'x'"},
     // The shape extensions.
     {"MisspelledShapeSuggestsIt", kHead + "cylindre 0 0 0 0 0 1 1\n",
-     "e.test:3:1: error: unknown command 'cylindre'; did you mean 'cylinder'?"},
+     "e.test:3:1: error: unknown command 'cylindre' (--lenient skips unknown commands); did "
+     "you mean 'cylinder'?"},
     {"BoxWithZeroExtent", kHead + "box 0 0 0 1 0 1\n",
      "e.test:3:13: error: box has zero extent along y: both corners have y = '0'"},
     {"ConeWithBothRadiiZero", kHead + "cone 0 0 0 0 0 0 1 0\n",

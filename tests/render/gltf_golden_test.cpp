@@ -9,9 +9,9 @@
 
 #include <string>
 
-#include "glint/io/image/image_io.h"
-#include "glint/io/model_scene.h"
 #include "glint/io/image/image_diff.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/registry.h"
 #include "glint/render/renderer.h"
 #include "render/accepted_image.h"
 

@@ -8,6 +8,11 @@
 
 namespace glint {
 
+/// The ambient light level Glint assumes for materials of model files (MTL, glTF) and for the
+/// materials it gives models itself: their ambient colour is this times Ka, or times their
+/// diffuse colour when they have no Ka. OpenGL's default global ambient.
+constexpr double kMtlAmbientLight = 0.2;
+
 struct Material {
     Vec3 ambient{0.2};  ///< Added unshadowed; the course default is 0.2 grey.
     Vec3 diffuse;

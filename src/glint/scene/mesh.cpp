@@ -15,11 +15,6 @@ size_t meshPlacementBytes(size_t positions, size_t normals) {
 
 namespace {
 
-bool inRange(const Vec3& p) {
-    return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
-           std::abs(p.z) <= kMaxCoordinate;
-}
-
 [[noreturn]] void beyondRange(const MeshData& mesh, uint32_t vertex) {
     throw SceneError({mesh.name, 0, 0},
                      "vertex " + std::to_string(vertex + 1) +
@@ -42,7 +37,7 @@ MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mes
     std::vector<bool> placedInRange(mesh.positions.size());
     for (size_t i = 0; i < world.size(); ++i) {
         world[i] = worldFromObject.point(Vec3(mesh.positions[i]));
-        placedInRange[i] = inRange(world[i]);
+        placedInRange[i] = withinCoordinateRange(world[i]);
     }
     // Normals are mapped by the inverse transpose and not renormalised: interpolating them
     // (and normalising the result) then gives exactly the mapped interpolated normal, which
@@ -148,7 +143,7 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene, std::vector<Diagnosti
             if (it->second.index == MeshData::kNone) continue;
             // The placed mesh must lie in range, as placed vertices must.
             const Bounds3f& b = scene.primitives.addInstance(it->second.index, p.worldFromObject);
-            if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
+            if (!withinCoordinateRange(Vec3(b.lo)) || !withinCoordinateRange(Vec3(b.hi)))
                 throw SceneError({p.mesh->name, 0, 0},
                                  "the mesh lies beyond the supported coordinate range (1e18) "
                                  "once placed by the transform");

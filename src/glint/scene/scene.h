@@ -1,6 +1,7 @@
 #pragma once
 /// Everything needed to render: settings, camera, lights, materials and geometry.
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,6 +35,12 @@ constexpr int kMaxDepthLimit = 64;
 /// Geometry is searched in float: world coordinates beyond this, or spheres whose smallest
 /// semi-axis is below its inverse, would overflow the intersection arithmetic.
 constexpr double kMaxCoordinate = 1e18;
+
+/// Whether `p` lies within the supported coordinate range (kMaxCoordinate on every axis).
+inline bool withinCoordinateRange(const Vec3& p) {
+    return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
+           std::abs(p.z) <= kMaxCoordinate;
+}
 
 /// A scene is built in place (geometry is referenced by its BVH), so it is neither copied
 /// nor moved: loaders hand it out in a unique_ptr.

@@ -17,8 +17,8 @@ void Parser::cmdSize() {
         fail(2, "image of " + std::to_string(w) + " x " + std::to_string(h) +
                     " pixels is too large (at most " + std::to_string(kMaxImagePixels) +
                     " pixels)");
-    scene_->width = static_cast<int>(w);
-    scene_->height = static_cast<int>(h);
+    scene().width = static_cast<int>(w);
+    scene().height = static_cast<int>(h);
 }
 
 void Parser::cmdMaxDepth() {
@@ -28,12 +28,12 @@ void Parser::cmdMaxDepth() {
                     std::to_string(kMaxDepthLimit));
         d = kMaxDepthLimit;
     }
-    scene_->maxDepth = static_cast<int>(d);
+    scene().maxDepth = static_cast<int>(d);
 }
 
 void Parser::cmdOutput() {
-    scene_->output = std::string(tok_[1].text);
-    if (!imageFormatFor(scene_->output))
+    scene().output = std::string(tok_[1].text);
+    if (!imageFormatFor(scene().output))
         warn(1, "Glint cannot write " + quoted(1) + ": use a " + kImageExtensions +
                     " name here or choose one with -o");
 }
@@ -47,26 +47,18 @@ void Parser::cmdCamera() {
         fail(7, "the camera's up vector is zero or parallel to the viewing direction");
     if (!(c.fovyDegrees > 0 && c.fovyDegrees < 180))
         fail(10, "fovy must be between 0 and 180 degrees, got " + quoted(10));
-    if (scene_->camera)
+    if (scene().camera)
         warn(0, "a second camera replaces the one on line " + std::to_string(cameraLine_));
-    scene_->camera = c;
+    scene().camera = c;
     cameraLine_ = line_;
 }
 
 void Parser::cmdSphere() {
-    Sphere s{vec3(1), real(4), {}};
-    if (s.radius < 0) fail(4, "sphere radius must not be negative, got " + quoted(4));
-    s.worldFromObject = transform();
-    if (s.radius == 0) {
+    Vec3 center = vec3(1);
+    double radius = real(4);
+    if (radius < 0) fail(4, "sphere radius must not be negative, got " + quoted(4));
+    if (!builder_.addSphere(center, radius))
         warn(4, "sphere of radius 0 is invisible and is skipped");
-        return;
-    }
-    Bounds3f b = s.bounds();
-    if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
-        fail(0, "the sphere reaches beyond the supported coordinate range (1e18)");
-    if (!(sphereSearch(s).largestEntry() <= kMaxCoordinate))
-        fail(0, "the sphere is too thin: a semi-axis is below 1e-18 after the transform");
-    scene_->primitives.addSphere(s, material());
 }
 
 void Parser::cmdMaxVerts() {
@@ -133,29 +125,28 @@ void Parser::cmdTriNormal() {
 
 void Parser::cmdTranslate() {
     Vec3 v = vec3(1);
-    applyTransform(Mat4::translate(v.x, v.y, v.z));
+    builder_.applyTransform(Mat4::translate(v.x, v.y, v.z));
 }
 
 void Parser::cmdRotate() {
     Vec3 axis = vec3(1);
     double degrees = number(4);
     if (axis == Vec3(0)) fail(1, "rotation axis must not be zero");
-    applyTransform(Mat4::rotate(axis.x, axis.y, axis.z, degrees));
+    builder_.applyTransform(Mat4::rotate(axis.x, axis.y, axis.z, degrees));
 }
 
 void Parser::cmdScale() {
     Vec3 s = vec3(1);
     for (int k = 0; k < 3; ++k)
         if (s[k] == 0) fail(k + 1, "scale by zero would make the transform singular");
-    applyTransform(Mat4::scale(s.x, s.y, s.z));
+    builder_.applyTransform(Mat4::scale(s.x, s.y, s.z));
 }
 
-void Parser::cmdPushTransform() { stack_.push_back(stack_.back()); }
-
 void Parser::cmdPopTransform() {
-    if (stack_.size() == 1) fail(0, "popTransform without a matching pushTransform");
-    stack_.pop_back();
-    transformValid_ = false;
+    if (builder_.popTransform()) return;
+    const std::string what = "popTransform without a matching pushTransform";
+    if (!lenient_) fail(0, what + " (--lenient ignores it)");
+    warnRepeated("popTransform", what + " ignored", "");
 }
 
 void Parser::cmdDirectional() {
@@ -166,16 +157,13 @@ void Parser::cmdDirectional() {
     if (!(len > 0) || !std::isfinite(len)) fail(1, "light direction must not be zero");
     l.direction = d / len;
     l.color = colour(4);
-    scene_->lights.push_back(l);
+    builder_.addLight(l);
 }
 
 void Parser::cmdPoint() {
-    Light l;
-    l.kind = Light::Kind::Point;
-    l.position = transform().point(vec3(1));
-    l.color = colour(4);
-    l.attenuation = attenuation_;
-    scene_->lights.push_back(l);
+    Vec3 position = transform().point(vec3(1));
+    builder_.addPointLight(position, colour(4));
+    if (pointLights_++ == 0) firstPointLine_ = line_;
 }
 
 void Parser::cmdAttenuation() {
@@ -183,19 +171,29 @@ void Parser::cmdAttenuation() {
     for (int k = 0; k < 3; ++k)
         if (a[k] < 0) fail(k + 1, "attenuation coefficients must not be negative");
     if (a == Vec3(0)) fail(1, "attenuation coefficients must not all be zero");
-    attenuation_ = a;
+    if (pointLights_ > 0 && !(a == builder_.attenuation()) && !warnedAttenuation_) {
+        // The point lights above keep the attenuation they were declared with.
+        warn(0,
+             "attenuation applies only to point lights declared after it: " +
+                 (pointLights_ == 1
+                      ? "the one on line " + std::to_string(firstPointLine_) + " keeps its own"
+                      : "the " + std::to_string(pointLights_) + " declared before it, from line " +
+                            std::to_string(firstPointLine_) + ", keep theirs") +
+                 " (reported once)");
+        warnedAttenuation_ = true;
+    }
+    builder_.setAttenuation(a);
 }
 
 void Parser::cmdShininess() {
     double s = real(1);
     if (s < 0) fail(1, "shininess must not be negative, got " + quoted(1));
-    material_.shininess = s;
-    materialChanged_ = true;
+    builder_.editMaterial().shininess = s;
 }
 
 void Parser::cmdBackground() {
-    scene_->background.down = colour(1);
-    scene_->background.up = ntok_ == 7 ? colour(4) : scene_->background.down;
+    scene().background.down = colour(1);
+    scene().background.up = ntok_ == 7 ? colour(4) : scene().background.down;
 }
 
 }  // namespace glint::course

@@ -15,16 +15,14 @@ namespace glint::course {
 void Parser::cmdIor() {
     double n = real(1);
     if (!(n > 0)) fail(1, "ior must be positive, got " + quoted(1));
-    material_.ior = n;
-    materialChanged_ = true;
+    builder_.editMaterial().ior = n;
 }
 
 void Parser::cmdRoughness() {
     double a = real(1);
     if (!(a >= 0 && a <= 1)) fail(1, "roughness must be between 0 and 1, got " + quoted(1));
     // Below this the GGX lobe is a mirror in all but round-off: treat it as one.
-    material_.roughness = a < 1e-4 ? 0 : a;
-    materialChanged_ = true;
+    builder_.editMaterial().roughness = a < 1e-4 ? 0 : a;
 }
 
 void Parser::cmdQuadLight() {
@@ -38,21 +36,12 @@ void Parser::cmdQuadLight() {
     Vec3 corners[4] = {l.position, l.position + l.edge1, l.position + l.edge1 + l.edge2,
                        l.position + l.edge2};
     for (int k = 1; k < 4; ++k)
-        if (!inRange(corners[k]))
+        if (!withinCoordinateRange(corners[k]))
             fail(4, "the light reaches beyond the supported coordinate range (1e18)");
     double area = l.quadArea();
     if (!(area > 0) || !std::isfinite(area) || !(area > 1e-12 * length(l.edge1) * length(l.edge2)))
         fail(4, "quadLight edges must not be zero or parallel");
-    scene_->lights.push_back(l);
-    // Its surface, visible to camera and reflected rays: emission only, from the front.
-    Material m;
-    m.ambient = Vec3(0);
-    m.emission = l.color;
-    m.frontEmissionOnly = true;
-    uint32_t id = scene_->addMaterial(m);
-    scene_->primitives.addTriangle(corners[0], corners[1], corners[2], nullptr, id);
-    scene_->primitives.addTriangle(corners[0], corners[2], corners[3], nullptr, id);
-    materialChanged_ = true;  // the current material must be added again after this one
+    builder_.addQuadLight(l);
 }
 
 void Parser::cmdFilter() {
@@ -69,7 +58,7 @@ void Parser::cmdFilter() {
         if (!(f.radius >= 0.5 && f.radius <= 4))
             fail(2, "filter radius must be 0.5 to 4 pixels, got " + quoted(2));
     }
-    scene_->filter = f;
+    scene().filter = f;
 }
 
 void Parser::cmdLens() {
@@ -77,43 +66,28 @@ void Parser::cmdLens() {
     if (!(r >= 0)) fail(1, "aperture radius must not be negative, got " + quoted(1));
     double d = ntok_ == 3 ? real(2) : 0;
     if (ntok_ == 3 && !(d > 0)) fail(2, "focus distance must be positive, got " + quoted(2));
-    apertureRadius_ = r;
-    focusDistance_ = d;
+    builder_.setLens(r, d);
 }
 
 void Parser::cmdIntegrator() {
     if (!findIntegrator(tok_[1].text))
         fail(1, "unknown integrator " + quoted(1) + " (Glint has " + integratorNameList() + ")");
-    scene_->integrator = std::string(tok_[1].text);
+    scene().integrator = std::string(tok_[1].text);
 }
 
 // ---- Shape extensions ---------------------------------------------------------------------
-
-void Parser::addShape(ShapeKind kind, const Mat4& objectFromCanonical, double k, const char* name) {
-    const Transform& current = transform();  // a singular current transform is reported first
-    std::optional<Transform> t = Transform::fromMatrix(current.matrix() * objectFromCanonical);
-    const std::string the = std::string("the ") + name;
-    if (!t) fail(0, the + " is degenerate after the transform (too thin or too large)");
-    Shape shape{kind, k, *t};
-    Bounds3f b = shape.bounds();
-    if (!inRange(Vec3(b.lo)) || !inRange(Vec3(b.hi)))
-        fail(0, the + " reaches beyond the supported coordinate range (1e18)");
-    if (!(shape.search().largestEntry() <= kMaxCoordinate))
-        fail(0, the + " is too thin: a dimension is below 1e-18 after the transform");
-    scene_->primitives.addShape(shape, material());
-}
 
 void Parser::cmdPlane() {
     Vec3 point = vec3(1), normal = vec3(4);
     if (normal == Vec3(0)) fail(4, "plane normal must not be zero");
     const Transform& t = transform();
-    if (!inRange(t.point(point)))
+    if (!withinCoordinateRange(t.point(point)))
         fail(1,
              "the plane's point lies beyond the supported coordinate range (1e18) after the "
              "transform");
     std::optional<Plane> plane = Plane::make(point, normal, t);
     if (!plane) fail(4, "the plane's normal cannot be normalised after the transform");
-    scene_->primitives.addPlane(*plane, material());
+    builder_.addPlane(*plane);
 }
 
 void Parser::cmdBox() {
@@ -122,7 +96,7 @@ void Parser::cmdBox() {
         if (a[k] == b[k])
             fail(4 + k, std::string("box has zero extent along ") + "xyz"[k] +
                             ": both corners have " + "xyz"[k] + " = " + quoted(4 + k));
-    addShape(ShapeKind::Box, boxPlacement(a, b), 1, "box");
+    builder_.addShape(ShapeKind::Box, boxPlacement(a, b), 1);
 }
 
 void Parser::cmdCylinder() {
@@ -130,7 +104,7 @@ void Parser::cmdCylinder() {
     double r = real(7);
     if (a == b) fail(4, "the cylinder's end points coincide: its axis has no direction");
     if (!(r > 0)) fail(7, "cylinder radius must be positive, got " + quoted(7));
-    addShape(ShapeKind::Cylinder, cylinderPlacement(a, b, r), 1, "cylinder");
+    builder_.addShape(ShapeKind::Cylinder, cylinderPlacement(a, b, r), 1);
 }
 
 void Parser::cmdCone() {
@@ -142,7 +116,7 @@ void Parser::cmdCone() {
     if (a == b) fail(5, "the cone's end points coincide: its axis has no direction");
     double k = 1;
     Mat4 placement = conePlacement(a, r0, b, r1, k);
-    addShape(ShapeKind::Cone, placement, k, "cone");
+    builder_.addShape(ShapeKind::Cone, placement, k);
 }
 
 void Parser::cmdDisk() {
@@ -150,7 +124,7 @@ void Parser::cmdDisk() {
     double r = real(7);
     if (n == Vec3(0)) fail(4, "disk normal must not be zero");
     if (!(r > 0)) fail(7, "disk radius must be positive, got " + quoted(7));
-    addShape(ShapeKind::Disk, diskPlacement(c, n, r), 1, "disk");
+    builder_.addShape(ShapeKind::Disk, diskPlacement(c, n, r), 1);
 }
 
 void Parser::cmdPolygon() {

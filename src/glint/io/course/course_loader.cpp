@@ -11,12 +11,12 @@
 #include <limits>
 #include <system_error>
 
+#include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/geometry/polygon.h"
 #include "glint/io/course/course_parser.h"
-#include "glint/io/image/image_io.h"
-#include "glint/core/mapped_file.h"
 #include "glint/io/course/numbers.h"
+#include "glint/io/image/image_io.h"
 
 namespace glint {
 namespace course {
@@ -141,9 +141,28 @@ std::unique_ptr<Scene> Parser::run() {
                                             : std::string()) +
                              "), more than the " + formatBytes(static_cast<double>(available)) +
                              " available");
-    scene_->primitives.reserve(counts.triangles, counts.spheres, counts.shapes);
+    builder_.reserve(counts.triangles, counts.spheres, counts.shapes);
     vertices_.reserve(counts.vertices);
     size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark
+    try {
+        readLines(pos);
+    } catch (const BuildError& e) {
+        fail(0, e.what());  // what the builder refused, at the command that asked
+    }
+    if (!scene().camera) {
+        // At the first command: the camera usually comes first.
+        FileLoc first = firstCommand();
+        if (first.line == 0) throw SceneError({file_, 0, 0}, "the scene file has no commands");
+        throw SceneError(first,
+                         "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
+                         "upx upy upz fovy')");
+    }
+    std::unique_ptr<Scene> scene = builder_.finish(&warnings_);
+    if (!imageTextures_.empty()) checkTextureCoordinates(*scene);
+    return scene;
+}
+
+void Parser::readLines(size_t pos) {
     while (pos < text_.size()) {
         size_t end = text_.find('\n', pos);
         if (end == std::string_view::npos) end = text_.size();
@@ -158,7 +177,10 @@ std::unique_ptr<Scene> Parser::run() {
                 cmd = &c;
                 break;
             }
-        if (!cmd) unknownCommand();
+        if (!cmd) {
+            unknownCommand();
+            continue;
+        }
         int args = ntok_ - 1;
         if (args < cmd->minArgs || args > cmd->maxArgs) {
             // "1 or 2" for filter and lens, "3 or 6" for background, "3 to 1024" for polygon.
@@ -179,17 +201,6 @@ std::unique_ptr<Scene> Parser::run() {
                         std::to_string(args));
         (this->*cmd->handler)();
     }
-    if (!scene_->camera) {
-        // Point just past the last line, where the missing command would go.
-        throw SceneError({file_, line_ + 1, 1},
-                         "the scene has no camera (add 'camera fromx fromy fromz atx aty atz "
-                         "upx upy upz fovy')");
-    }
-    meshPlacer_.place(*scene_, &warnings_);
-    if (!imageTextures_.empty()) checkTextureCoordinates();
-    scene_->camera->apertureRadius = apertureRadius_;
-    scene_->camera->focusDistance = focusDistance_;
-    return std::move(scene_);
 }
 
 void Parser::tokenize(std::string_view line) {
@@ -251,15 +262,6 @@ long long Parser::integer(int i, long long lo, long long hi) const {
     return v;
 }
 
-const Transform& Parser::bakeTransform() {
-    if (!transformValid_) {
-        transform_ = Transform::fromMatrix(stack_.back());
-        transformValid_ = true;
-    }
-    if (!transform_) fail(0, "the current transform is singular or not finite");
-    return *transform_;
-}
-
 uint32_t Parser::vertexIndex(int i, size_t count, const char* one, const char* many) const {
     long long v = integer(i, 0, std::numeric_limits<uint32_t>::max());
     if (static_cast<size_t>(v) >= count) {
@@ -304,9 +306,35 @@ void Parser::unknownCommand() {
             best = c.name;
         }
     }
-    std::string msg = "unknown command " + quoted(0);
-    if (!best.empty()) msg += "; did you mean '" + std::string(best) + "'?";
-    fail(0, msg);
+    std::string suggestion = best.empty() ? "" : "; did you mean '" + std::string(best) + "'?";
+    if (!lenient_)
+        fail(0,
+             "unknown command " + quoted(0) + " (--lenient skips unknown commands)" + suggestion);
+    warnRepeated(std::string(tok_[0].text), "unknown command " + quoted(0) + " skipped",
+                 suggestion);
+}
+
+void Parser::warnRepeated(const std::string& key, const std::string& head,
+                          const std::string& tail) {
+    auto [it, first] = repeated_.try_emplace(key, warnings_.size(), 1);
+    if (first) {
+        warn(0, head + tail);
+        return;
+    }
+    auto& [index, count] = it->second;
+    warnings_[index].message = head + " (" + std::to_string(++count) + " times; first here)" + tail;
+}
+
+FileLoc Parser::firstCommand() {
+    line_ = 0;
+    for (size_t pos = text_.starts_with("\xEF\xBB\xBF") ? 3 : 0; pos < text_.size();) {
+        size_t end = std::min(text_.find('\n', pos), text_.size());
+        ++line_;
+        tokenize(text_.substr(pos, end - pos));
+        if (ntok_ > 0) return loc(tok_[0].column);
+        pos = end + 1;
+    }
+    return {file_, 0, 0};
 }
 
 }  // namespace course
@@ -315,17 +343,18 @@ using course::Command;
 using course::Parser;
 
 std::unique_ptr<Scene> parseCourseScene(std::string_view text, const std::string& fileName,
-                                     std::vector<Diagnostic>& warnings, const LoadLimits& limits) {
-    return Parser(text, fileName, warnings, limits).run();
+                                        std::vector<Diagnostic>& warnings,
+                                        const CourseOptions& options) {
+    return Parser(text, fileName, warnings, options).run();
 }
 
 std::unique_ptr<Scene> loadCourseScene(const std::string& path, std::vector<Diagnostic>& warnings,
-                                    const LoadLimits& limits) {
+                                       const CourseOptions& options) {
     if (std::string problem = inputFileProblem(path); !problem.empty())
         throw SceneError({path, 0, 0}, "cannot read scene: " + problem);
     try {
         MappedFile file(path);
-        return parseCourseScene(file.text(), path, warnings, limits);
+        return parseCourseScene(file.text(), path, warnings, options);
     } catch (const std::system_error& e) {
         throw SceneError({path, 0, 0},
                          std::string("cannot read scene: ") + std::strerror(e.code().value()));

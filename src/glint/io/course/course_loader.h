@@ -13,16 +13,25 @@
 
 namespace glint {
 
+struct CourseOptions {
+    /// Memory, and whether the files a scene names (`mesh`, `texture`) may be read.
+    LoadLimits limits;
+    /// Lenient, as the course's own parser was: an unknown command is skipped and a
+    /// popTransform without a pushTransform is ignored, each with a warning (one per command
+    /// name, with a count), instead of being an error.
+    bool lenient = false;
+};
+
 /// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error, or if
-/// the scene would need more memory than `limits` allow; appends warnings to `warnings`. The
-/// scene is not yet prepared (see Scene::prepare).
+/// the scene would need more memory than `options.limits` allow; appends warnings to
+/// `warnings`. The scene is not yet prepared (see Scene::prepare).
 std::unique_ptr<Scene> parseCourseScene(std::string_view text, const std::string& fileName,
-                                     std::vector<Diagnostic>& warnings,
-                                     const LoadLimits& limits = {});
+                                        std::vector<Diagnostic>& warnings,
+                                        const CourseOptions& options = {});
 
 /// Reads and parses the file at `path`. Throws SceneError if it cannot be read or is malformed.
 std::unique_ptr<Scene> loadCourseScene(const std::string& path, std::vector<Diagnostic>& warnings,
-                                    const LoadLimits& limits = {});
+                                       const CourseOptions& options = {});
 
 /// Every command name the loader accepts.
 std::vector<std::string_view> courseCommandNames();

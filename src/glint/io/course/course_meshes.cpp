@@ -4,10 +4,9 @@
 #include <filesystem>
 #include <string>
 
-#include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/course/course_parser.h"
-#include "glint/io/obj/obj_loader.h"
 #include "glint/io/image/texture_io.h"
+#include "glint/io/registry.h"
 
 namespace glint::course {
 
@@ -19,33 +18,24 @@ std::string Parser::scenePath(std::string_view name) const {
 
 void Parser::cmdMesh() {
     const Transform& t = transform();  // a singular transform is reported first
-    uint32_t material = this->material();
+    uint32_t material = builder_.materialId();
     if (!limits_.readFiles) fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
     std::string path = scenePath(tok_[1].text);
-    const bool gltf = isGltfFile(path);
-    if (!meshes_.count(path) && !gltfModels_.count(path)) {
+    auto it = models_.find(path);
+    if (it == models_.end()) {
         if (std::string problem = inputFileProblem(path); !problem.empty())
             fail(1, "cannot read mesh " + quoted(1) + " (" + path + "): " + problem);
+        FormatChoice format = chooseFormat(path, FileUse::Model, warnings_);
+        if (!format.format) fail(0, "mesh " + quoted(1) + ": " + format.problem);
         // Errors inside the mesh file name that file (and its line and column for OBJ).
-        if (gltf) {
-            GltfOptions options;
-            options.limits = limits_;
-            gltfModels_.emplace(path, loadGltf(path, warnings_, options));
-        } else {
-            ObjOptions options;
-            options.limits = limits_;
-            meshes_.emplace(path, loadObj(path, warnings_, options));
-        }
+        it = models_.emplace(path, format.format->loadModel(path, warnings_, limits_)).first;
     }
-    // Placed when the file ends (placeMeshes), so that a mesh placed several times is stored
-    // once. A glTF asset's meshes are placed by its nodes, under the current transform; its
-    // cameras and lights are the scene's business, and are not used.
+    // Placed when the file ends (SceneBuilder::finish), so that a mesh placed several times is
+    // stored once. A glTF asset's meshes are placed by its nodes, under the current transform;
+    // its cameras and lights are the scene's business, and are not used.
     const std::string what = "mesh " + quoted(1);
     try {
-        if (gltf)
-            placeGltf(meshPlacer_, gltfModels_.at(path), t, material, loc(tok_[0].column), what);
-        else
-            meshPlacer_.add(meshes_.at(path), t, material, loc(tok_[0].column), what);
+        placeModel(builder_, it->second, t, material, loc(tok_[0].column), what);
     } catch (const SceneError& e) {
         fail(0, what + ": " + e.diagnostic().message);
     }
@@ -54,8 +44,7 @@ void Parser::cmdMesh() {
 void Parser::cmdTexture() {
     if (tok_[1].text == "none") {
         if (ntok_ > 2) fail(2, "'texture none' takes no other argument");
-        material_.texture = 0;
-        materialChanged_ = true;
+        builder_.editMaterial().texture = 0;
         return;
     }
     Texture texture;
@@ -77,9 +66,9 @@ void Parser::cmdTexture() {
         }
     }
     texture.image = it->second;
-    material_.texture = scene_->addTexture(std::move(texture));
-    materialChanged_ = true;
-    imageTextures_[material_.texture] = loc(tok_[1].column);
+    uint32_t id = scene().addTexture(std::move(texture));
+    builder_.editMaterial().texture = id;
+    imageTextures_[id] = loc(tok_[1].column);
 }
 
 void Parser::cmdChecker() {
@@ -89,22 +78,21 @@ void Parser::cmdChecker() {
     texture.b = colour(4);
     texture.scale = real(7);
     if (!(texture.scale > 0)) fail(7, "checker scale must be positive, got " + quoted(7));
-    material_.texture = scene_->addTexture(std::move(texture));
-    materialChanged_ = true;
+    builder_.editMaterial().texture = scene().addTexture(std::move(texture));
 }
 
-void Parser::checkTextureCoordinates() {
+void Parser::checkTextureCoordinates(const Scene& scene) {
     // Surfaces without coordinates show an image texture's material colour instead.
     std::map<uint32_t, size_t> without;  // texture id -> surfaces without coordinates
     auto check = [&](const Primitives& prims) {
         for (uint32_t id = 0; id < prims.size(); ++id) {
             if (prims.isInstance(id)) continue;  // its mesh is checked once, below
-            uint32_t texture = scene_->materials[prims.materialOf(id)].texture;
+            uint32_t texture = scene.materials[prims.materialOf(id)].texture;
             if (texture != 0 && imageTextures_.count(texture) && !prims.hasTexCoords(id))
                 ++without[texture];
         }
     };
-    const Primitives& prims = scene_->primitives;
+    const Primitives& prims = scene.primitives;
     check(prims);
     for (uint32_t m = 0; m < prims.sharedMeshCount(); ++m) check(prims.sharedMesh(m));
     for (const auto& [texture, count] : without)

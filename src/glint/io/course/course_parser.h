@@ -10,15 +10,17 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "glint/core/error.h"
 #include "glint/geometry/shape_search.h"
-#include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/math/mat4.h"
 #include "glint/scene/mesh.h"
+#include "glint/scene/model.h"
 #include "glint/scene/scene.h"
+#include "glint/scene/scene_builder.h"
 
 namespace glint::course {
 
@@ -48,17 +50,20 @@ constexpr long long kMaxVertexReserve = 1 << 20;
 class Parser {
   public:
     Parser(std::string_view text, const std::string& file, std::vector<Diagnostic>& warnings,
-           const LoadLimits& limits)
+           const CourseOptions& options)
         : text_(text),
           file_(file),
           warnings_(warnings),
-          limits_(limits),
-          scene_(std::make_unique<Scene>()) {}
+          limits_(options.limits),
+          lenient_(options.lenient) {}
 
     std::unique_ptr<Scene> run();
     static const std::vector<Command>& commands();
 
   private:
+    /// Reads the lines from `pos` on, each command in turn.
+    void readLines(size_t pos);
+
     // Lexing and diagnostics.
     void tokenize(std::string_view line);
     FileLoc loc(int column) const { return {file_, line_, column}; }
@@ -68,6 +73,12 @@ class Parser {
     void warn(int token, const std::string& message) {
         warnings_.push_back({loc(tok_[token].column), message});
     }
+    /// Warns at the command of a problem that may recur, once per `key`: the warning, at its
+    /// first occurrence, reads `head`, then "(N times; first here)" once it recurs, then
+    /// `tail`.
+    void warnRepeated(const std::string& key, const std::string& head, const std::string& tail);
+    /// Where the first command is, or line 0 if the text has none.
+    FileLoc firstCommand();
     std::string quoted(int token) const {
         std::string q(1, '\'');  // built by appending: GCC 12 warns falsely on "'" + string
         q.append(tok_[token].text).push_back('\'');
@@ -80,28 +91,14 @@ class Parser {
     long long integer(int i, long long lo, long long hi) const;
     Vec3 vec3(int i) const { return {real(i), real(i + 1), real(i + 2)}; }
     Vec3 colour(int i) const { return vec3(i); }
-    /// The current transform, baked; fails at the command if it is singular. The common case,
-    /// already baked, stays inline (tri lines call it millions of times).
-    const Transform& transform() {
-        if (transformValid_ && transform_) return *transform_;
-        return bakeTransform();
-    }
-    const Transform& bakeTransform();
-    /// The id of the current material, added to the scene when it changed since last asked.
-    uint32_t material() {
-        if (materialChanged_)
-            materialId_ = scene_->addMaterial(material_), materialChanged_ = false;
-        return materialId_;
-    }
+    /// The builder's current transform; a singular one is a BuildError, which run() reports at
+    /// the command.
+    const Transform& transform() { return builder_.transform(); }
     /// Argument `i` as an index into a pile of `count` entries, named `one` / `many`.
     uint32_t vertexIndex(int i, size_t count, const char* one, const char* many) const;
-    static bool inRange(const Vec3& p) {
-        return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
-               std::abs(p.z) <= kMaxCoordinate;
-    }
     /// `p`, a transformed vertex named by argument `i`, if it is within the coordinate range.
     Vec3 checkedVertex(const Vec3& p, int i) const {
-        if (!inRange(p))
+        if (!withinCoordinateRange(p))
             fail(i, "vertex " + quoted(i) +
                         " lies beyond the supported coordinate range (1e18) after the transform");
         return p;
@@ -122,39 +119,24 @@ class Parser {
     void cmdTranslate();
     void cmdRotate();
     void cmdScale();
-    void cmdPushTransform();
+    void cmdPushTransform() { builder_.pushTransform(); }
     void cmdPopTransform();
     void cmdDirectional();
     void cmdPoint();
     void cmdAttenuation();
-    void cmdAmbient() {
-        material_.ambient = colour(1);
-        materialChanged_ = true;
-    }
-    void cmdDiffuse() {
-        material_.diffuse = colour(1);
-        materialChanged_ = true;
-    }
-    void cmdSpecular() {
-        material_.specular = colour(1);
-        materialChanged_ = true;
-    }
-    void cmdEmission() {
-        material_.emission = colour(1);
-        materialChanged_ = true;
-    }
+    void cmdAmbient() { builder_.editMaterial().ambient = colour(1); }
+    void cmdDiffuse() { builder_.editMaterial().diffuse = colour(1); }
+    void cmdSpecular() { builder_.editMaterial().specular = colour(1); }
+    void cmdEmission() { builder_.editMaterial().emission = colour(1); }
     void cmdShininess();
     void cmdBackground();
     // Extensions beyond Whitted (docs/scene-format.md).
-    void cmdTransmission() {
-        material_.transmission = colour(1);
-        materialChanged_ = true;
-    }
+    void cmdTransmission() { builder_.editMaterial().transmission = colour(1); }
     void cmdIor();
     void cmdRoughness();
     void cmdQuadLight();
-    void cmdLightSamples() { scene_->lightSamples = static_cast<int>(integer(1, 1, 64)); }
-    void cmdSpp() { scene_->spp = static_cast<int>(integer(1, 1, 65536)); }
+    void cmdLightSamples() { scene().lightSamples = static_cast<int>(integer(1, 1, 64)); }
+    void cmdSpp() { scene().spp = static_cast<int>(integer(1, 1, 65536)); }
     void cmdFilter();
     void cmdLens();
     void cmdIntegrator();
@@ -172,54 +154,40 @@ class Parser {
     /// `name`, a file named in the scene, relative to the scene file's directory.
     std::string scenePath(std::string_view name) const;
     /// Warns once if surfaces without texture coordinates use an image texture.
-    void checkTextureCoordinates();
-    /// Adds a box, cylinder, cone or disk placed by `objectFromCanonical` under the current
-    /// transform, after checking it against the coordinate limits.
-    void addShape(ShapeKind kind, const Mat4& objectFromCanonical, double k, const char* name);
-
+    void checkTextureCoordinates(const Scene& scene);
+    Scene& scene() { return builder_.scene(); }
     void addTriangle(const Vec3 (&p)[3], const Vec3* normals) {
-        if (!scene_->primitives.addTriangle(p[0], p[1], p[2], normals, material()) &&
-            !warnedDegenerate_) {
+        if (!builder_.addTriangle(p, normals) && !warnedDegenerate_) {
             warn(0, "triangle has zero area and is skipped (later ones are skipped silently)");
             warnedDegenerate_ = true;
         }
     }
-    void applyTransform(const Mat4& m) {
-        stack_.back() = stack_.back() * m;
-        transformValid_ = false;
-    }
+    /// Fails at an unknown command, or when lenient warns and returns.
     void unknownCommand();
 
     std::string_view text_;
     const std::string& file_;
     std::vector<Diagnostic>& warnings_;
     LoadLimits limits_;
-    std::unique_ptr<Scene> scene_;
+    bool lenient_;
+    SceneBuilder builder_;
 
     int line_ = 0;
     std::array<Token, kMaxTokens> tok_;
     int ntok_ = 0;  ///< Tokens on the line, possibly more than kMaxTokens (only those are kept).
 
-    std::vector<Mat4> stack_{Mat4::identity()};
-    std::optional<Transform> transform_;  ///< stack_.back() baked; empty if singular.
-    bool transformValid_ = false;
-    Material material_;
-    bool materialChanged_ = true;
-    uint32_t materialId_ = 0;
-    Vec3 attenuation_{1, 0, 0};
     LargeVector<Vec3> vertices_;
     std::vector<std::array<Vec3, 2>> normalVertices_;  ///< Position and unit normal (or zero).
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
-    std::map<std::string, MeshData> meshes_;       ///< Read by `mesh`, by path: each read once.
-    std::map<std::string, GltfModel> gltfModels_;  ///< The same for glTF files.
+    int pointLights_ = 0, firstPointLine_ = 0;  ///< For the attenuation warning.
+    bool warnedAttenuation_ = false;
+    /// Warnings of problems that recur (warnRepeated), by key: the warning and its count.
+    std::map<std::string, std::pair<size_t, int>> repeated_;
+    std::map<std::string, Model> models_;  ///< Read by `mesh`, by path: each read once.
     std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
     std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
-    /// `mesh` placements, added when the file ends (so that a mesh placed several times is
-    /// stored once).
-    MeshPlacer meshPlacer_;
-    double apertureRadius_ = 0, focusDistance_ = 0;  ///< From `lens`, applied to the camera.
 };
 
 }  // namespace glint::course

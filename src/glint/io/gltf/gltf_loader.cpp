@@ -14,9 +14,9 @@
 #include <optional>
 #include <system_error>
 
+#include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/io/gltf/gltf_internal.h"
-#include "glint/core/mapped_file.h"
 
 namespace glint {
 namespace gltf {
@@ -86,11 +86,6 @@ Vec3 applyVector(const Mat4& m, const Vec3& v) {
             m.m[2][0] * v.x + m.m[2][1] * v.y + m.m[2][2] * v.z};
 }
 
-bool inRange(const Vec3& p) {
-    return std::abs(p.x) <= kMaxCoordinate && std::abs(p.y) <= kMaxCoordinate &&
-           std::abs(p.z) <= kMaxCoordinate;
-}
-
 /// A node's transform relative to its parent: its matrix, or translation x rotation x scale.
 Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label) {
     auto numbers = [&](const std::vector<double>& v, size_t count, const char* what) {
@@ -132,10 +127,10 @@ Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string&
 }
 
 /// The camera of node `node`, if it is one Glint can use.
-std::optional<GltfCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
-                                     const std::string& node) {
+std::optional<ModelCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
+                                      const std::string& node) {
     const tinygltf::Camera& c = ctx.model.cameras[static_cast<size_t>(index)];
-    GltfCamera out;
+    ModelCamera out;
     out.description = describe("camera", static_cast<size_t>(index), c.name) + " (" + node + ")";
     if (c.type != "perspective") {
         ctx.warn(out.description + " is " + c.type +
@@ -148,8 +143,8 @@ std::optional<GltfCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
     Vec3 eye = applyPoint(world, Vec3(0)), forward = applyVector(world, {0, 0, -1});
     Vec3 up = applyVector(world, {0, 1, 0});
     double fl = length(forward), ul = length(up);
-    if (!isFinite(eye) || !inRange(eye) || !(fl > 0) || !std::isfinite(fl) || !(ul > 0) ||
-        !std::isfinite(ul) || !(length(cross(forward / fl, up / ul)) > 1e-6)) {
+    if (!isFinite(eye) || !withinCoordinateRange(eye) || !(fl > 0) || !std::isfinite(fl) ||
+        !(ul > 0) || !std::isfinite(ul) || !(length(cross(forward / fl, up / ul)) > 1e-6)) {
         ctx.warn(out.description +
                  ": its node's transform gives it no position or view "
                  "direction: it is ignored");
@@ -196,7 +191,7 @@ std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
         out.kind = Light::Kind::Point;
         out.position = applyPoint(world, Vec3(0));
         out.attenuation = {0, 0, 1};
-        if (isFinite(out.position) && inRange(out.position)) return out;
+        if (isFinite(out.position) && withinCoordinateRange(out.position)) return out;
     } else if (l.type == "directional") {
         out.kind = Light::Kind::Directional;
         Vec3 towards = applyVector(world, {0, 0, 1});  // it shines along its node's -z
@@ -217,7 +212,7 @@ std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
 
 /// Walks the default scene's node trees (or every root node when the file has no scene):
 /// placements, the first perspective camera and the lights.
-void walkNodes(Context& ctx, GltfModel& out) {
+void walkNodes(Context& ctx, Model& out) {
     const auto& nodes = ctx.model.nodes;
     const auto& scenes = ctx.model.scenes;
     std::vector<int> roots;
@@ -296,11 +291,11 @@ void walkNodes(Context& ctx, GltfModel& out) {
 
 /// Reads every mesh a placement uses, once, after checking what they and their placements
 /// need of memory.
-void readMeshes(Context& ctx, GltfModel& out) {
+void readMeshes(Context& ctx, Model& out) {
     const size_t meshes = ctx.model.meshes.size();
     out.meshes.resize(meshes);
     std::vector<std::optional<MeshCounts>> counts(meshes);
-    for (const GltfPlacement& p : out.placements)
+    for (const ModelPlacement& p : out.placements)
         if (!counts[p.mesh]) counts[p.mesh] = countMesh(ctx, static_cast<int>(p.mesh));
     double meshBytes = 0, placed = 0, placedNormals = 0, placedUvs = 0;
     size_t maxPositions = 0, maxNormals = 0;
@@ -315,7 +310,7 @@ void readMeshes(Context& ctx, GltfModel& out) {
     // A mesh placed once becomes the scene's triangles; a mesh placed several times is stored
     // once and placed by instances (MeshPlacer), each the size of a shape.
     std::vector<size_t> uses(meshes);
-    for (const GltfPlacement& p : out.placements) ++uses[p.mesh];
+    for (const ModelPlacement& p : out.placements) ++uses[p.mesh];
     double instances = 0;
     for (size_t m = 0; m < meshes; ++m)
         if (uses[m] > 0) {
@@ -346,26 +341,20 @@ void readMeshes(Context& ctx, GltfModel& out) {
 }  // namespace
 }  // namespace gltf
 
-size_t GltfModel::triangles() const {
-    size_t n = 0;
-    for (const GltfPlacement& p : placements) n += meshes[p.mesh].triangles.size();
-    return n;
-}
-
-GltfModel parseGltf(std::string_view bytes, const std::string& fileName,
-                    std::vector<Diagnostic>& warnings, const GltfOptions& options) {
+Model parseGltf(std::string_view bytes, const std::string& fileName,
+                std::vector<Diagnostic>& warnings, const GltfOptions& options) {
     gltf::Context ctx(fileName, warnings, options);
     gltf::parseContainer(ctx, bytes);
     gltf::checkAsset(ctx);
-    GltfModel out;
+    Model out;
     out.name = fileName;
     gltf::walkNodes(ctx, out);
     gltf::readMeshes(ctx, out);
     return out;
 }
 
-GltfModel loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
-                   const GltfOptions& options) {
+Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
+               const GltfOptions& options) {
     if (std::string problem = inputFileProblem(path); !problem.empty())
         throw SceneError({path, 0, 0}, "cannot read glTF: " + problem);
     try {
@@ -374,30 +363,6 @@ GltfModel loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
     } catch (const std::system_error& e) {
         throw SceneError({path, 0, 0},
                          std::string("cannot read glTF: ") + std::strerror(e.code().value()));
-    }
-}
-
-bool isGltfFile(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".gltf" || ext == ".glb";
-}
-
-void placeGltf(MeshPlacer& placer, const GltfModel& model, const Transform& worldFromModel,
-               uint32_t defaultMaterial, const FileLoc& where, const std::string& what) {
-    // One MeshData per glTF mesh, placed once per node: the placer stores a mesh that several
-    // nodes place once.
-    const bool identity = worldFromModel.isIdentity();
-    for (const GltfPlacement& p : model.placements) {
-        std::optional<Transform> t =
-            identity ? p.worldFromObject
-                     : Transform::fromMatrix(worldFromModel.matrix() * p.worldFromObject.matrix());
-        if (!t)
-            throw SceneError({model.name, 0, 0},
-                             "node " + std::to_string(p.node) +
-                                 ": its transform, with the scene's, is singular or too large");
-        placer.add(model.meshes[p.mesh], *t, defaultMaterial, where, what);
     }
 }
 

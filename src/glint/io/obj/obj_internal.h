@@ -28,6 +28,11 @@ class TextBuf : public std::streambuf {
     size_t offset() const { return static_cast<size_t>(gptr() - eback()); }
 };
 
+/// tinyobjloader's warnings `text` (one per line) about `file`, as Glint's: at the line a
+/// warning names ("(line 5.)", "(line 5 in .mtl.)"), else at the file, in Glint's words where
+/// Glint knows the warning.
+std::vector<Diagnostic> libraryWarnings(std::string_view text, const std::string& file);
+
 /// Line and column (1-based) in `text` of the statement tinyobjloader has just read, given the
 /// read position `offset` just past it. Lines end at LF, CR or CR LF, as the library counts them.
 /// `token` > 0 gives the column of the line's token of that number (0: the first one).

@@ -13,9 +13,9 @@
 #include <set>
 #include <system_error>
 
+#include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/geometry/polygon.h"
-#include "glint/core/mapped_file.h"
 #include "glint/io/obj/obj_internal.h"
 
 namespace glint {
@@ -125,6 +125,8 @@ class Reader : public tinyobj::MaterialReader {
     std::vector<MeshData::Corner> corners_;   ///< Of the face being read.
     std::vector<Vec3> polygon_;               ///< Positions of the face being triangulated.
     std::set<std::string> unknownMaterials_;  ///< Named by usemtl and warned about.
+    int unreadLibraries_ =
+        0;  ///< mtllib files not read (warned about): their materials are unknown.
     bool warnedNormal_ = false, warnedMixed_ = false, warnedFan_ = false;
 };
 
@@ -284,7 +286,8 @@ void Reader::onUseMaterial(void* p, const char* name, int) {
         return;
     }
     r.material_ = MeshData::kNone;
-    if (!r.unknownMaterials_.insert(key).second) return;
+    // A library that could not be read was warned about: its materials are not named again.
+    if (r.unreadLibraries_ > 0 || !r.unknownMaterials_.insert(key).second) return;
     r.warnings_.push_back({r.here(1), "material '" + key +
                                           "' is not defined in any material library (mtllib): "
                                           "its faces take the default material"});
@@ -320,20 +323,29 @@ bool Reader::operator()(const std::string& name, std::vector<tinyobj::material_t
         warnings_.push_back({here(1), "material library '" + name +
                                           "' is not read (reading "
                                           "files is turned off)"});
+        ++unreadLibraries_;
         return false;
     } else {
         std::string path = name;
         std::replace(path.begin(), path.end(), '\\', '/');
         if (!path.empty() && path.front() != '/' && !dir_.empty()) path = dir_ + "/" + path;
         label = path;
-        if (std::string problem = inputFileProblem(path); !problem.empty())
-            fail("cannot read material library '" + name + "' (" + path + "): " + problem, 1);
-        try {
-            file = std::make_unique<MappedFile>(path);
-        } catch (const std::system_error& e) {
-            fail("cannot read material library '" + name + "' (" + path +
-                     "): " + std::strerror(e.code().value()),
-                 1);
+        std::string problem = inputFileProblem(path);
+        if (problem.empty()) {
+            try {
+                file = std::make_unique<MappedFile>(path);
+            } catch (const std::system_error& e) {
+                problem = std::strerror(e.code().value());
+            }
+        }
+        if (!problem.empty()) {
+            // As other viewers do: the model without the library's materials.
+            warnings_.push_back({here(1), "cannot read material library '" + name + "' (" + path +
+                                              "): " + problem +
+                                              "; faces that use its materials take the default "
+                                              "material"});
+            ++unreadLibraries_;
+            return false;
         }
         mtl = file->text();
     }
@@ -348,19 +360,8 @@ bool Reader::operator()(const std::string& name, std::vector<tinyobj::material_t
         mtlFiles_.push_back(label);
         mtlEntries_.push_back(i - before < entries.size() ? entries[i - before] : MtlEntry{});
     }
-    // The library's own remarks (e.g. both d and Tr given), one line each.
-    size_t pos = 0;
-    while (pos < mtlWarnings.size()) {
-        size_t nl = mtlWarnings.find('\n', pos);
-        if (nl == std::string::npos) nl = mtlWarnings.size();
-        if (nl > pos) {
-            Diagnostic d;
-            d.loc.file = label;
-            d.message = mtlWarnings.substr(pos, nl - pos);
-            warnings_.push_back(std::move(d));
-        }
-        pos = nl + 1;
-    }
+    // The library's own remarks (e.g. both d and Tr given), at their line of the library.
+    for (Diagnostic& d : libraryWarnings(mtlWarnings, label)) warnings_.push_back(std::move(d));
     (void)warn;
     return true;
 }
@@ -402,6 +403,11 @@ MeshData Reader::run() {
         // The library's own failures (it reports few), at the statement it was reading.
         fail(std::string("cannot read the mesh: ") + e.what());
     }
+    // The library's own remarks. Its note that a library failed repeats Glint's warning.
+    for (Diagnostic& d : libraryWarnings(warn, file_))
+        if (!(unreadLibraries_ > 0 &&
+              d.message.find("Failed to load material file") != std::string::npos))
+            warnings_.push_back(std::move(d));
     if (mesh_.triangles.empty())
         throw SceneError({file_, 0, 0},
                          "the mesh has no faces ('f' statements): is the file complete?");

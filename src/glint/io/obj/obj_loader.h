@@ -14,10 +14,6 @@
 
 namespace glint {
 
-/// The ambient light level Glint assumes for MTL materials: their ambient colour is this times
-/// Ka, or times their diffuse colour when they have no Ka. OpenGL's default global ambient.
-constexpr double kMtlAmbientLight = 0.2;
-
 struct ObjOptions {
     LoadLimits limits;
     /// MTL text used for every `mtllib` instead of the files it names (tests, the fuzzer). With

@@ -4,12 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "glint/core/error.h"
+#include "glint/io/image/texture_io.h"
 #include "glint/io/obj/obj_internal.h"
 #include "glint/io/obj/obj_loader.h"
-#include "glint/io/image/texture_io.h"
 
 namespace glint::obj {
 namespace {
@@ -143,6 +144,37 @@ MeshMaterial mapMtlMaterial(const tinyobj::material_t& m, const MtlEntry& entry,
                                         ", not an index of refraction; using 1"});
             g.ior = 1;
         }
+    }
+    return out;
+}
+
+std::vector<Diagnostic> libraryWarnings(std::string_view text, const std::string& file) {
+    std::vector<Diagnostic> out;
+    for (size_t pos = 0; pos < text.size();) {
+        size_t end = std::min(text.find('\n', pos), text.size());
+        std::string_view line = text.substr(pos, end - pos);
+        pos = end + 1;
+        Diagnostic d;
+        d.loc.file = file;
+        // "... (line 12.)" or "... (line 12 in .mtl.)": the line, and the message without it.
+        if (size_t at = line.rfind(" (line ");
+            at != std::string_view::npos && line.ends_with(")")) {
+            d.loc.line = std::atoi(std::string(line.substr(at + 7)).c_str());
+            d.loc.column = d.loc.line > 0 ? 1 : 0;
+            line = line.substr(0, at);
+        }
+        while (!line.empty() && (line.back() == '.' || isBlank(line.back()) || line.back() == '\r'))
+            line.remove_suffix(1);
+        if (line.empty()) continue;
+        constexpr std::string_view kBoth = "Both `d` and `Tr` parameters defined for \"";
+        if (line.starts_with(kBoth) && line.find('"', kBoth.size()) != std::string_view::npos) {
+            std::string_view name = line.substr(kBoth.size());
+            name = name.substr(0, name.find('"'));
+            d.message = "material '" + std::string(name) + "' has both d and Tr: d is used";
+        } else {
+            d.message = "tinyobjloader: " + std::string(line);
+        }
+        out.push_back(std::move(d));
     }
     return out;
 }

@@ -146,12 +146,13 @@ TEST(CourseShapes, ShapesCountInTheMemoryEstimate) {
     for (int i = 0; i < 4000; ++i) text += "cylinder 0 0 0 0 0 1 1\npolygon 0 1 2 3\n";
     std::vector<Diagnostic> warnings;
     try {
-        parseCourseScene(text, "m.test", warnings, LoadLimits{1 << 20});
+        parseCourseScene(text, "m.test", warnings, CourseOptions{LoadLimits{1 << 20}});
         ADD_FAILURE() << "no SceneError";
     } catch (const SceneError& e) {
         EXPECT_THAT(e.diagnostic().message, HasSubstr("(8000 triangles, 0 spheres, 4000 other"));
     }
-    auto scene = parseCourseScene(text, "m.test", warnings, LoadLimits{size_t{1} << 30});
+    auto scene =
+        parseCourseScene(text, "m.test", warnings, CourseOptions{LoadLimits{size_t{1} << 30}});
     EXPECT_EQ(scene->primitives.shapeCount(), 4000u);
     EXPECT_EQ(scene->primitives.triangleCount(), 8000u);
     EXPECT_GT(Scene::estimateBytes(0, 0, 10), Scene::estimateBytes(0, 0, 1));

@@ -277,8 +277,10 @@ TEST(CourseLoader, PointLightPositionIsTransformed) {
 }
 
 TEST(CourseLoader, AttenuationDefaultsToNoneAndIsCapturedWhenALightIsDeclared) {
-    auto s = parseOk(
-        "point 0 0 0 1 1 1\nattenuation 1 0.1 0.05\npoint 0 0 0 1 1 1\nattenuation 0 0 1\n");
+    std::unique_ptr<Scene> s;
+    // Given after a point light, attenuation is a warning (course_leniency_test.cpp).
+    warningOf("point 0 0 0 1 1 1\nattenuation 1 0.1 0.05\npoint 0 0 0 1 1 1\nattenuation 0 0 1\n",
+              &s);
     ASSERT_EQ(s->lights.size(), 2u);
     EXPECT_EQ(s->lights[0].attenuation, Vec3(1, 0, 0));
     EXPECT_EQ(s->lights[1].attenuation, Vec3(1, 0.1, 0.05));
@@ -476,7 +478,7 @@ TEST(CourseLoader, ScenesNeedingMoreMemoryThanAvailableAreRefusedBeforeAllocatin
     for (int i = 0; i < 20000; ++i) text += "sphere 0 0 0 1\n";
     std::vector<Diagnostic> warnings;
     try {
-        parseCourseScene(text, "t.test", warnings, LoadLimits{1 << 20});
+        parseCourseScene(text, "t.test", warnings, CourseOptions{LoadLimits{1 << 20}});
         ADD_FAILURE() << "no SceneError";
     } catch (const SceneError& e) {
         EXPECT_EQ(e.diagnostic().loc.line, 0);
@@ -485,7 +487,8 @@ TEST(CourseLoader, ScenesNeedingMoreMemoryThanAvailableAreRefusedBeforeAllocatin
         EXPECT_THAT(e.diagnostic().message, HasSubstr("1 MiB available"));
     }
     // With room enough it loads.
-    auto scene = parseCourseScene(text, "t.test", warnings, LoadLimits{size_t{1} << 30});
+    auto scene =
+        parseCourseScene(text, "t.test", warnings, CourseOptions{LoadLimits{size_t{1} << 30}});
     EXPECT_EQ(scene->primitives.sphereCount(), 20000u);
 }
 
@@ -502,7 +505,8 @@ TEST(CourseLoader, Utf8ByteOrderMarkIsSkipped) {
 }
 
 TEST(CourseLoader, PopTransformOnAnEmptyStackIsAnError) {
-    expectError("popTransform\n", 1, 1, "pushTransform");
+    expectError("popTransform\n", 1, 1,
+                "popTransform without a matching pushTransform (--lenient ignores it)");
     expectError("pushTransform\npopTransform\n popTransform\n", 3, 2, "pushTransform");
 }
 
@@ -523,10 +527,14 @@ TEST(CourseLoader, NegativeRadiusShininessAttenuationAndZeroLightDirectionAreRej
     expectError("directional 0 0 0 1 1 1\n", 1, 13, "direction");
 }
 
-TEST(CourseLoader, MissingCameraIsReportedOneLinePastTheEnd) {
-    expectError("size 10 10\nsphere 0 0 0 1\n", 3, 1, "no camera");
-    expectError("size 10 10\n# last", 3, 1, "no camera");
-    expectError("", 1, 1, "no camera");
+TEST(CourseLoader, MissingCameraIsReportedAtTheFirstCommand) {
+    expectError("size 10 10\nsphere 0 0 0 1\n", 1, 1, "the scene has no camera (add 'camera");
+    expectError("# first\n\n  size 10 10\n# last", 3, 3, "no camera");
+}
+
+TEST(CourseLoader, AFileWithoutCommandsSaysSo) {
+    for (const char* text : {"", "\n\n", "# only a comment\n  \t\n# and another", "\xEF\xBB\xBF"})
+        expectError(text, 0, 0, "the scene file has no commands");
 }
 
 // ---- warnings ---------------------------------------------------------------------------

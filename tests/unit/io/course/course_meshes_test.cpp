@@ -26,7 +26,7 @@ const std::string kSceneFile = kDir + "scene.test";
 std::unique_ptr<Scene> parseIn(const std::string& body, std::vector<Diagnostic>* warnings = nullptr,
                                const LoadLimits& limits = {}) {
     std::vector<Diagnostic> w;
-    auto scene = parseCourseScene(body + kCamera, kSceneFile, w, limits);
+    auto scene = parseCourseScene(body + kCamera, kSceneFile, w, CourseOptions{limits});
     if (warnings)
         *warnings = w;
     else
@@ -37,7 +37,7 @@ std::unique_ptr<Scene> parseIn(const std::string& body, std::vector<Diagnostic>*
 Diagnostic errorIn(const std::string& body, const LoadLimits& limits = {}) {
     std::vector<Diagnostic> w;
     try {
-        parseCourseScene(body + kCamera, kSceneFile, w, limits);
+        parseCourseScene(body + kCamera, kSceneFile, w, CourseOptions{limits});
     } catch (const SceneError& e) {
         return e.diagnostic();
     }
@@ -82,7 +82,7 @@ TEST_F(CourseMeshFiles, DegenerateTrianglesAreReportedOnceAtTheFirstMeshCommand)
     std::vector<Diagnostic> warnings;
     auto scene =
         parseCourseScene(std::string("mesh line.obj\ntranslate 5 0 0\nmesh line.obj\n") + kCamera,
-                      path("scene.test"), warnings);
+                         path("scene.test"), warnings);
     EXPECT_EQ(scene->primitives.instanceCount(), 2u);
     EXPECT_EQ(scene->sharedTriangleCount(), 1u);
     ASSERT_EQ(warnings.size(), 1u);

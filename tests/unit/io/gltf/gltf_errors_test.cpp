@@ -147,7 +147,7 @@ TEST(GltfErrors, NodeTransforms) {
                 HasSubstr("number overflow parsing '1e999'"));
     // A scale of 0 hides a node: a warning, not an error.
     std::vector<Diagnostic> warnings;
-    GltfModel model = parse(gltfText(kTriangleScene.substr(0, kTriangleScene.rfind('[')) +
+    Model model = parse(gltfText(kTriangleScene.substr(0, kTriangleScene.rfind('[')) +
                                          R"([{"mesh": 0, "scale": [0, 1, 1]}])",
                                      kTriangle),
                             &warnings);

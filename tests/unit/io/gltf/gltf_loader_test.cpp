@@ -15,8 +15,8 @@
 #include <string>
 
 #include "glint/io/course/course_loader.h"
-#include "glint/io/model_scene.h"
 #include "glint/io/obj/obj_loader.h"
+#include "glint/io/registry.h"
 #include "unit/io/gltf/gltf_test_support.h"
 #include "unit/test_support.h"
 
@@ -27,13 +27,12 @@ using namespace glint::test;
 using ::testing::HasSubstr;
 
 /// A scene with `model` placed, triangles without a material grey, prepared.
-std::unique_ptr<Scene> place(const GltfModel& model, const Transform& t = Transform()) {
-    auto scene = std::make_unique<Scene>();
+std::unique_ptr<Scene> place(const Model& model, const Transform& t = Transform()) {
+    SceneBuilder builder;
     Material grey;
     grey.diffuse = Vec3(0.5);
-    MeshPlacer placer;
-    placeGltf(placer, model, t, scene->addMaterial(grey));
-    placer.place(*scene);
+    placeModel(builder, model, t, builder.addMaterial(grey));
+    auto scene = builder.finish();
     scene->prepare();
     return scene;
 }
@@ -45,7 +44,7 @@ Vec3 position(const MeshData& mesh, size_t triangle, int corner) {
 // ---- Nodes and meshes ----
 
 TEST(GltfLoader, NestedNodeTransformsOfTheDefaultSceneArePlaced) {
-    GltfModel model = load("nodes.gltf");
+    Model model = load("nodes.gltf");
     // Scene 1 is the default: its tree places the mesh twice; scene 0's node is not placed.
     ASSERT_EQ(model.placements.size(), 2u);
     ASSERT_EQ(model.meshes.size(), 1u);
@@ -64,7 +63,7 @@ TEST(GltfLoader, NestedNodeTransformsOfTheDefaultSceneArePlaced) {
 }
 
 TEST(GltfLoader, AMeshPlacedByTwoNodesIsOneMeshData) {
-    GltfModel model = load("scene.glb");
+    Model model = load("scene.glb");
     // Nodes 0 and 1 place the crate (mesh 0): one MeshData, referenced twice.
     ASSERT_GE(model.placements.size(), 2u);
     EXPECT_EQ(model.placements[0].mesh, 0u);
@@ -72,31 +71,32 @@ TEST(GltfLoader, AMeshPlacedByTwoNodesIsOneMeshData) {
     EXPECT_EQ(model.meshes.size(), 3u);
     EXPECT_EQ(model.meshes[0].triangles.size(), 12u);
     EXPECT_EQ(model.triangles(), 2 * 12 + 2 + model.meshes[2].triangles.size());
-    Scene scene;
-    MeshPlacer placer;
-    placeGltf(placer, model, Transform(), scene.addMaterial(Material{}));
-    size_t added = 0, degenerate = 0;
-    for (const MeshPlacement& p : placer.place(scene)) added += p.added, degenerate += p.degenerate;
-    EXPECT_EQ(added + degenerate, model.triangles());
-    EXPECT_EQ(degenerate, 48u);  // the ball's poles
+    SceneBuilder builder;
+    placeModel(builder, model, Transform(), builder.addMaterial(Material{}));
+    std::vector<Diagnostic> warnings;
+    std::unique_ptr<Scene> scene = builder.finish(&warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0].message,  // the ball's poles
+              "48 triangles have zero area once placed and are skipped");
     // The crate is stored once and placed twice; the other meshes are placed once, as triangles.
-    EXPECT_EQ(scene.primitives.instanceCount(), 2u);
-    EXPECT_EQ(scene.sharedTriangleCount(), 12u);
-    EXPECT_EQ(scene.primitives.triangleCount() + scene.primitives.instancedTriangleCount(), added);
+    EXPECT_EQ(scene->primitives.instanceCount(), 2u);
+    EXPECT_EQ(scene->sharedTriangleCount(), 12u);
+    EXPECT_EQ(scene->primitives.triangleCount() + scene->primitives.instancedTriangleCount(),
+              model.triangles() - 48);
 }
 
 TEST(GltfLoader, WithoutScenesEveryRootNodeIsPlaced) {
-    GltfModel model = parse(gltfText(kTriangleViews + R"(,
+    Model model = parse(gltfText(kTriangleViews + R"(,
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
         "nodes": [{"mesh": 0, "children": [1]}, {"mesh": 0, "translation": [5, 0, 0]},
                   {"mesh": 0, "translation": [0, 5, 0]}])",
-                                     kTriangle));
+                                 kTriangle));
     ASSERT_EQ(model.placements.size(), 3u);  // node 0, its child 1, and root node 2
     expectNear(model.placements[2].worldFromObject.point(Vec3(0)), {0, 5, 0});
 }
 
 TEST(GltfLoader, IndexedTrianglesWithNormalsAndTextureCoordinates) {
-    GltfModel model = load("quad.gltf");
+    Model model = load("quad.gltf");
     ASSERT_EQ(model.meshes.size(), 1u);
     const MeshData& mesh = model.meshes[0];
     EXPECT_EQ(mesh.positions.size(), 4u);
@@ -117,7 +117,7 @@ TEST(GltfLoader, IndexedTrianglesWithNormalsAndTextureCoordinates) {
 
 TEST(GltfLoader, NonIndexedTrianglesWithoutNormalsAreShadedFlat) {
     std::vector<Diagnostic> warnings;
-    GltfModel model = load("modes.gltf", &warnings);
+    Model model = load("modes.gltf", &warnings);
     const MeshData& mesh = model.meshes[0];
     // Strip (2) + fan (2) + non-indexed (1); the points primitive is skipped with a warning.
     ASSERT_EQ(mesh.triangles.size(), 5u);
@@ -136,7 +136,7 @@ TEST(GltfLoader, NonIndexedTrianglesWithoutNormalsAreShadedFlat) {
 
 TEST(GltfLoader, StripsAndFansKeepTheirWinding) {
     std::vector<Diagnostic> warnings;
-    GltfModel model = load("modes.gltf", &warnings);
+    Model model = load("modes.gltf", &warnings);
     const MeshData& mesh = model.meshes[0];
     // Vertices (0,0) (1,0) (0,1) (1,1): every triangle faces +z (counter-clockwise).
     for (size_t t = 0; t < 4; ++t) {
@@ -158,7 +158,7 @@ TEST(GltfLoader, StripsAndFansKeepTheirWinding) {
 }
 
 TEST(GltfLoader, VertexNormalsAreInterpolated) {
-    GltfModel model = load("smooth.gltf");
+    Model model = load("smooth.gltf");
     EXPECT_EQ(model.meshes[0].normalTriangles, 1u);
     auto scene = place(model);
     auto si = shoot(*scene, {0.02, 0.01, 5}, {0, 0, -1});  // near vertex 0, normal (-1, 0, 1)
@@ -171,7 +171,7 @@ TEST(GltfLoader, VertexNormalsAreInterpolated) {
 }
 
 TEST(GltfLoader, SparseAccessorsReplaceElements) {
-    GltfModel model = load("sparse.gltf");
+    Model model = load("sparse.gltf");
     const MeshData& mesh = model.meshes[0];
     ASSERT_EQ(mesh.triangles.size(), 1u);
     expectNear(position(mesh, 0, 0), {0, 0, 0});
@@ -180,7 +180,7 @@ TEST(GltfLoader, SparseAccessorsReplaceElements) {
 }
 
 TEST(GltfLoader, TheBinaryFileLoadsAsTheTextOne) {
-    GltfModel text = load("quad.gltf"), binary = load("quad.glb");
+    Model text = load("quad.gltf"), binary = load("quad.glb");
     const MeshData &a = text.meshes[0], &b = binary.meshes[0];
     ASSERT_EQ(a.positions.size(), b.positions.size());
     ASSERT_EQ(a.triangles.size(), b.triangles.size());
@@ -200,18 +200,18 @@ TEST(GltfLoader, TheBinaryFileLoadsAsTheTextOne) {
 TEST(GltfLoader, DataUriBuffersNeedNoFile) {
     GltfOptions options;
     options.limits.readFiles = false;
-    GltfModel model = load("nodes.gltf", nullptr, options);
+    Model model = load("nodes.gltf", nullptr, options);
     EXPECT_EQ(model.meshes[0].triangles.size(), 1u);
 }
 
 // ---- Materials ----
 
-const MeshMaterial& materialOf(const GltfModel& model, size_t mesh) {
+const MeshMaterial& materialOf(const Model& model, size_t mesh) {
     return model.meshes.at(mesh).materials.at(0);
 }
 
 TEST(GltfMaterials, MetallicRoughnessMapping) {
-    GltfModel model = load("materials.gltf");
+    Model model = load("materials.gltf");
     ASSERT_EQ(model.meshes.size(), 7u);
     // A dielectric: diffuse = base, specular = 0.04, GGX alpha = roughness^2.
     const Material& plastic = materialOf(model, 0).material;
@@ -251,7 +251,7 @@ TEST(GltfMaterials, MetallicRoughnessMapping) {
 }
 
 TEST(GltfMaterials, BaseColourTextureTimesTheFactor) {
-    GltfModel model = load("quad.gltf");
+    Model model = load("quad.gltf");
     const MeshMaterial& m = materialOf(model, 0);
     ASSERT_TRUE(m.texture);
     EXPECT_EQ(m.texture->kind, Texture::Kind::Image);
@@ -273,7 +273,7 @@ TEST(GltfMaterials, BaseColourTextureTimesTheFactor) {
 }
 
 TEST(GltfMaterials, TrianglesWithoutAMaterialTakeThePlacingDefault) {
-    GltfModel model = load("nodes.gltf");
+    Model model = load("nodes.gltf");
     EXPECT_TRUE(model.meshes[0].materials.empty());
     EXPECT_EQ(model.meshes[0].triangles[0].material, MeshData::kNone);
     auto scene = place(model);
@@ -284,7 +284,7 @@ TEST(GltfMaterials, TrianglesWithoutAMaterialTakeThePlacingDefault) {
 
 TEST(GltfMaterials, AMissingTextureIsAWarningAndTheFactorStays) {
     std::vector<Diagnostic> warnings;
-    GltfModel model = load("missing-texture.gltf", &warnings);
+    Model model = load("missing-texture.gltf", &warnings);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_EQ(warnings[0].loc.file, dataPath("missing-texture.gltf"));
     EXPECT_THAT(warnings[0].message, HasSubstr("material 0 'painted': cannot read texture '" +
@@ -305,7 +305,7 @@ TEST(GltfMaterials, NoImageFileIsReadWhenReadingFilesIsOff) {
         "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])",
                                 kTriangle);
     text.replace(text.find(R"({"POSITION": 0})"), 15, R"({"POSITION": 0}, "material": 0)");
-    GltfModel model = parse(text, &warnings, options);
+    Model model = parse(text, &warnings, options);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_THAT(warnings[0].message, HasSubstr("is not read: reading files is off"));
 }
@@ -313,7 +313,7 @@ TEST(GltfMaterials, NoImageFileIsReadWhenReadingFilesIsOff) {
 // ---- Cameras and lights ----
 
 TEST(GltfLoader, TheCameraAndLightsAreImported) {
-    GltfModel model = load("scene.glb");
+    Model model = load("scene.glb");
     ASSERT_TRUE(model.camera);
     const CameraSpec& c = model.camera->spec;
     expectNear(c.eye, {0.3, 1.8, 4.2}, 1e-6);
@@ -341,7 +341,7 @@ TEST(GltfLoader, TheCameraAndLightsAreImported) {
 
 TEST(GltfLoader, SpotLightsAreLitAsPointLightsAndOrthographicCamerasIgnored) {
     std::vector<Diagnostic> warnings;
-    GltfModel model = parse(gltfText(kTriangleViews + R"(,
+    Model model = parse(gltfText(kTriangleViews + R"(,
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
         "cameras": [{"type": "orthographic",
                      "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}],
@@ -349,8 +349,8 @@ TEST(GltfLoader, SpotLightsAreLitAsPointLightsAndOrthographicCamerasIgnored) {
             {"type": "spot", "intensity": 2, "spot": {"outerConeAngle": 0.5}}]}},
         "nodes": [{"mesh": 0, "camera": 0},
                   {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}])",
-                                     kTriangle),
-                            &warnings);
+                                 kTriangle),
+                        &warnings);
     EXPECT_FALSE(model.camera);
     ASSERT_EQ(model.lights.size(), 1u);
     EXPECT_EQ(model.lights[0].kind, Light::Kind::Point);

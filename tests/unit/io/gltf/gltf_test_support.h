@@ -16,10 +16,10 @@ inline std::string dataPath(const std::string& name) {
     return std::string(GLINT_TEST_DATA_DIR) + "/gltf/" + name;
 }
 
-inline GltfModel load(const std::string& name, std::vector<Diagnostic>* warningsOut = nullptr,
+inline Model load(const std::string& name, std::vector<Diagnostic>* warningsOut = nullptr,
                       const GltfOptions& options = {}) {
     std::vector<Diagnostic> warnings;
-    GltfModel model = loadGltf(dataPath(name), warnings, options);
+    Model model = loadGltf(dataPath(name), warnings, options);
     if (warningsOut)
         *warningsOut = warnings;
     else
@@ -49,10 +49,10 @@ inline const std::string kTriangleScene = kTriangleViews + R"(,
        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
        "nodes": [{"mesh": 0}])";
 
-inline GltfModel parse(const std::string& text, std::vector<Diagnostic>* warningsOut = nullptr,
+inline Model parse(const std::string& text, std::vector<Diagnostic>* warningsOut = nullptr,
                        const GltfOptions& options = {}) {
     std::vector<Diagnostic> warnings;
-    GltfModel model = parseGltf(text, "t.gltf", warnings, options);
+    Model model = parseGltf(text, "t.gltf", warnings, options);
     if (warningsOut)
         *warningsOut = warnings;
     else

@@ -388,13 +388,6 @@ TEST(ObjErrors, FileWithoutFaces) {
     EXPECT_THAT(d.message, HasSubstr("the mesh has no faces"));
 }
 
-TEST(ObjErrors, MissingMaterialLibrary) {
-    Diagnostic d = errorLoading("missing-mtl.obj");
-    EXPECT_THAT(d.loc.file, HasSubstr("missing-mtl.obj"));
-    expectError(d, 1, 8, "cannot read material library 'nowhere.mtl'");
-    EXPECT_THAT(d.message, HasSubstr("No such file or directory"));
-}
-
 TEST(ObjErrors, MissingFileAndDirectory) {
     Diagnostic d = errorLoading("nowhere.obj");
     EXPECT_THAT(d.message, HasSubstr("cannot read mesh: No such file or directory"));

@@ -1,15 +1,11 @@
-#include "glint/io/model_scene.h"
+#include "glint/scene/model_framing.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <numbers>
 
-#include "glint/io/gltf/gltf_loader.h"
-#include "glint/io/obj/obj_loader.h"
-#include "glint/scene/mesh.h"
+#include "glint/scene/scene_builder.h"
 
 namespace glint {
 namespace {
@@ -33,13 +29,6 @@ Light directional(const Vec3& towards, double intensity) {
 }
 
 }  // namespace
-
-bool isModelFile(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".obj" || isGltfFile(path);
-}
 
 std::string frameModel(Scene& scene, const std::string& name, Framing framing) {
     Bounds3f b = scene.primitives.bounds();
@@ -97,40 +86,34 @@ Material lightGrey() {
     return grey;
 }
 
-/// A model scene with no geometry yet, for a `width` x `height` image (640 x 480 for 0).
-ModelScene emptyModelScene(int width, int height) {
-    ModelScene out;
-    out.scene = std::make_unique<Scene>();
-    out.scene->width = width > 0 ? width : 640;
-    out.scene->height = height > 0 ? height : 480;
-    return out;
-}
-
 }  // namespace
 
-ModelScene gltfModelScene(const GltfModel& model, int width, int height) {
-    ModelScene out = emptyModelScene(width, height);
-    Scene& scene = *out.scene;
-    MeshPlacer placer;
-    placeGltf(placer, model, Transform(), scene.addMaterial(lightGrey()));
-    placer.place(scene);
+ModelScene frameModelScene(const Model& model, int width, int height) {
+    SceneBuilder builder;
+    Scene& settings = builder.scene();
+    settings.width = width > 0 ? width : 640;
+    settings.height = height > 0 ? height : 480;
+    placeModel(builder, model, Transform(), builder.addMaterial(lightGrey()));
     Framing framing;
     std::string has;  // what the file brought, for the note
     if (model.camera) {
-        scene.camera = model.camera->spec;
+        settings.camera = model.camera->spec;
         framing.camera = false;
         has = "its " + model.camera->description;
         // The file's camera knows its picture's shape, unless the command line says.
         if (width <= 0 && model.camera->aspectRatio > 0)
-            scene.height = static_cast<int>(std::clamp(
-                std::lround(scene.width / model.camera->aspectRatio), 1L, long(kMaxImageSide)));
+            settings.height = static_cast<int>(std::clamp(
+                std::lround(settings.width / model.camera->aspectRatio), 1L, long(kMaxImageSide)));
     }
     if (!model.lights.empty()) {
-        scene.lights = model.lights;
+        for (const Light& light : model.lights) builder.addLight(light);
         framing.lights = false;
         has = std::to_string(model.lights.size()) +
               (model.lights.size() == 1 ? " light" : " lights") + " of its own";
     }
+    ModelScene out;
+    out.scene = builder.finish();  // places the meshes: the scene's bounds are known now
+    Scene& scene = *out.scene;
     const std::string& path = model.name;
     if (!framing.camera && !framing.lights) {
         if (scene.primitives.bounds().empty())
@@ -144,26 +127,6 @@ ModelScene gltfModelScene(const GltfModel& model, int width, int height) {
         out.note = path + " has no camera: framing it with " + assumed + " (and " + has + ")";
     else
         out.note = path + " has no lights: lighting it with " + assumed + " (and " + has + ")";
-    return out;
-}
-
-ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
-                          int height, const LoadLimits& limits) {
-    if (isGltfFile(path)) {
-        GltfOptions options;
-        options.limits = limits;
-        // The model is freed once placed, before the scene's BVH is built.
-        return gltfModelScene(loadGltf(path, warnings, options), width, height);
-    }
-    ModelScene out = emptyModelScene(width, height);
-    Scene& scene = *out.scene;
-    {
-        ObjOptions options;
-        options.limits = limits;
-        MeshData mesh = loadObj(path, warnings, options);  // freed before the BVH is built
-        addMesh(scene, mesh, Transform(), scene.addMaterial(lightGrey()));
-    }
-    out.note = path + " has no camera or lights: framing it with " + frameModel(scene, path);
     return out;
 }
 

@@ -1,0 +1,212 @@
+// The table of file formats and the choice of one for a file (registry.h).
+
+#include "glint/io/registry.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <system_error>
+
+#include "glint/io/course/course_loader.h"
+#include "glint/io/gltf/gltf_loader.h"
+#include "glint/io/obj/obj_loader.h"
+
+namespace glint {
+namespace {
+
+/// `text` without a UTF-8 byte-order mark and blanks at its start.
+std::string_view trimmedStart(std::string_view text) {
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+    size_t i = text.find_first_not_of(" \t\r\n");
+    return i == std::string_view::npos ? std::string_view() : text.substr(i);
+}
+
+/// Whether `text` starts with `word` followed by a blank or its end.
+bool startsWithWord(std::string_view text, std::string_view word) {
+    if (!text.starts_with(word)) return false;
+    if (text.size() == word.size()) return true;
+    char c = text[word.size()];
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+bool gltfMagic(std::string_view head, uint64_t) {
+    if (head.starts_with("glTF")) return true;  // a .glb
+    std::string_view text = trimmedStart(head);
+    return text.starts_with("{") && text.find("\"asset\"") != std::string_view::npos;
+}
+
+bool plyMagic(std::string_view head, uint64_t) { return startsWithWord(head, "ply"); }
+
+bool stlMagic(std::string_view head, uint64_t size) {
+    // Binary: an 80-byte header, a little-endian triangle count, 50 bytes per triangle.
+    if (head.size() >= 84) {
+        uint64_t count = 0;
+        for (int i = 3; i >= 0; --i) count = count << 8 | static_cast<unsigned char>(head[80 + i]);
+        if (size == 84 + 50 * count) return true;
+    }
+    return startsWithWord(trimmedStart(head), "solid");
+}
+
+bool fbxMagic(std::string_view head, uint64_t) {
+    return head.starts_with("Kaydara FBX Binary") || trimmedStart(head).starts_with("; FBX");
+}
+
+bool blenderMagic(std::string_view head, uint64_t) { return head.starts_with("BLENDER"); }
+
+std::unique_ptr<Scene> loadCourse(const std::string& path, std::vector<Diagnostic>& warnings,
+                                  const LoadOptions& options) {
+    CourseOptions course;
+    course.limits = options.limits;
+    course.lenient = options.lenient;
+    return loadCourseScene(path, warnings, course);
+}
+
+Model loadObjModel(const std::string& path, std::vector<Diagnostic>& warnings,
+                   const LoadLimits& limits) {
+    ObjOptions options;
+    options.limits = limits;
+    return singleMeshModel(loadObj(path, warnings, options));
+}
+
+Model loadGltfModel(const std::string& path, std::vector<Diagnostic>& warnings,
+                    const LoadLimits& limits) {
+    GltfOptions options;
+    options.limits = limits;
+    return loadGltf(path, warnings, options);
+}
+
+/// Whether `head` is not text: it has a NUL byte, or control characters other than blanks in
+/// more than 1 byte of 32 (text in any 8-bit encoding or UTF-8 has none).
+bool looksBinary(std::string_view head) {
+    size_t controls = 0;
+    for (char ch : head) {
+        unsigned char c = static_cast<unsigned char>(ch);
+        if (c == 0) return true;
+        controls += (c < 0x20 && !(c >= '\t' && c <= '\r')) || c == 0x7F;
+    }
+    return controls * 32 > head.size();
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+bool readsFor(const FileFormat& f, FileUse use) {
+    return f.loadModel || (use == FileUse::Scene && f.loadScene);
+}
+
+/// "it reads CSE167x scenes (.test), OBJ (.obj) and glTF (.gltf, .glb)", or for meshes "it
+/// reads meshes from OBJ (.obj) and glTF (.gltf, .glb)".
+std::string whatGlintReads(FileUse use) {
+    std::vector<std::string> items;
+    for (const FileFormat& f : fileFormats()) {
+        if (!readsFor(f, use)) continue;
+        std::string item = std::string(f.listed) + " (";
+        for (size_t i = 0; i < f.extensions.size(); ++i)
+            item.append(i ? ", " : "").append(f.extensions[i]);
+        items.push_back(item + ")");
+    }
+    std::string list;
+    for (size_t i = 0; i < items.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+    return (use == FileUse::Scene ? "it reads " : "it reads meshes from ") + list;
+}
+
+FormatChoice cannotRead(const std::string& what, FileUse use) {
+    return {nullptr, what + "; " + whatGlintReads(use)};
+}
+
+}  // namespace
+
+const std::vector<FileFormat>& fileFormats() {
+    static const std::vector<FileFormat> formats = {
+        {"CSE167x scene", "CSE167x scenes", {".test"}, nullptr, true, loadCourse, nullptr},
+        {"OBJ", "OBJ", {".obj"}, nullptr, true, nullptr, loadObjModel},
+        {"glTF", "glTF", {".gltf", ".glb"}, gltfMagic, false, nullptr, loadGltfModel},
+        {"PLY", "PLY", {".ply"}, plyMagic, false, nullptr, nullptr, true},
+        {"STL", "STL", {".stl"}, stlMagic, false, nullptr, nullptr, true},
+        {"FBX", "FBX", {".fbx"}, fbxMagic, false, nullptr, nullptr},
+        {"Blender", "Blender", {".blend"}, blenderMagic, false, nullptr, nullptr},
+    };
+    return formats;
+}
+
+FormatChoice chooseFormat(const std::string& path, std::string_view head, uint64_t size,
+                          FileUse use, std::vector<Diagnostic>& warnings) {
+    const std::string ext = lowerExtension(path);
+    const FileFormat* named = nullptr;    // what the extension says
+    const FileFormat* content = nullptr;  // what the first bytes say
+    for (const FileFormat& f : fileFormats()) {
+        if (!named &&
+            std::find(f.extensions.begin(), f.extensions.end(), ext) != f.extensions.end())
+            named = &f;
+        if (!content && f.magic && f.magic(head, size)) content = &f;
+    }
+    const FileFormat* format = content ? content : named;
+    if (!format) {
+        if (!head.empty() && looksBinary(head))
+            return cannotRead("Glint cannot read this file: it is binary, of no format Glint knows",
+                              use);
+        format = &fileFormats()[use == FileUse::Scene ? 0 : 1];  // text: a scene, or an OBJ mesh
+    } else if (format->text && !head.empty() && looksBinary(head)) {
+        return cannotRead("Glint cannot read this file: it is binary, and " +
+                              std::string(format->name) + " files are text",
+                          use);
+    }
+    if (!format->loadScene && !format->loadModel)
+        return cannotRead("Glint cannot read " + std::string(format->name) + " files" +
+                              (format->planned ? " (yet)" : ""),
+                          use);
+    if (!readsFor(*format, use))
+        return cannotRead(std::string("a ") + format->name + " is not a mesh", use);
+    if (content && named && content != named) {
+        Diagnostic d;  // built in steps: GCC 12 warns falsely on the aggregate
+        d.loc.file = path;
+        d.message = std::string("the file is ") + content->name +
+                    ", whatever its name says: it is read as " + content->name;
+        warnings.push_back(std::move(d));
+    }
+    return {format, {}};
+}
+
+FormatChoice chooseFormat(const std::string& path, FileUse use, std::vector<Diagnostic>& warnings) {
+    std::string head(kFileHeadBytes, '\0');
+    std::ifstream in(path, std::ios::binary);
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(in ? head.size() : static_cast<size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+    std::error_code ec;
+    uint64_t size = std::filesystem::file_size(path, ec);
+    return chooseFormat(path, head, ec ? 0 : size, use, warnings);
+}
+
+Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
+                const LoadLimits& limits) {
+    FormatChoice choice = chooseFormat(path, FileUse::Model, warnings);
+    if (!choice.format) throw SceneError({path, 0, 0}, choice.problem);
+    return choice.format->loadModel(path, warnings, limits);
+}
+
+ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
+                          int height, const LoadLimits& limits) {
+    // The model is freed once placed, before the scene's BVH is built.
+    return frameModelScene(loadModel(path, warnings, limits), width, height);
+}
+
+ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warnings,
+                         const LoadOptions& options) {
+    FormatChoice choice = chooseFormat(path, FileUse::Scene, warnings);
+    if (!choice.format) throw SceneError({path, 0, 0}, choice.problem);
+    if (choice.format->loadScene) {
+        ModelScene out;
+        out.scene = choice.format->loadScene(path, warnings, options);
+        return out;
+    }
+    return frameModelScene(choice.format->loadModel(path, warnings, options.limits), options.width,
+                           options.height);
+}
+
+}  // namespace glint

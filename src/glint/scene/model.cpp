@@ -1,0 +1,40 @@
+#include "glint/scene/model.h"
+
+#include <utility>
+
+namespace glint {
+
+size_t Model::triangles() const {
+    size_t n = 0;
+    for (const ModelPlacement& p : placements) n += meshes[p.mesh].triangles.size();
+    return n;
+}
+
+Model singleMeshModel(MeshData mesh) {
+    Model model;
+    model.name = mesh.name;
+    model.meshes.push_back(std::move(mesh));
+    model.placements.push_back({0, Transform(), 0});
+    return model;
+}
+
+void placeModel(SceneBuilder& builder, const Model& model, const Transform& worldFromModel,
+                uint32_t defaultMaterial, const FileLoc& where, const std::string& what) {
+    // Placements at the model's origin take the scene's transform as it is: the transform an
+    // OBJ file is placed by is exactly the scene's.
+    const bool identity = worldFromModel.isIdentity();
+    for (const ModelPlacement& p : model.placements) {
+        std::optional<Transform> t =
+            identity ? p.worldFromObject
+            : p.worldFromObject.isIdentity()
+                ? worldFromModel
+                : Transform::fromMatrix(worldFromModel.matrix() * p.worldFromObject.matrix());
+        if (!t)
+            throw SceneError({model.name, 0, 0},
+                             "node " + std::to_string(p.node) +
+                                 ": its transform, with the scene's, is singular or too large");
+        builder.placeMesh(model.meshes[p.mesh], *t, defaultMaterial, where, what);
+    }
+}
+
+}  // namespace glint

@@ -1,0 +1,60 @@
+#pragma once
+/// What a model file holds, whatever its format: meshes in their own space, where the file
+/// places them, and the camera and lights it may have. The loaders in io/ make one of each file
+/// (an OBJ file is one mesh placed once, as it is; a glTF file places its meshes by its nodes);
+/// placeModel() puts a model in a scene being built, under a transform (the course's `mesh`
+/// command), and model_framing.h makes a whole scene of one (`glint model.obj`).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "glint/core/error.h"
+#include "glint/math/transform.h"
+#include "glint/scene/camera.h"
+#include "glint/scene/light.h"
+#include "glint/scene/mesh.h"
+#include "glint/scene/scene_builder.h"
+
+namespace glint {
+
+/// One mesh of a model, placed once.
+struct ModelPlacement {
+    uint32_t mesh = 0;          ///< Index into Model::meshes.
+    Transform worldFromObject;  ///< The model's space from the mesh's (a glTF node's transform).
+    uint32_t node = 0;          ///< What placed it in the file (a glTF node), for messages.
+};
+
+/// The camera a model file brings.
+struct ModelCamera {
+    CameraSpec spec;          ///< In the model's space.
+    double aspectRatio = 0;   ///< Width / height the camera was made for; 0: not given.
+    std::string description;  ///< "camera 0 'Main' (node 3)", for messages.
+};
+
+/// A model in its own space (Glint's conventions: right-handed, +y up).
+struct Model {
+    std::string name;  ///< The file it came from.
+    /// Indexed like the file's meshes. A mesh no placement uses may be left empty.
+    std::vector<MeshData> meshes;
+    std::vector<ModelPlacement> placements;
+    std::optional<ModelCamera> camera;
+    std::vector<Light> lights;  ///< In the model's space.
+
+    size_t triangles() const;  ///< Triangles placed by all placements together.
+};
+
+/// The model of one mesh placed once, as it is (an OBJ file); it takes the mesh's name.
+Model singleMeshModel(MeshData mesh);
+
+/// Hands every placement of `model` to `builder` under `worldFromModel` (the scene's transform
+/// of the whole model): a mesh placed several times is then stored once and instanced.
+/// Triangles without a material of the model's take `defaultMaterial`; `where` and `what` prefix
+/// errors about the placements (MeshPlacer::add). The model's camera and lights are not used.
+/// Throws SceneError, naming the model's file, if a composed transform is singular. `model`
+/// must live until the builder has finished.
+void placeModel(SceneBuilder& builder, const Model& model, const Transform& worldFromModel,
+                uint32_t defaultMaterial, const FileLoc& where = {}, const std::string& what = {});
+
+}  // namespace glint

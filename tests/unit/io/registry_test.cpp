@@ -1,0 +1,153 @@
+// The registry: which loader a file gets, by its first bytes where they tell, else by its
+// extension, else by what the caller wants; and one message for what Glint cannot read.
+
+#include "glint/io/registry.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "unit/test_support.h"
+
+namespace glint {
+namespace {
+
+using ::testing::HasSubstr;
+using namespace std::string_literals;
+
+const std::string kReads = "; it reads CSE167x scenes (.test), OBJ (.obj) and glTF (.gltf, .glb)";
+const std::string kReadsMeshes = "; it reads meshes from OBJ (.obj) and glTF (.gltf, .glb)";
+
+struct Choice {
+    std::string format;  ///< The chosen format's name, or "" for none.
+    std::string problem;
+    std::vector<Diagnostic> warnings;
+};
+
+Choice choose(const std::string& path, std::string_view head, FileUse use = FileUse::Scene,
+              uint64_t size = 0) {
+    Choice c;
+    FormatChoice f = chooseFormat(path, head, size ? size : head.size(), use, c.warnings);
+    c.format = f.format ? f.format->name : "";
+    c.problem = f.problem;
+    return c;
+}
+
+/// The first bytes of a binary STL file of `count` triangles (the header says "solid" too, as
+/// some exporters write it).
+std::string binaryStl(uint32_t count) {
+    std::string s = "solid exported by a tool";
+    s.resize(80, ' ');
+    for (int i = 0; i < 4; ++i) s.push_back(static_cast<char>(count >> (8 * i) & 0xFF));
+    s.append(50 * count, '\0');
+    return s;
+}
+
+TEST(Registry, TextFilesAreWhatTheirExtensionSays) {
+    EXPECT_EQ(choose("a.test", "size 10 10\n").format, "CSE167x scene");
+    EXPECT_EQ(choose("a.OBJ", "v 0 0 0\n").format, "OBJ");
+    EXPECT_EQ(choose("dir/a.gltf", "{\"asset\": {\"version\": \"2.0\"}}").format, "glTF");
+}
+
+TEST(Registry, TextOfNoKnownExtensionIsWhatTheCallerWants) {
+    // `glint scene` reads a course scene; `mesh model.txt` an OBJ mesh, as before the registry.
+    EXPECT_EQ(choose("scene", "size 10 10\ncamera 0 0 1 0 0 0 0 1 0 45\n").format, "CSE167x scene");
+    EXPECT_EQ(choose("model.txt", "v 0 0 0\n", FileUse::Model).format, "OBJ");
+    // An empty or unreadable file goes by its name, so that its loader says what is wrong.
+    EXPECT_EQ(choose("missing.obj", "").format, "OBJ");
+    EXPECT_EQ(choose("empty", "").format, "CSE167x scene");
+}
+
+TEST(Registry, FormatsGlintCannotReadGetOneMessage) {
+    Choice ply = choose("cow.ply", "ply\nformat ascii 1.0\nelement vertex 8\n");
+    EXPECT_EQ(ply.format, "");
+    EXPECT_EQ(ply.problem, "Glint cannot read PLY files (yet)" + kReads);
+    EXPECT_EQ(choose("cow.ply", "ply\r\nformat binary_little_endian 1.0\r\n").problem, ply.problem);
+    EXPECT_EQ(choose("part.stl", "solid part\n  facet normal 0 0 1\n").problem,
+              "Glint cannot read STL files (yet)" + kReads);
+    EXPECT_EQ(choose("part.stl", binaryStl(2)).problem,
+              "Glint cannot read STL files (yet)" + kReads);
+    EXPECT_EQ(choose("rig.fbx", "Kaydara FBX Binary  \0\x1a\0"s).problem,
+              "Glint cannot read FBX files" + kReads);
+    EXPECT_EQ(choose("rig.fbx", "; FBX 7.4.0 project file\n").problem,
+              "Glint cannot read FBX files" + kReads);
+    EXPECT_EQ(choose("rig.fbx", "not what it seems\n").problem,  // by its extension alone
+              "Glint cannot read FBX files" + kReads);
+    EXPECT_EQ(choose("room.blend", "BLENDER-v300").problem,
+              "Glint cannot read Blender files" + kReads);
+    // Inside a scene, `mesh cow.ply` lists what `mesh` reads.
+    EXPECT_EQ(choose("cow.ply", "ply\n", FileUse::Model).problem,
+              "Glint cannot read PLY files (yet)" + kReadsMeshes);
+}
+
+TEST(Registry, ContentsWinOverAnExtensionThatLies) {
+    // The signature of a foreign format, whatever the name: never parsed as a scene.
+    EXPECT_EQ(choose("cow.test", "ply\nformat ascii 1.0\n").problem,
+              "Glint cannot read PLY files (yet)" + kReads);
+    EXPECT_EQ(choose("scene.test", "solid cube\nfacet normal 0 0 1\n").problem,
+              "Glint cannot read STL files (yet)" + kReads);
+    // A readable format is read as what it is, with a warning.
+    Choice glb = choose("scene.test", "glTF\x02\0\0\0"s);
+    EXPECT_EQ(glb.format, "glTF");
+    ASSERT_EQ(glb.warnings.size(), 1u);
+    EXPECT_EQ(glb.warnings[0].format("warning"),
+              "scene.test: warning: the file is glTF, whatever its name says: it is read as glTF");
+    // No warning where the name says nothing.
+    EXPECT_TRUE(choose("download", "glTF\x02\0\0\0"s).warnings.empty());
+}
+
+TEST(Registry, BinaryFilesAreNeverParsedAsText) {
+    const std::string elf("\x7f\x45\x4c\x46\x02\x01\x01\0\0\0", 10);  // an executable
+    EXPECT_EQ(choose("a.out", elf).problem,
+              "Glint cannot read this file: it is binary, of no format Glint knows" + kReads);
+    EXPECT_EQ(
+        choose("scene.test", elf).problem,
+        "Glint cannot read this file: it is binary, and CSE167x scene files are text" + kReads);
+    EXPECT_EQ(choose("model.obj", elf, FileUse::Model).problem,
+              "Glint cannot read this file: it is binary, and OBJ files are text" + kReadsMeshes);
+    // Without a NUL: control characters in more than 1 byte of 32.
+    std::string noisy(64, 'a');
+    noisy[5] = '\x01';
+    noisy[9] = '\x02';
+    noisy[20] = '\x03';
+    EXPECT_EQ(choose("x.test", noisy).format, "");
+    noisy[20] = 'a';  // two in 64: still text (a stray byte is the parser's to report)
+    EXPECT_EQ(choose("x.test", noisy).format, "CSE167x scene");
+    // UTF-8 and a byte-order mark are text.
+    EXPECT_EQ(choose("x.test", "\xEF\xBB\xBF# caf\xC3\xA9\nsize 1 1\n").format, "CSE167x scene");
+}
+
+TEST(Registry, ASceneFileIsNotAMesh) {
+    EXPECT_EQ(choose("other.test", "size 1 1\n", FileUse::Model).problem,
+              "a CSE167x scene is not a mesh" + kReadsMeshes);
+}
+
+class RegistryFiles : public test::TempDirTest {};
+
+TEST_F(RegistryFiles, LoadingAFileGlintCannotReadNamesIt) {
+    std::string file = path("cow.ply");
+    std::ofstream(file) << "ply\nformat ascii 1.0\nend_header\n";
+    std::vector<Diagnostic> warnings;
+    try {
+        loadSceneFile(file, warnings);
+        FAIL() << "no SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.diagnostic().loc.file, file);
+        EXPECT_EQ(e.diagnostic().loc.line, 0);
+        EXPECT_THAT(e.diagnostic().message, HasSubstr("Glint cannot read PLY files (yet)"));
+    }
+    EXPECT_THROW(loadModel(file, warnings), SceneError);
+    // chooseFormat reads the first bytes: a glTF binary named .test is glTF.
+    std::string glb = path("model.test");
+    std::ofstream(glb, std::ios::binary) << "glTF\x02\0\0\0\x0c\0\0\0"s;
+    FormatChoice c = chooseFormat(glb, FileUse::Scene, warnings);
+    ASSERT_TRUE(c.format);
+    EXPECT_STREQ(c.format->name, "glTF");
+}
+
+}  // namespace
+}  // namespace glint
