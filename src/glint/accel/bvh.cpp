@@ -7,7 +7,7 @@
 
 #include "glint/accel/bvh_build.h"
 #include "glint/accel/bvh_kernels.h"
-#include "glint/core/system.h"
+#include "glint/core/parallel.h"
 
 namespace glint {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "glint/core/system.h"
+#include "glint/core/parallel.h"
 #include "glint/render/film.h"
 #include "glint/render/integrator.h"
 
