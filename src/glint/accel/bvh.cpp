@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "glint/accel/bvh_build.h"
@@ -76,10 +77,11 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
 #if !GLINT_HAVE_AVX2
     if (isa_ == Isa::Avx2) throw std::invalid_argument("this build has no AVX2 kernels");
 #endif
-    int threads = options.threads > 0 ? options.threads : hardwareThreads();
     if (options.sharedMeshes.size() != prims.sharedMeshCount())
         throw std::invalid_argument("a BVH is needed for every shared mesh");
-    bvh::BuildSummary s = bvh::build(prims, threads, data_);
+    std::optional<ThreadPool> ownPool;
+    ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace(options.threads);
+    bvh::BuildSummary s = bvh::build(prims, pool, data_);
     data_.meshes.clear();
     for (const Bvh* mesh : options.sharedMeshes) {
         if (mesh->isa_ != isa_)
