@@ -48,7 +48,8 @@ struct BvhStats {
 class Bvh {
   public:
     /// Builds over `prims`. The BVH keeps its own copy of what traversal needs; `prims`
-    /// only has to live while building.
+    /// only has to live while building. Throws std::invalid_argument for kernels this CPU
+    /// cannot run, or without a BVH for each shared mesh.
     void build(const Primitives& prims, const BvhBuildOptions& options = {});
 
     /// Closest hit with tMin < t < min(ray.tMax, hit.t); fills `hit` and returns true if any.
@@ -69,7 +70,7 @@ class Bvh {
     /// The kernels this BVH traverses with.
     Isa kernels() const { return isa_; }
 
-    /// The best kernels this CPU runs (overridden by GLINT_ISA=portable in the environment).
+    /// The best kernels this CPU runs.
     static Isa bestIsa();
     /// "avx2" or "portable": the kernels a default-built BVH uses on this machine.
     static const char* isa();
