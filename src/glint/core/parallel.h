@@ -44,9 +44,12 @@ class ThreadPool {
 
 /// Tasks waited for together. run() queues a task for any of the pool's threads; wait() returns
 /// once every task run in the group has finished, running the group's queued tasks itself
-/// meanwhile (and, when it has none, another group's). So a task may run more tasks in its own
-/// group or wait for groups of its own: nesting never deadlocks. A task's exception is kept for
-/// wait(), which rethrows the first one; the group's other tasks still run.
+/// meanwhile, newest first. When the group has none queued, the waiter takes another group's
+/// newest task, unless it is running such a borrowed task already (so one thread's waits stack
+/// at most one borrowed task deep). So a task may run more tasks in its own group or wait for
+/// groups of its own: nesting never deadlocks. Idle workers take the oldest task. A task's
+/// exception is kept for wait(), which rethrows the first one; the group's other tasks still
+/// run.
 ///
 /// With a one-thread pool, run() runs the task at once on the calling thread.
 class TaskGroup {
