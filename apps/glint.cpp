@@ -18,6 +18,7 @@
 #include "glint/accel/bvh.h"
 #include "glint/core/atomic_file.h"
 #include "glint/core/error.h"
+#include "glint/core/parallel.h"
 #include "glint/core/system.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/image_io.h"
@@ -34,7 +35,8 @@ constexpr int kExitUsage = 2;
 struct Options {
     std::string scene;
     std::string output;
-    int threads = 0;
+    int threads = 0;  ///< 0: all hardware threads.
+    std::string kernels = "auto";
     std::string size;
     int maxDepth = -1;
     std::string integrator;  ///< Empty: the scene's `integrator`, else whitted.
@@ -205,6 +207,13 @@ int run(const Options& opt) {
         if (std::string problem = parseSize(opt.size, width, height); !problem.empty())
             return usageError(problem);
     }
+    glint::Isa kernels = opt.kernels == "avx2"       ? glint::Isa::Avx2
+                         : opt.kernels == "portable" ? glint::Isa::Portable
+                                                     : glint::Isa::Auto;
+    if (kernels == glint::Isa::Avx2 && glint::Bvh::bestIsa() != glint::Isa::Avx2)
+        return usageError(
+            "--kernels avx2: this CPU (or this build of glint) has no AVX2; use "
+            "auto or portable");
     if (!opt.output.empty() && !glint::imageFormatFor(opt.output))
         return usageError("cannot write '" + opt.output + "': unknown image format (use " +
                           glint::kImageExtensions + ")");
@@ -287,15 +296,16 @@ int run(const Options& opt) {
         return kExitSceneError;
     }
 
-    // Build.
+    // Build, then render, on one pool of threads (-t 1: the calling thread alone).
+    glint::ThreadPool pool(opt.threads);
     auto t1 = Clock::now();
-    scene->prepare();
+    scene->prepare({&pool, kernels});
     double buildSeconds = secondsSince(t1);
 
     // Render.
     glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
     glint::RenderOptions ro;
-    ro.threads = opt.threads;
+    ro.pool = &pool;
     ro.spp = opt.spp > 0 ? opt.spp : (scene->spp > 0 ? scene->spp : 1);
     ro.seed = opt.seed;
     ro.cancel = &gStop;
@@ -371,10 +381,18 @@ int main(int argc, char** argv) {
 
     const char* render = "Rendering";
     app.add_option("-t,--threads", opt.threads,
-                   "Worker threads, 1 to 4096 (default: all hardware threads)")
+                   "Threads for the BVH build and the render, 1 to 4096 (default: all hardware "
+                   "threads); 1 runs everything on one thread")
         ->group(render)
         ->check(integerIn(1, 4096))
         ->type_name("N");
+    app.add_option("--kernels", opt.kernels,
+                   std::string("Traversal kernels: auto (the best this CPU runs: ") +
+                       glint::Bvh::isa() +
+                       " here), avx2, portable (plain C++); every choice gives the same image")
+        ->group(render)
+        ->check(CLI::IsMember({"auto", "avx2", "portable"}))
+        ->type_name("NAME");
     app.add_option("--size", opt.size, "Image size, overriding the scene's 'size'")
         ->group(render)
         ->type_name("WxH");

@@ -287,6 +287,24 @@ TEST(Cli, OneAndTwoThreadsGiveByteIdenticalImages) {
     }
 }
 
+TEST(Cli, EveryKernelChoiceGivesTheSameImage) {
+    std::string dir = sceneDir("kernels");
+    ASSERT_EQ(runGlint("-q scene.test -o auto.pfm", dir).exitCode, 0);
+    ASSERT_EQ(runGlint("-q scene.test --kernels portable -o portable.pfm", dir).exitCode, 0);
+    EXPECT_EQ(readBytes(dir + "/auto.pfm"), readBytes(dir + "/portable.pfm"));
+    // avx2 works where the CPU has it, and is a usage error elsewhere.
+    CommandResult avx2 = runGlint("-q scene.test --kernels avx2 -o avx2.pfm", dir);
+    if (avx2.exitCode == 0)
+        EXPECT_EQ(readBytes(dir + "/auto.pfm"), readBytes(dir + "/avx2.pfm"));
+    else
+        EXPECT_EQ(avx2.exitCode, 2) << avx2.err;
+
+    CommandResult r = runGlint("scene.test --kernels sse9", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "--kernels")) << r.err;
+    EXPECT_TRUE(contains(runGlint("--help", dir).out, "--kernels")) << "missing from --help";
+}
+
 TEST(Cli, ZeroOrNonNumericThreadCountIsAUsageError) {
     std::string dir = sceneDir("badthreads");
     for (const char* t : {"0", "-1", "abc"}) {

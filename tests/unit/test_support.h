@@ -32,6 +32,16 @@ inline std::optional<SurfaceInteraction> shoot(const Scene& scene, const Vec3& o
     return scene.primitives.interaction(ray, hit);
 }
 
+/// Threads of this process now (its entries in /proc/self/task); -1 where that cannot be read.
+inline int processThreads() {
+    std::error_code ec;
+    int n = 0;
+    for (std::filesystem::directory_iterator it("/proc/self/task", ec), end; !ec && it != end;
+         it.increment(ec))
+        ++n;
+    return ec || n == 0 ? -1 : n;
+}
+
 /// A material with the given terms; emission black.
 inline Material makeMaterial(const Vec3& ambient, const Vec3& diffuse = {},
                              const Vec3& specular = {}, double shininess = 1) {

@@ -1,13 +1,12 @@
 #include "glint/accel/bvh.h"
 
 #include <chrono>
-#include <cstdlib>
-#include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "glint/accel/bvh_build.h"
 #include "glint/accel/bvh_kernels.h"
-#include "glint/core/system.h"
+#include "glint/core/parallel.h"
 
 namespace glint {
 namespace {
@@ -46,8 +45,6 @@ bool planeOccludes(const bvh::BvhData& d, const TraversalRay& ray) {
 
 Isa Bvh::bestIsa() {
     static const Isa best = [] {
-        const char* forced = std::getenv("GLINT_ISA");
-        if (forced && std::strcmp(forced, "portable") == 0) return Isa::Portable;
 #if GLINT_HAVE_AVX2
         if (__builtin_cpu_supports("avx2")) return Isa::Avx2;
 #endif
@@ -73,13 +70,14 @@ const char* Bvh::isa() { return name(bestIsa()); }
 void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
     auto start = std::chrono::steady_clock::now();
     isa_ = options.isa == Isa::Auto ? bestIsa() : options.isa;
-#if !GLINT_HAVE_AVX2
-    if (isa_ == Isa::Avx2) throw std::invalid_argument("this build has no AVX2 kernels");
-#endif
-    int threads = options.threads > 0 ? options.threads : hardwareThreads();
+    if (isa_ == Isa::Avx2 && bestIsa() != Isa::Avx2)
+        throw std::invalid_argument(
+            "the AVX2 kernels need a CPU with AVX2 (and a build with them)");
     if (options.sharedMeshes.size() != prims.sharedMeshCount())
         throw std::invalid_argument("a BVH is needed for every shared mesh");
-    bvh::BuildSummary s = bvh::build(prims, threads, data_);
+    std::optional<ThreadPool> ownPool;
+    ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace(options.threads);
+    bvh::BuildSummary s = bvh::build(prims, pool, data_);
     data_.meshes.clear();
     for (const Bvh* mesh : options.sharedMeshes) {
         if (mesh->isa_ != isa_)

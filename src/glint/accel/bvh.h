@@ -1,10 +1,14 @@
 #pragma once
-/// Glint's acceleration structure: an 8-wide BVH over triangles and (transformed) spheres,
-/// boxes, cylinders, cones and disks, built with binned SAH on several threads, traversed by
-/// SIMD kernels chosen for the CPU. Infinite planes cannot have finite bounds: they are kept
-/// in a short list beside the tree, and intersect, occluded and intersect8 test them too, so
-/// every caller gets them; they are not part of bounds().
-/// Layout: bvh_layout.h; build: bvh_build.cpp; kernels: bvh_isa_*.cpp, bvh_traverse.inl.
+/// Glint's acceleration structure: an 8-wide BVH over triangles, (transformed) spheres, boxes,
+/// cylinders, cones and disks, and instances of shared meshes, built with binned SAH on a thread
+/// pool and traversed by SIMD kernels chosen for the CPU (or by the caller: BvhBuildOptions).
+/// A shared mesh is triangles in their own space with a Bvh of their own; an instance places it
+/// under a transform, as one record in this tree whose test searches the mesh's tree: a
+/// two-level BVH (docs/design.md, "Instancing"). Infinite planes cannot have finite bounds: they
+/// are kept in a short list beside the tree, and intersect, occluded and intersect8 test them
+/// too, so every caller gets them; they are not part of bounds().
+/// Layout: bvh_layout.h; build: bvh_build.h (and the files it names); kernels: bvh_isa_*.cpp,
+/// bvh_traverse.inl.
 
 #include <cstdint>
 #include <vector>
@@ -18,14 +22,18 @@ namespace glint {
 enum class Isa { Auto, Portable, Avx2 };
 
 class Bvh;
+class ThreadPool;
 
 struct BvhBuildOptions {
-    int threads = 0;      ///< Build threads; 0 means all hardware threads.
+    int threads = 0;      ///< Build threads when `pool` is null; 0 means all hardware threads.
     Isa isa = Isa::Auto;  ///< Kernels to traverse with; Auto: the best this CPU runs.
     /// The BVHs of the primitives' shared meshes, in their order (Primitives::sharedMesh):
     /// instances are searched through them. Each must use the same kernels and outlive this
     /// BVH.
     std::vector<const Bvh*> sharedMeshes = {};
+    /// The threads to build on (the calling thread is one of them); null: a pool of `threads`
+    /// made for this build. The tree does not depend on the thread count.
+    ThreadPool* pool = nullptr;
 };
 
 struct BvhStats {
@@ -40,7 +48,8 @@ struct BvhStats {
 class Bvh {
   public:
     /// Builds over `prims`. The BVH keeps its own copy of what traversal needs; `prims`
-    /// only has to live while building.
+    /// only has to live while building. Throws std::invalid_argument for kernels this CPU
+    /// cannot run, or without a BVH for each shared mesh.
     void build(const Primitives& prims, const BvhBuildOptions& options = {});
 
     /// Closest hit with tMin < t < min(ray.tMax, hit.t); fills `hit` and returns true if any.
@@ -61,7 +70,7 @@ class Bvh {
     /// The kernels this BVH traverses with.
     Isa kernels() const { return isa_; }
 
-    /// The best kernels this CPU runs (overridden by GLINT_ISA=portable in the environment).
+    /// The best kernels this CPU runs.
     static Isa bestIsa();
     /// "avx2" or "portable": the kernels a default-built BVH uses on this machine.
     static const char* isa();

@@ -1,10 +1,17 @@
 #pragma once
-/// Building Glint's 8-wide BVH (see bvh_layout.h).
+/// Building Glint's 8-wide BVH (see bvh_layout.h). The builder's files, in the order it runs:
+/// bvh_build_refs.h (primitive references, box arithmetic), bvh_build_sah.{h,cpp} (leaf or
+/// split: binned SAH), bvh_build.cpp (nodes grown 8 wide, in parallel tasks),
+/// bvh_build_tree.h and bvh_build_flatten.cpp (the grown tree, laid out depth first).
 
 #include <cstdint>
 
 #include "glint/accel/bvh_layout.h"
 #include "glint/geometry/primitives.h"
+
+namespace glint {
+class ThreadPool;
+}
 
 namespace glint::bvh {
 
@@ -20,8 +27,8 @@ struct BuildSummary {
 constexpr uint32_t kMaxDepth = 80;
 
 /// Builds over the bounded primitives of `prims` (all but planes, which it leaves to Bvh)
-/// with binned SAH on `threads` threads (>= 1). Replaces `out`. Throws std::length_error past the
-/// layout's limits (2^26 leaf items).
-BuildSummary build(const Primitives& prims, int threads, BvhData& out);
+/// with binned SAH on the threads of `pool`; the result does not depend on how many there are.
+/// Replaces `out`. Throws std::length_error past the layout's limits (2^26 leaf items).
+BuildSummary build(const Primitives& prims, ThreadPool& pool, BvhData& out);
 
 }  // namespace glint::bvh

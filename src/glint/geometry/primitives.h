@@ -77,7 +77,8 @@ class Primitives {
     void reserveAttributes(size_t normals, size_t uvs);
 
     uint32_t size() const { return boundedCount() + planeCount(); }
-    /// Primitives with finite bounds: triangles, spheres and shapes (ids 0 to this - 1).
+    /// Primitives with finite bounds: triangles, spheres, shapes and instances (ids 0 to
+    /// this - 1).
     uint32_t boundedCount() const {
         return static_cast<uint32_t>(triangles_.size() + spheres_.size() + shapes_.size() +
                                      instances_.size());
@@ -141,7 +142,8 @@ class Primitives {
     bool isSphere(uint32_t id) const {
         return id >= triangleCount() && id - triangleCount() < sphereCount();
     }
-    /// The float search record of sphere or shape `id` (triangleCount() <= id < boundedCount()).
+    /// The float search record of sphere, shape or instance `id` (triangleCount() <= id <
+    /// boundedCount()); an instance's maps the ray into its mesh's space and names the mesh.
     const ShapeSearch& shapeSearch(uint32_t id) const {
         id -= triangleCount();
         if (id < sphereCount()) return sphereSearch_[id];

@@ -1,15 +1,18 @@
 #include "glint/render/renderer.h"
 
 #include <chrono>
-#include <condition_variable>
 #include <limits>
-#include <mutex>
-#include <thread>
+#include <optional>
 #include <vector>
 
+#include "glint/core/parallel.h"
 #include "glint/render/sampler.h"
 
 namespace glint {
+
+namespace {
+constexpr double kReportSeconds = 0.1;  // progress about ten times a second
+}  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
     using Clock = std::chrono::steady_clock;
@@ -30,9 +33,6 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const int tilesY = (scene.height + tile - 1) / tile;
     const int tilesTotal = tilesX * tilesY;
     std::atomic<int> nextTile{0}, tilesDone{0};
-    std::mutex mutex;
-    std::condition_variable finished;
-    int running = 0;
 
     // Camera rays go in packets of eight: 4 x 2 pixels at one sample per pixel, or eight
     // samples of one pixel. Each pixel still sums its samples in the sampler's order. Shadow
@@ -92,52 +92,54 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             }
     };
 
-    auto worker = [&] {
-        RayCounts counts;
+    // The calling thread renders too, and between its blocks reports progress every 100 ms.
+    double lastReport = 0;
+    auto report = [&] {
+        lastReport = elapsed();
+        options.onProgress({tilesDone.load(), tilesTotal, lastReport});
+    };
+    auto renderTiles = [&](RayCounts& counts, bool caller) {
+        const bool reports = caller && options.onProgress;
         std::vector<Sample> samples;
-        for (;;) {
-            if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
-            int t = nextTile.fetch_add(1, std::memory_order_relaxed);
-            if (t >= tilesTotal) break;
-            int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
-            int x1 = std::min(x0 + tile, scene.width), y1 = std::min(y0 + tile, scene.height);
-            bool stopped = false;
-            for (int by = y0; by < y1 && !stopped; by += 2)
-                for (int bx = x0; bx < x1; bx += 4) {
-                    // Checked per block too: a tile at many samples per pixel can take long.
-                    if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
-                        stopped = true;
-                        break;
+        try {
+            for (;;) {
+                if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
+                int t = nextTile.fetch_add(1, std::memory_order_relaxed);
+                if (t >= tilesTotal) break;
+                int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
+                int x1 = std::min(x0 + tile, scene.width), y1 = std::min(y0 + tile, scene.height);
+                bool stopped = false;
+                for (int by = y0; by < y1 && !stopped; by += 2)
+                    for (int bx = x0; bx < x1; bx += 4) {
+                        // Checked per block too: a tile at many samples per pixel can take long.
+                        if (options.cancel && options.cancel->load(std::memory_order_relaxed)) {
+                            stopped = true;
+                            break;
+                        }
+                        if (reports && elapsed() - lastReport >= kReportSeconds) report();
+                        renderBlock(bx, by, x1, y1, samples, counts);
                     }
-                    renderBlock(bx, by, x1, y1, samples, counts);
-                }
-            if (stopped) break;
-            tilesDone.fetch_add(1, std::memory_order_relaxed);
+                if (stopped) break;
+                tilesDone.fetch_add(1, std::memory_order_relaxed);
+            }
+        } catch (...) {
+            nextTile.store(tilesTotal);  // the other threads stop after their current tile
+            throw;
         }
-        std::lock_guard lock(mutex);
-        result.rays += counts;
-        if (--running == 0) finished.notify_all();
     };
 
-    int threads = options.threads > 0 ? options.threads : hardwareThreads();
-    threads = std::min(threads, tilesTotal);
-    std::vector<std::thread> pool;
-    running = threads;
-    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-
+    std::optional<ThreadPool> ownPool;
+    ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace(options.threads);
+    const int threads = std::min(pool.threads(), tilesTotal);
+    std::vector<RayCounts> counts(static_cast<size_t>(std::max(threads, 1)));
     {
-        std::unique_lock lock(mutex);
-        while (running > 0) {
-            finished.wait_for(lock, std::chrono::milliseconds(100), [&] { return running == 0; });
-            if (options.onProgress && running > 0) {
-                RenderProgress p{tilesDone.load(), tilesTotal, elapsed()};
-                lock.unlock();
-                options.onProgress(p);
-                lock.lock();
-            }
-        }
+        TaskGroup helpers(pool);
+        for (int i = 1; i < threads; ++i) helpers.run([&, i] { renderTiles(counts[i], false); });
+        renderTiles(counts[0], true);
+        while (!helpers.waitFor(std::chrono::milliseconds(100)))
+            if (options.onProgress) report();
     }
-    for (auto& t : pool) t.join();
+    for (const RayCounts& c : counts) result.rays += c;
 
     result.seconds = elapsed();
     result.tilesDone = tilesDone.load();

@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <functional>
 
-#include "glint/core/system.h"
 #include "glint/render/film.h"
 #include "glint/render/integrator.h"
 
@@ -18,14 +17,20 @@ struct RenderProgress {
     double fraction() const { return tilesTotal ? double(tilesDone) / tilesTotal : 1.0; }
 };
 
+class ThreadPool;
+
 struct RenderOptions {
-    int threads = 0;    ///< Worker threads; 0 means all hardware threads.
+    /// The threads to render on, the calling thread among them (a pool of one renders on the
+    /// calling thread alone); null: a pool of `threads` made for this render.
+    ThreadPool* pool = nullptr;
+    int threads = 0;    ///< Threads when `pool` is null; 0 means all hardware threads.
     int tileSize = 16;  ///< Tile side in pixels.
     int spp = 1;        ///< Camera rays per pixel (stratified, jittered, the scene's filter).
     uint64_t seed = 0;  ///< Seed of the sub-pixel jitter.
-    /// Called on the calling thread about ten times a second, and once at the end.
+    /// Called on the calling thread about ten times a second (between its blocks of 4 x 2
+    /// pixels, so also during long tiles), and once at the end.
     std::function<void(const RenderProgress&)> onProgress;
-    /// When set and it becomes true, workers stop after their current tile.
+    /// When set and it becomes true, every thread stops after its current block of pixels.
     const std::atomic<bool>* cancel = nullptr;
 };
 

@@ -1,5 +1,8 @@
 #include "glint/scene/scene.h"
 
+#include <optional>
+
+#include "glint/core/parallel.h"
 #include "glint/core/spawn.h"
 
 namespace glint {
@@ -46,13 +49,16 @@ size_t Scene::sharedBvhBytes() const {
     return n;
 }
 
-void Scene::prepare() {
-    BvhBuildOptions options;
+void Scene::prepare(const PrepareOptions& options) {
+    std::optional<ThreadPool> ownPool;
+    ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace();
+    const BvhBuildOptions meshes{.isa = options.kernels, .pool = &pool};
+    BvhBuildOptions scene = meshes;
     for (const auto& m : sharedMeshes_) {
-        m->bvh.build(m->primitives);
-        options.sharedMeshes.push_back(&m->bvh);
+        m->bvh.build(m->primitives, meshes);
+        scene.sharedMeshes.push_back(&m->bvh);
     }
-    bvh_.build(primitives, options);
+    bvh_.build(primitives, scene);
     Bounds3f b = bvh_.bounds();
     spawnOffset_ =
         sceneSpawnOffset(b.empty() ? 1.0 : static_cast<double>(maxComponent(b.diagonal())));

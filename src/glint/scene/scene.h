@@ -42,6 +42,13 @@ inline bool withinCoordinateRange(const Vec3& p) {
            std::abs(p.z) <= kMaxCoordinate;
 }
 
+/// How Scene::prepare builds the acceleration structures.
+struct PrepareOptions {
+    /// The threads to build on, the calling thread among them; null: all hardware threads.
+    ThreadPool* pool = nullptr;
+    Isa kernels = Isa::Auto;  ///< Traversal kernels; Auto: the best this CPU runs.
+};
+
 /// A scene is built in place (geometry is referenced by its BVH), so it is neither copied
 /// nor moved: loaders hand it out in a unique_ptr.
 class Scene {
@@ -51,7 +58,7 @@ class Scene {
     Scene& operator=(const Scene&) = delete;
 
     int width = 640, height = 480;
-    int maxDepth = 5;    ///< Primary rays are depth 0; reflect while depth < maxDepth.
+    int maxDepth = 5;  ///< Primary rays are depth 0; reflect while depth < maxDepth.
     /// The integrator that renders the scene, by name (render/integrator.h; `integrator`).
     std::string integrator = "whitted";
     std::string output;  ///< Output file the scene asks for; may be empty.
@@ -95,7 +102,7 @@ class Scene {
 
     /// Builds the acceleration structures (the shared meshes', then the scene's over its
     /// primitives and instances) and derived settings. Call once geometry is final.
-    void prepare();
+    void prepare(const PrepareOptions& options = {});
     bool prepared() const { return prepared_; }
 
     const Bvh& bvh() const { return bvh_; }

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <vector>
 
+#include "glint/core/parallel.h"
 #include "glint/math/mat4.h"
 #include "glint/render/sampler.h"
 #include "glint/render/whitted.h"
@@ -128,6 +130,55 @@ TEST(Renderer, CancelledBeforeStartingIsIncomplete) {
     EXPECT_FALSE(r.complete);
     EXPECT_LT(last.tilesDone, last.tilesTotal);
     EXPECT_EQ(r.rays.camera, 0u);
+}
+
+TEST(Renderer, OneThreadRendersOnTheCallingThreadAlone) {
+    if (test::processThreads() < 0) GTEST_SKIP() << "no /proc/self/task";
+    Scene scene;
+    buildScene(scene);
+    const int before = test::processThreads();
+    int during = 0;
+    RenderOptions o = withThreads(1, 4);
+    o.onProgress = [&](const RenderProgress&) {
+        during = std::max(during, test::processThreads());
+    };
+    EXPECT_TRUE(render(scene, o).complete);
+    EXPECT_EQ(during, before);
+    ThreadPool one(1);
+    o.pool = &one;
+    EXPECT_TRUE(render(scene, o).complete);
+    EXPECT_EQ(during, before);
+    // The check sees threads where there are some: three threads are the caller and two more.
+    o.pool = nullptr;
+    o.threads = 3;
+    EXPECT_TRUE(render(scene, o).complete);
+    EXPECT_EQ(during, before + 2);
+}
+
+TEST(Renderer, ProgressAndCancelReachTheCallingThreadWithinATile) {
+    // One tile, the whole image, at 4096 samples per pixel: seconds of work for one thread.
+    // Progress comes between blocks of pixels, so the first report, 100 ms in, can cancel the
+    // render long before the tile is done.
+    Scene scene;
+    buildScene(scene);
+    for (int threads : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << threads << " threads");
+        std::atomic<bool> cancel{false};
+        RenderOptions o = withThreads(threads, 64);
+        o.spp = 4096;
+        o.cancel = &cancel;
+        std::vector<RenderProgress> calls;
+        o.onProgress = [&](const RenderProgress& p) {
+            calls.push_back(p);
+            cancel = true;
+        };
+        RenderResult r = render(scene, o);
+        EXPECT_FALSE(r.complete);
+        EXPECT_EQ(r.tilesDone, 0);
+        ASSERT_GE(calls.size(), 2u);  // one during the tile, one at the end
+        EXPECT_EQ(calls.front().tilesDone, 0);
+        EXPECT_LT(r.rays.camera, 37u * 23u * 4096u);
+    }
 }
 
 TEST(Renderer, OnePixelImageSeesWhatIsAtTheImageCentre) {
