@@ -138,6 +138,11 @@ class Primitives {
         return true;
     }
     const Triangle& triangle(uint32_t id) const { return triangles_[id]; }
+    /// Sphere `i` (0 to sphereCount() - 1; its primitive id is triangleCount() + i).
+    const Sphere& sphere(uint32_t i) const { return spheres_[i]; }
+    /// Box, cylinder, cone or disk `i` (0 to shapeCount() - 1; its primitive id is
+    /// triangleCount() + sphereCount() + i).
+    const Shape& shape(uint32_t i) const { return shapes_[i]; }
     /// Whether `id` is a sphere.
     bool isSphere(uint32_t id) const {
         return id >= triangleCount() && id - triangleCount() < sphereCount();

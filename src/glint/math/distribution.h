@@ -46,7 +46,8 @@ class Distribution1D {
 
     /// The cell that `u` in [0, 1) falls in, with its probability, and `u` rescaled to [0, 1)
     /// within the cell (so that one uniform number can drive a further choice).
-    size_t sampleDiscrete(double u, double* probability = nullptr, double* uRemapped = nullptr) const {
+    size_t sampleDiscrete(double u, double* probability = nullptr,
+                          double* uRemapped = nullptr) const {
         size_t i = find(u);
         double p = weights_[i] / total_;
         if (probability) *probability = p;

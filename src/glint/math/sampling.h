@@ -41,6 +41,29 @@ inline Vec3 sampleCosineHemisphere(Point2 u) {
     return {x, y, std::sqrt(std::max(0.0, 1 - x * x - y * y))};
 }
 
+/// A unit direction uniformly distributed over the sphere (density 1 / (4 pi)).
+inline Vec3 sampleUniformSphere(Point2 u) {
+    double z = 1 - 2 * u.x;
+    double r = std::sqrt(std::max(0.0, 1 - z * z));
+    double phi = 2 * std::numbers::pi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+/// A point uniformly distributed over the triangle with corners a, b, c, as barycentric
+/// weights (b0, b1) of a and b (Heitz's low-distortion map, "A Low-Distortion Map Between
+/// Triangle and Square", 2019).
+inline std::pair<double, double> sampleUniformTriangle(Point2 u) {
+    double b0, b1;
+    if (u.x < u.y) {
+        b0 = u.x / 2;
+        b1 = u.y - b0;
+    } else {
+        b1 = u.y / 2;
+        b0 = u.x - b1;
+    }
+    return {b0, b1};
+}
+
 /// An orthonormal basis (t, b, n) around the unit vector n (Duff et al., "Building an
 /// Orthonormal Basis, Revisited", JCGT 2017).
 struct Frame {

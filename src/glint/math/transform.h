@@ -43,6 +43,19 @@ class Transform {
                 inv_[0][1] * n.x + inv_[1][1] * n.y + inv_[2][1] * n.z,
                 inv_[0][2] * n.x + inv_[1][2] * n.y + inv_[2][2] * n.z};
     }
+    /// Applies the transpose of the linear part: |M^T n| for a unit world normal n is the
+    /// reciprocal of how much the inverse transpose stretched it.
+    Vec3 transposeVector(const Vec3& n) const {
+        return {m_[0][0] * n.x + m_[1][0] * n.y + m_[2][0] * n.z,
+                m_[0][1] * n.x + m_[1][1] * n.y + m_[2][1] * n.z,
+                m_[0][2] * n.x + m_[1][2] * n.y + m_[2][2] * n.z};
+    }
+    /// Determinant of the linear part: the factor by which it scales volumes (signed).
+    double determinant() const {
+        return m_[0][0] * (m_[1][1] * m_[2][2] - m_[1][2] * m_[2][1]) -
+               m_[0][1] * (m_[1][0] * m_[2][2] - m_[1][2] * m_[2][0]) +
+               m_[0][2] * (m_[1][0] * m_[2][1] - m_[1][1] * m_[2][0]);
+    }
     /// Tight bounds of the image of the ball of `radius` around `center`: along each axis the
     /// half-extent is radius times the length of that row of the linear part.
     Bounds3f ballBounds(const Vec3& center, double radius) const;

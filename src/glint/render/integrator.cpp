@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "glint/core/error.h"
+#include "glint/render/path.h"
 #include "glint/render/whitted.h"
 
 namespace glint {
@@ -20,6 +21,12 @@ const std::vector<IntegratorInfo>& integrators() {
          "extensions",
          [](const Scene& scene, const IntegratorOptions& options) -> std::unique_ptr<Integrator> {
              return std::make_unique<WhittedIntegrator>(scene, options.spp);
+         }},
+        {"path",
+         "a physically based path tracer: global illumination, multiple importance sampling, "
+         "emissive surfaces and the environment as lights",
+         [](const Scene& scene, const IntegratorOptions&) -> std::unique_ptr<Integrator> {
+             return std::make_unique<PathIntegrator>(scene);
          }},
     };
     return table;

@@ -39,6 +39,10 @@ struct PathContext {
     /// Refracted and reflected rays a sample may still spawn at transmissive surfaces, where
     /// every hit splits in two: bounds the work of any scene at any depth.
     int branchRaysLeft = 4096;
+    /// The pixel's seed and the sample's index within the pixel, for integrators that draw
+    /// low-discrepancy sample values (math/sobol.h) rather than take ctx.rng's.
+    uint64_t pixelSeed = 0;
+    uint32_t sampleIndex = 0;
 };
 
 /// `c` if every channel is finite and within +-kMaxRadiance (scene/light.h); otherwise `c`

@@ -42,6 +42,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         int pixel;  ///< Index within the block.
         Ray ray;
         Rng rng;  ///< The sample's own random numbers, after the lens's.
+        uint32_t index = 0;  ///< Within the pixel.
     };
     auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
                            RayCounts& counts) {
@@ -62,7 +63,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                     Ray ray = camera.hasLens()
                                   ? camera.generateRay(px, py, rng.uniform(), rng.uniform())
                                   : camera.generateRay(px, py);
-                    samples.push_back({y * 4 + x, ray, rng});
+                    samples.push_back({y * 4 + x, ray, rng, static_cast<uint32_t>(index - 1)});
                 });
             }
         Vec3 sum[8];
@@ -81,8 +82,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             for (int k = 0; k < n; ++k) {
                 Hit hit = hits[k];
                 bool found = hit.t < std::numeric_limits<float>::infinity();
-                PathContext ctx{samples[i + k].rng, counts};
-                sum[samples[i + k].pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
+                const Sample& s = samples[i + k];
+                PathContext ctx{s.rng, counts};
+                if (seeded) {
+                    ctx.pixelSeed = sampler.pixelSeed(bx + s.pixel % 4, by + s.pixel / 4);
+                    ctx.sampleIndex = s.index;
+                }
+                sum[s.pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
             }
         }
         for (int y = 0; y < h; ++y)

@@ -61,6 +61,12 @@ class PixelSampler {
             }
     }
 
+    /// Seed of pixel (x, y) for the low-discrepancy values its samples draw (math/sobol.h).
+    uint64_t pixelSeed(int x, int y) const {
+        uint64_t pixel = (static_cast<uint64_t>(y) << 32) | static_cast<uint32_t>(x);
+        return mixBits(mixBits(seed_ ^ 0x632be59bd9b4e019ULL) ^ mixBits(pixel));
+    }
+
     /// Seed of the random numbers that sample `index` of pixel (x, y) uses beyond its position
     /// (lens, lights, glossy reflection): a function of (pixel, sample, seed) only.
     uint64_t sampleSeed(int x, int y, int index) const {

@@ -1,0 +1,153 @@
+#include "glint/render/light_sampler.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "glint/geometry/surface_sampling.h"
+
+namespace glint {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// Brightness of a colour for weighing lights: its luminance (Rec. 709), or its largest
+/// channel if that is not positive (a colour of negative channels).
+double brightness(const Vec3& c) {
+    double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    return y > 0 ? y : std::max(maxComponent(c), 0.0);
+}
+
+}  // namespace
+
+LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
+    const Primitives& prims = scene.primitives;
+    Bounds3f b = prims.bounds();
+    if (!b.empty()) sceneRadius_ = std::max(length(Vec3(b.hi) - Vec3(b.lo)) / 2, 1e-6);
+    std::vector<double> power;
+
+    // Delta lights. A point light's power is estimated at unit distance; quad lights are
+    // represented by their emissive triangles below.
+    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& l = scene.lights[i];
+        if (l.kind == Light::Kind::Point) {
+            double att = std::max(l.attenuation.x + l.attenuation.y + l.attenuation.z, 1e-6);
+            lights_.push_back({Kind::Point, i});
+            power.push_back(4 * kPi * brightness(l.color) / att);
+        } else if (l.kind == Light::Kind::Directional) {
+            lights_.push_back({Kind::Directional, i});
+            power.push_back(kPi * sceneRadius_ * sceneRadius_ * brightness(l.color));
+        }
+    }
+
+    // Emissive surfaces: power pi A Le (one side; both sides emit unless front-only).
+    auto emits = [&](uint32_t id) {
+        uint32_t m = prims.materialOf(id);
+        return m != Primitives::kMixedMaterials && brightness(scene.materials[m].emission) > 0;
+    };
+    const uint32_t bounded = prims.boundedCount();
+    for (uint32_t id = 0; id < bounded; ++id) {
+        if (prims.isInstance(id) || !emits(id)) continue;
+        if (lightOfPrimitive_.empty()) lightOfPrimitive_.assign(bounded, UINT32_MAX);
+        const Material& m = scene.materials[prims.materialOf(id)];
+        Entry e{Kind::Triangle, id, m.frontEmissionOnly};
+        double area;
+        if (id < prims.triangleCount()) {
+            auto v = prims.triangleVertices(id);
+            area = 0.5 * length(cross(Vec3(v[1]) - Vec3(v[0]), Vec3(v[2]) - Vec3(v[0])));
+            if (!(area > 0)) continue;
+            e.pdfArea = 1 / area;
+        } else if (prims.isSphere(id)) {
+            e.kind = Kind::Sphere;
+            area = approximateArea(prims.sphere(id - prims.triangleCount()));
+        } else {
+            e.kind = Kind::Shape;
+            area = approximateArea(prims.shape(id - prims.triangleCount() - prims.sphereCount()));
+        }
+        lightOfPrimitive_[id] = static_cast<uint32_t>(lights_.size());
+        lights_.push_back(e);
+        power.push_back(kPi * area * brightness(m.emission) * (e.frontOnly ? 1 : 2));
+    }
+
+    // The background, if it is not black: power 4 pi^2 r^2 times its mean radiance.
+    double env = brightness((scene.background.down + scene.background.up) * 0.5);
+    if (env > 0) {
+        environment_ = static_cast<uint32_t>(lights_.size());
+        lights_.push_back({Kind::Environment, 0});
+        power.push_back(4 * kPi * kPi * sceneRadius_ * sceneRadius_ * env);
+    }
+    power_ = Distribution1D(std::move(power));
+}
+
+std::optional<LightSample> LightSampler::sample(const Vec3& p, double uLight, Point2 u) const {
+    if (lights_.empty()) return std::nullopt;
+    double choice = 0;
+    size_t i = power_.sampleDiscrete(uLight, &choice);
+    std::optional<LightSample> s = sampleEntry(lights_[i], p, u);
+    if (s) s->pdf *= choice;
+    return s;
+}
+
+std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3& p,
+                                                     Point2 u) const {
+    const Primitives& prims = scene_.primitives;
+    switch (e.kind) {
+        case Kind::Point:
+        case Kind::Directional: {
+            std::optional<LightLiSample> ls = scene_.lights[e.index].sampleLi(p, u);
+            if (!ls) return std::nullopt;
+            return LightSample{ls->wi, ls->L, 1, ls->distance, true};
+        }
+        case Kind::Environment: {
+            Vec3 wi = sampleUniformSphere(u);
+            return LightSample{wi, environment(wi), 1 / (4 * kPi), kInfinity, false};
+        }
+        default:
+            break;
+    }
+    SurfaceSample ss;
+    if (e.kind == Kind::Triangle) {
+        auto v = prims.triangleVertices(e.index);
+        ss = sampleTriangle(Vec3(v[0]), Vec3(v[1]), Vec3(v[2]), u);
+    } else if (e.kind == Kind::Sphere) {
+        ss = sampleSphere(prims.sphere(e.index - prims.triangleCount()), u);
+    } else {
+        ss = sampleShape(prims.shape(e.index - prims.triangleCount() - prims.sphereCount()), u);
+    }
+    Vec3 d = ss.p - p;
+    double d2 = dot(d, d);
+    if (!(d2 > 0)) return std::nullopt;
+    double dist = std::sqrt(d2);
+    Vec3 wi = d / dist;
+    double cosLight = dot(wi, ss.n);  // < 0: the sample faces p
+    if (e.frontOnly ? !(cosLight < 0) : cosLight == 0) return std::nullopt;
+    double pdf = ss.pdfArea * d2 / std::abs(cosLight);
+    if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
+    const Material& m = scene_.materials[prims.materialOf(e.index)];
+    return LightSample{wi, m.emission, pdf, dist, false};
+}
+
+double LightSampler::pdfHit(const Vec3& from, const Hit& hit, const SurfaceInteraction& si) const {
+    if (lightOfPrimitive_.empty() || hit.primId >= lightOfPrimitive_.size()) return 0;
+    uint32_t index = lightOfPrimitive_[hit.primId];
+    if (index == UINT32_MAX) return 0;
+    const Entry& e = lights_[index];
+    const Primitives& prims = scene_.primitives;
+    double pdfArea = e.pdfArea;
+    if (e.kind == Kind::Sphere)
+        pdfArea = spherePdfArea(prims.sphere(e.index - prims.triangleCount()), si.ng);
+    else if (e.kind == Kind::Shape)
+        pdfArea =
+            shapePdfArea(prims.shape(e.index - prims.triangleCount() - prims.sphereCount()), si.ng);
+    Vec3 d = si.p - from;
+    double d2 = dot(d, d);
+    double cosLight = std::abs(dot(d, si.ng)) / std::sqrt(d2);
+    if (!(cosLight > 0)) return 0;
+    return power_.probability(index) * pdfArea * d2 / cosLight;
+}
+
+double LightSampler::pdfEnvironment(const Vec3&) const {
+    if (environment_ == UINT32_MAX) return 0;
+    return power_.probability(environment_) / (4 * kPi);
+}
+
+}  // namespace glint

@@ -1,0 +1,76 @@
+#pragma once
+/// Every source of light in a scene, as a physically based integrator samples them: the point
+/// and directional lights, every emissive surface (triangles, meshes, spheres and the other
+/// shapes, including the geometry of quad lights) as an area light, and the background as an
+/// environment light. One is chosen per shading point with probability proportional to an
+/// estimate of its power (pbrt's PowerLightSampler), then sampled: emissive surfaces uniformly
+/// by area (see geometry/surface_sampling.h), the environment by its own sampler.
+///
+/// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite, and
+/// emissive triangles of instanced meshes. pdfHit() is 0 for them, so an integrator weighting
+/// by multiple importance sampling counts them in full.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "glint/math/distribution.h"
+#include "glint/scene/scene.h"
+
+namespace glint {
+
+/// A direction towards a light chosen and sampled by LightSampler::sample.
+struct LightSample {
+    Vec3 wi;  ///< Unit, from the shading point towards the light.
+    Vec3 L;   ///< Radiance arriving along -wi (delta lights: intensity over attenuation).
+    /// Density of wi over solid angle, times the probability of choosing the light; for delta
+    /// lights, just that probability.
+    double pdf = 0;
+    double distance = 0;  ///< To the point on the light; infinity for distant lights.
+    bool delta = false;   ///< A point or directional light: no BSDF sample can reach it.
+};
+
+class LightSampler {
+  public:
+    /// Collects the lights of the prepared `scene`, which must outlive the sampler.
+    explicit LightSampler(const Scene& scene);
+
+    bool empty() const { return lights_.empty(); }
+    size_t size() const { return lights_.size(); }
+
+    /// Chooses a light with `uLight` and samples a direction towards it from `p` with `u`.
+    /// None if nothing arrives (p behind a one-sided emitter, on the light itself, ...).
+    std::optional<LightSample> sample(const Vec3& p, double uLight, Point2 u) const;
+
+    /// The density (as LightSample::pdf) with which sample() from `from` would have drawn
+    /// the direction to `hit`, a point on an emissive surface that a ray from `from`
+    /// reached; 0 if that surface is not among the sampled lights.
+    double pdfHit(const Vec3& from, const Hit& hit, const SurfaceInteraction& si) const;
+
+    /// The density (as LightSample::pdf) with which sample() draws the direction `dir` towards
+    /// the environment; 0 if the background is black.
+    double pdfEnvironment(const Vec3& dir) const;
+
+    /// Radiance of the environment (the background) arriving from direction `dir`.
+    Vec3 environment(const Vec3& dir) const { return scene_.background.eval(dir); }
+
+  private:
+    enum class Kind : uint8_t { Point, Directional, Triangle, Sphere, Shape, Environment };
+    struct Entry {
+        Kind kind;
+        uint32_t index;          ///< Into scene.lights, or a primitive id.
+        bool frontOnly = false;  ///< Triangles of quad lights emit from their front face only.
+        double pdfArea = 0;      ///< Triangles: 1 / area.
+    };
+    std::optional<LightSample> sampleEntry(const Entry& e, const Vec3& p, Point2 u) const;
+
+    const Scene& scene_;
+    std::vector<Entry> lights_;
+    Distribution1D power_;
+    /// Light index of each bounded primitive (none: UINT32_MAX); empty if no surface emits.
+    std::vector<uint32_t> lightOfPrimitive_;
+    uint32_t environment_ = UINT32_MAX;  ///< Index of the environment light, if any.
+    double sceneRadius_ = 1;
+};
+
+}  // namespace glint

@@ -1,0 +1,37 @@
+#pragma once
+/// A unidirectional path tracer (`integrator path`): next-event estimation and BSDF sampling
+/// combined by multiple importance sampling with the power heuristic (Veach 1997), unbiased
+/// Russian roulette, and every light of the scene (render/light_sampler.h). Materials are the
+/// course's, made physical by bsdfFromMaterial (render/bsdf.h); the course's ambient term is
+/// not used (the indirect light it stands for is computed), and `emission` makes a surface a
+/// light. The path length is the scene's `maxdepth`: the number of scattering events, so 1 is
+/// direct lighting only (pbrt's convention; the default is the course's 5).
+
+#include "glint/render/integrator.h"
+#include "glint/render/light_sampler.h"
+
+namespace glint {
+
+class PathIntegrator final : public Integrator {
+  public:
+    /// How direct light is found: both strategies weighted by multiple importance sampling
+    /// (the default), or one alone (each unbiased; for tests and comparisons).
+    enum class Strategy { Mis, LightsOnly, BsdfOnly };
+
+    /// The scene must be prepared and outlive the integrator.
+    explicit PathIntegrator(const Scene& scene, Strategy strategy = Strategy::Mis);
+
+    Vec3 li(const Ray& ray, const Hit* hit, PathContext& ctx) const override;
+    bool usesRandomNumbers() const override { return true; }
+
+  private:
+    /// Weight of light a BSDF-sampled ray found on a light that next-event estimation samples
+    /// with density `lightPdf` (0: it does not).
+    double bsdfWeight(double bsdfPdf, double lightPdf) const;
+
+    const Scene& scene_;
+    LightSampler lights_;
+    Strategy strategy_;
+};
+
+}  // namespace glint

@@ -1,0 +1,237 @@
+// The path tracer (render/path.h) against cases with known answers: white furnaces, the
+// inside of a closed emitting sphere, and the agreement of its light-sampling, BSDF-sampling
+// and combined (MIS) estimators. Each estimate is the mean of many independent camera samples
+// with its standard error; a test fails when the answer lies more than kZ standard errors
+// away (two-sided p < 6e-7 per comparison, so a false failure among a few hundred comparisons
+// has probability below 2e-4), plus a small allowance for the truncation at maxdepth where
+// there is one.
+
+#include "glint/render/path.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "glint/core/spawn.h"
+#include "unit/statistics.h"
+
+namespace glint {
+namespace {
+
+constexpr double kZ = 5;
+
+/// The path tracer's radiance along `ray`, averaged over `n` samples (green channel, or the
+/// channel `c`), each sample with its own seed as the renderer gives them.
+test::MeanEstimate estimate(const Scene& scene, const Integrator& integrator, const Ray& ray, int n,
+                            uint64_t pixelSeed, int c = 1) {
+    test::MeanEstimate e;
+    Hit hit;
+    bool found = scene.bvh().intersect(ray, hit);
+    for (int i = 0; i < n; ++i) {
+        RayCounts counts;
+        PathContext ctx{Rng(pixelSeed + i), counts};
+        ctx.pixelSeed = pixelSeed;
+        ctx.sampleIndex = static_cast<uint32_t>(i);
+        Vec3 L = integrator.li(ray, found ? &hit : nullptr, ctx);
+        EXPECT_EQ(counts.nonFinite, 0u);
+        e.add(c == 0 ? L.x : c == 1 ? L.y : L.z);
+    }
+    return e;
+}
+
+/// Rays from (0, 0, 4) towards points spread over the unit sphere's disk as seen from there.
+std::vector<Ray> raysAtTheSphere(int count) {
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i) {
+        double a = 2 * std::numbers::pi * i / count, r = 0.95 * std::sqrt((i + 0.5) / count);
+        Vec3 target(r * std::cos(a), r * std::sin(a), 0);
+        Vec3 origin(0, 0, 4);
+        rays.push_back(Ray{origin, normalize(target - origin), 0, kInfinity});
+    }
+    return rays;
+}
+
+/// A unit sphere of material `m` at the origin under a uniform environment of radiance 1.
+void furnace(Scene& scene, const Material& m) {
+    scene.integrator = "path";
+    scene.maxDepth = kMaxDepthLimit;
+    scene.background = Background{Vec3(1), Vec3(1)};
+    scene.primitives.addSphere(Sphere{{0, 0, 0}, 1, {}}, scene.addMaterial(m));
+    scene.prepare();
+}
+
+void expectEverywhere(const Scene& scene, const Integrator& integrator, double expected, int n,
+                      const char* what) {
+    uint64_t seed = 1;
+    for (const Ray& ray : raysAtTheSphere(24)) {
+        test::MeanEstimate e = estimate(scene, integrator, ray, n, seed++);
+        EXPECT_NEAR(e.mean(), expected, kZ * e.standardError() + 1e-9)
+            << what << ": direction " << ray.dir.x << " " << ray.dir.y << " " << ray.dir.z
+            << ", standard error " << e.standardError();
+    }
+}
+
+TEST(PathFurnace, LambertianOfAlbedoOneIsInvisible) {
+    Scene scene;
+    Material m;
+    m.diffuse = Vec3(1);
+    furnace(scene, m);
+    PathIntegrator integrator(scene);
+    expectEverywhere(scene, integrator, 1, 400, "Lambertian albedo 1");
+}
+
+TEST(PathFurnace, LambertianOfAlbedoHalfReflectsHalf) {
+    // A convex object sees the environment over its whole hemisphere: one bounce gives
+    // albedo x 1, and no light returns to it ("the rest" is 0).
+    Scene scene;
+    Material m;
+    m.diffuse = Vec3(0.5);
+    furnace(scene, m);
+    PathIntegrator integrator(scene);
+    expectEverywhere(scene, integrator, 0.5, 400, "Lambertian albedo 0.5");
+}
+
+TEST(PathFurnace, PerfectMirrorIsInvisible) {
+    Scene scene;
+    Material m;
+    m.specular = Vec3(1);
+    furnace(scene, m);
+    PathIntegrator integrator(scene);
+    expectEverywhere(scene, integrator, 1, 16, "mirror");
+}
+
+TEST(PathFurnace, SmoothDielectricIsInvisible) {
+    // Every sample's weight is exactly 1 (reflect or refract by Fresnel, radiance scaled in and
+    // out of the glass); paths still inside after kMaxDepthLimit events are lost: below
+    // 0.1^30 of the light here.
+    Scene scene;
+    Material m;
+    m.transmission = Vec3(1);
+    m.ior = 1.5;
+    furnace(scene, m);
+    PathIntegrator integrator(scene);
+    expectEverywhere(scene, integrator, 1, 64, "smooth dielectric");
+}
+
+TEST(PathFurnace, TheStrategiesAgreeOnAHalfWhiteSphere) {
+    Scene scene;
+    Material m;
+    m.diffuse = Vec3(0.5);
+    furnace(scene, m);
+    for (auto s : {PathIntegrator::Strategy::LightsOnly, PathIntegrator::Strategy::BsdfOnly}) {
+        PathIntegrator integrator(scene, s);
+        expectEverywhere(scene, integrator, 0.5, 400, "one strategy");
+    }
+}
+
+TEST(PathClosedSphere, TheInsideOfAnEmittingDiffuseSphereIsEOverOneMinusRho) {
+    // Every point inside sees the sphere's radiance L = E + rho L everywhere: L = E / (1 - rho).
+    for (double rho : {0.3, 0.7}) {
+        Scene scene;
+        scene.integrator = "path";
+        scene.maxDepth = kMaxDepthLimit;
+        Material m;
+        m.diffuse = Vec3(rho);
+        m.emission = Vec3(0.25);
+        scene.primitives.addSphere(Sphere{{0, 0, 0}, 2, {}}, scene.addMaterial(m));
+        scene.prepare();
+        PathIntegrator integrator(scene);
+        const double expected = 0.25 / (1 - rho);
+        const double truncation = 0.25 * std::pow(rho, kMaxDepthLimit + 1) / (1 - rho);
+        uint64_t seed = 100;
+        for (Vec3 dir : {Vec3(1, 0, 0), Vec3(0, -1, 0), normalize(Vec3(1, 2, -3))}) {
+            Ray ray{{0.3, -0.5, 0.8}, dir, 0, kInfinity};
+            test::MeanEstimate e = estimate(scene, integrator, ray, 4000, seed++);
+            EXPECT_NEAR(e.mean(), expected, kZ * e.standardError() + truncation)
+                << "rho " << rho << ", standard error " << e.standardError();
+        }
+    }
+}
+
+/// A room for the strategies: a floor, a rough glossy sphere and a diffuse one, lit by a quad
+/// light, a small emissive sphere and a point light.
+void lightsAndGloss(Scene& scene) {
+    scene.integrator = "path";
+    scene.maxDepth = 3;
+    Material floor;
+    floor.diffuse = Vec3(0.6, 0.5, 0.4);
+    uint32_t f = scene.addMaterial(floor);
+    scene.primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, f);
+    scene.primitives.addTriangle({-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, nullptr, f);
+    Material glossy;
+    glossy.diffuse = Vec3(0.2);
+    glossy.specular = Vec3(0.7);
+    glossy.roughness = 0.2;
+    scene.primitives.addSphere(Sphere{{-1, 1, 0}, 1, {}}, scene.addMaterial(glossy));
+    Material diffuse;
+    diffuse.diffuse = Vec3(0.8);
+    scene.primitives.addSphere(Sphere{{1.2, 0.7, 0.5}, 0.7, {}}, scene.addMaterial(diffuse));
+    Material lamp;
+    lamp.emission = Vec3(8, 6, 4);
+    scene.primitives.addSphere(Sphere{{1.5, 2.5, -1}, 0.3, {}}, scene.addMaterial(lamp));
+    Material panel;
+    panel.emission = Vec3(3);
+    panel.frontEmissionOnly = true;
+    uint32_t p = scene.addMaterial(panel);
+    // Facing down: cross(b - a, c - a) points to -y.
+    scene.primitives.addTriangle({-1, 3, -1}, {1, 3, 1}, {-1, 3, 1}, nullptr, p);
+    scene.primitives.addTriangle({-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, nullptr, p);
+    Light point;
+    point.position = Vec3(-2, 2, 2);
+    point.color = Vec3(2);
+    scene.lights.push_back(point);
+    scene.prepare();
+}
+
+TEST(PathStrategies, LightBsdfAndMisEstimatesAgree) {
+    Scene scene;
+    lightsAndGloss(scene);
+    PathIntegrator mis(scene), lightsOnly(scene, PathIntegrator::Strategy::LightsOnly),
+        bsdfOnly(scene, PathIntegrator::Strategy::BsdfOnly);
+    // Camera rays at the glossy sphere (the highlight of the panel included), the diffuse
+    // one and the floor.
+    const Vec3 eye(0, 1.5, 5);
+    uint64_t seed = 7;
+    int compared = 0;
+    for (Vec3 target : {Vec3(-1, 1.2, 0.9), Vec3(-0.6, 1.6, 0.8), Vec3(1.2, 0.9, 1.1),
+                        Vec3(0.2, 0, 2), Vec3(-2, 0, 1), Vec3(2, 0, -2)}) {
+        Ray ray{eye, normalize(target - eye), 0, kInfinity};
+        for (int c = 0; c < 3; ++c) {
+            test::MeanEstimate a = estimate(scene, mis, ray, 20000, seed, c);
+            test::MeanEstimate b = estimate(scene, lightsOnly, ray, 20000, seed + 1, c);
+            test::MeanEstimate d = estimate(scene, bsdfOnly, ray, 20000, seed + 2, c);
+            seed += 3;
+            auto both = [](const test::MeanEstimate& x, const test::MeanEstimate& y) {
+                return kZ * std::hypot(x.standardError(), y.standardError());
+            };
+            EXPECT_NEAR(a.mean(), b.mean(), both(a, b)) << "MIS vs lights only, channel " << c;
+            EXPECT_NEAR(a.mean(), d.mean(), both(a, d)) << "MIS vs BSDF only, channel " << c;
+            EXPECT_GT(a.mean(), 0);
+            // MIS is never much worse than the better of the two.
+            EXPECT_LT(a.standardError(),
+                      1.5 * std::min(b.standardError(), d.standardError()) + 1e-12);
+            ++compared;
+        }
+    }
+    EXPECT_EQ(compared, 18);
+}
+
+TEST(PathIntegrator, IsChosenByNameAndIgnoresAmbient) {
+    Scene scene;
+    scene.integrator = "path";
+    Material m;
+    m.ambient = Vec3(0.5);  // the course's stand-in for indirect light: not used
+    m.diffuse = Vec3(0.5);
+    scene.primitives.addSphere(Sphere{{0, 0, 0}, 1, {}}, scene.addMaterial(m));
+    scene.prepare();
+    std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {});
+    ASSERT_NE(dynamic_cast<PathIntegrator*>(integrator.get()), nullptr);
+    test::MeanEstimate e =
+        estimate(scene, *integrator, Ray{{0, 0, 4}, {0, 0, -1}, 0, kInfinity}, 16, 3);
+    EXPECT_EQ(e.mean(), 0) << "no light, no background: black";
+}
+
+}  // namespace
+}  // namespace glint
