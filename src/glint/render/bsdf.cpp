@@ -217,7 +217,7 @@ std::optional<BsdfSample> DiffuseSpecular::sample(const Vec3& wo, double uc, Poi
 
 Bsdf bsdfFromMaterial(const Material& m) {
     auto unit = [](const Vec3& c) { return min(max(c, Vec3(0)), Vec3(1)); };
-    if (m.transmissive()) return {Dielectric{m.ior, unit(m.transmission)}};
+    if (m.transmissive()) return {Dielectric{m.ior, unit(m.transmission), m.roughness}};
     Vec3 d = unit(m.diffuse), s = unit(m.specular);
     if (s == Vec3(0)) return {Lambertian{d}};
     for (int c = 0; c < 3; ++c) {

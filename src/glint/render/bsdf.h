@@ -164,9 +164,9 @@ struct Bsdf {
 /// The BSDF standing for the flat course material `m` (its `diffuse` already replaced by a
 /// texture's value where it has one), so that a physically based integrator never gains
 /// energy. Colours are clamped to [0, 1] first (the course allows any value); then:
-///  - transmission T != 0: Dielectric{ior, T}; diffuse and specular are dropped (the
-///    dielectric reflects by Fresnel; the course's specular on glass stands in for
-///    highlights), as is roughness until the rough dielectric exists;
+///  - transmission T != 0: Dielectric{ior, T, roughness}, smooth at roughness 0 and GGX
+///    above; diffuse and specular are dropped (the dielectric reflects by Fresnel; the
+///    course's specular on glass stands in for highlights);
 ///  - specular S == 0: Lambertian{diffuse};
 ///  - otherwise DiffuseSpecular{D, S, roughness}, where a channel with D + S > 1 has both
 ///    divided by D + S.

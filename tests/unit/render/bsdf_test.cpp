@@ -599,6 +599,7 @@ TEST(BsdfFromMaterial, PicksTheLobesAndNeverLetsTheColoursSumAboveOne) {
     ASSERT_TRUE(std::holds_alternative<Dielectric>(b.lobe));
     EXPECT_EQ(std::get<Dielectric>(b.lobe).eta, 1.33);
     EXPECT_EQ(std::get<Dielectric>(b.lobe).tint, Vec3(1, 0.9, 1));
+    EXPECT_EQ(std::get<Dielectric>(b.lobe).alpha, 0.3);  // rough glass
 }
 
 }  // namespace
