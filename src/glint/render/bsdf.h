@@ -89,19 +89,39 @@ struct Conductor {
     double pdf(const Vec3& wo, const Vec3& wi) const;
 };
 
-/// A smooth boundary between the outside (+z, index 1) and a dielectric of index `eta`:
-/// specular reflection and refraction, one chosen with the exact Fresnel reflectance R as its
-/// probability (uc < R reflects), so each weight is `tint` (times the radiance factor of
-/// refraction, see above). `tint` scales both, as the course's `transmission` does. A rough
-/// dielectric (GGX reflection and transmission, Walter et al. 2007) is left for the path
-/// tracer's issue.
+/// A boundary between the outside (+z, index 1) and a dielectric of index `eta`, reflecting and
+/// transmitting by the exact Fresnel reflectance; `tint` scales both lobes, as the course's
+/// `transmission` does. A wo below the surface is a viewer inside: the indices swap.
+///  - alpha = 0 (or eta = 1, where nothing bends): smooth, specular reflection and refraction,
+///    one chosen with the Fresnel reflectance R as its probability (uc < R reflects), so each
+///    weight is `tint` (times the radiance factor of refraction, see above).
+///  - alpha > 0: GGX microfacet reflection and transmission after Walter et al., "Microfacet
+///    Models for Refraction through Rough Surfaces" (EGSR 2007), as pbrt-v4's DielectricBxDF
+///    (there with height-correlated masking; here the separable Smith G1(wo) G1(wi) of the
+///    Conductor). With n_o, n_i the indices on wo's and wi's sides and h the microfacet normal
+///    (the generalized half-vector n_o wo + n_i wi, turned to +z), F the Fresnel reflectance
+///    at wo.h:
+///      reflection    f = D(h) G2 F / (4 |cos_o cos_i|)
+///      transmission  f = D(h) G2 (1 - F) |wi.h wo.h| / (|cos_o cos_i| (wi.h + wo.h n_o/n_i)^2)
+///                        * (n_o / n_i)^2
+///    sample() draws h from the normals visible from wo (optics.h), then reflects with
+///    probability F and refracts otherwise: the weight is tint G1(wi) times the radiance
+///    factor for a transmission. Under total internal reflection at h, F = 1. Single
+///    scattering: rays the microsurface would scatter again (reflected below it, refracted
+///    back above it) are lost, more of them the rougher the surface.
+/// Reciprocity with refraction holds for f / n_o^2: f(wo, wi) / n_o^2 = f(wi, wo) / n_i^2.
 struct Dielectric {
     double eta = 1.5;  ///< Index of refraction inside (below the surface) over outside.
     Vec3 tint{1};      ///< Each channel in [0, 1].
+    double alpha = 0;  ///< GGX roughness in [0, 1]; 0 is the smooth (delta) boundary.
 
-    Vec3 eval(const Vec3&, const Vec3&) const { return Vec3(0); }
+    Vec3 eval(const Vec3& wo, const Vec3& wi) const;
     std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
-    double pdf(const Vec3&, const Vec3&) const { return 0; }
+    double pdf(const Vec3& wo, const Vec3& wi) const;
+
+  private:
+    /// Whether the GGX lobes apply; otherwise the boundary is a pair of deltas.
+    bool rough() const { return alpha > 0 && eta != 1; }
 };
 
 /// The course's opaque material made physical: a Lambertian lobe of albedo `diffuse` plus
@@ -144,9 +164,9 @@ struct Bsdf {
 /// The BSDF standing for the flat course material `m` (its `diffuse` already replaced by a
 /// texture's value where it has one), so that a physically based integrator never gains
 /// energy. Colours are clamped to [0, 1] first (the course allows any value); then:
-///  - transmission T != 0: Dielectric{ior, T}; diffuse and specular are dropped (the
-///    dielectric reflects by Fresnel; the course's specular on glass stands in for
-///    highlights), as is roughness until the rough dielectric exists;
+///  - transmission T != 0: Dielectric{ior, T, roughness}, smooth at roughness 0 and GGX
+///    above; diffuse and specular are dropped (the dielectric reflects by Fresnel; the
+///    course's specular on glass stands in for highlights);
 ///  - specular S == 0: Lambertian{diffuse};
 ///  - otherwise DiffuseSpecular{D, S, roughness}, where a channel with D + S > 1 has both
 ///    divided by D + S.
