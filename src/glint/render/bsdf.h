@@ -119,7 +119,6 @@ struct Dielectric {
     std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
     double pdf(const Vec3& wo, const Vec3& wi) const;
 
-  private:
     /// Whether the GGX lobes apply; otherwise the boundary is a pair of deltas.
     bool rough() const { return alpha > 0 && eta != 1; }
 };

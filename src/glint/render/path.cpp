@@ -21,7 +21,7 @@ bool specularOnly(const Bsdf& bsdf) {
     struct Visitor {
         bool operator()(const Lambertian&) const { return false; }
         bool operator()(const Conductor& c) const { return c.alpha == 0; }
-        bool operator()(const Dielectric&) const { return true; }
+        bool operator()(const Dielectric& d) const { return !d.rough(); }
         bool operator()(const DiffuseSpecular& d) const {
             return d.alpha == 0 && d.diffuse == Vec3(0);
         }

@@ -28,6 +28,26 @@ constexpr double kMinBranchWeight = 1e-3;
     return std::numbers::pi * ggx.d(h) * ggx.g2(f.toLocal(wo), f.toLocal(wi)) / (4 * nDotV);
 }
 
+/// Density over solid angle with which indirect() draws the GGX lobe's reflected ray `wi` at
+/// `si` for the viewer `wo`: the visible-normal density over 4 (wo.h), G1(wo) D(h) / (4 N.V).
+[[gnu::noinline]] double ggxReflectionPdf(const SurfaceInteraction& si, const Vec3& wo,
+                                          const Vec3& wi, double roughness) {
+    Frame f(dot(si.n, wo) >= 0 ? si.n : -si.n);
+    Vec3 o = f.toLocal(wo), i = f.toLocal(wi);
+    Vec3 sum = o + i;
+    double len = length(sum);
+    if (!(o.z > 0 && i.z > 0 && len > 0)) return 0;
+    Ggx ggx{roughness};
+    return ggx.g1(o) * ggx.d(sum / len) / (4 * o.z);
+}
+
+/// The power heuristic (exponent 2) for a sample drawn with density `a` by one strategy and
+/// `b` by the other.
+inline double powerHeuristic(double a, double b) {
+    double a2 = a * a, b2 = b * b;
+    return a2 > 0 ? a2 / (a2 + b2) : 0;
+}
+
 /// One light's specular and diffuse term at a point it reaches from unit direction `wi`
 /// (N.L > 0, unblocked) with `radiance` (the light's colour over the attenuation, or an area
 /// light's L / pdf): Blinn-Phong as the course has it, or the GGX lobe for rough materials.
@@ -58,7 +78,8 @@ WhittedIntegrator::WhittedIntegrator(const Scene& scene, int spp)
         anyTransmissive_ = anyTransmissive_ || m.transmissive();
         usesRandomNumbers_ = usesRandomNumbers_ || m.roughness > 0;
     }
-    for (const Light& l : scene.lights) usesRandomNumbers_ = usesRandomNumbers_ || l.isArea();
+    for (const Light& l : scene.lights) anyAreaLights_ = anyAreaLights_ || l.isArea();
+    usesRandomNumbers_ = usesRandomNumbers_ || anyAreaLights_;
 }
 
 Vec3 WhittedIntegrator::trace(const Ray& ray, int depth, double weight, PathContext& ctx) const {
@@ -97,11 +118,11 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
 
 [[gnu::always_inline]] inline void WhittedIntegrator::directLight(const SurfaceInteraction& si,
                                                                   const Vec3& wo, const Material& m,
-                                                                  Vec3& color,
+                                                                  bool glossyRay, Vec3& color,
                                                                   PathContext& ctx) const {
     for (const Light& light : scene_.lights) {
         if (!light.isDelta()) {
-            areaLight(light, si, wo, m, color, ctx);
+            areaLight(light, si, wo, m, glossyRay, color, ctx);
             continue;
         }
         std::optional<LightLiSample> ls = light.sampleLi(si.p, {});
@@ -125,7 +146,8 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
 }
 
 void WhittedIntegrator::areaLight(const Light& light, const SurfaceInteraction& si, const Vec3& wo,
-                                  const Material& m, Vec3& color, PathContext& ctx) const {
+                                  const Material& m, bool glossyRay, Vec3& color,
+                                  PathContext& ctx) const {
     // An n x n stratified, jittered grid over the parallelogram, each point weighted by
     // L / pdf = L * invPdf, which is the course's L * (A cos(theta_light) / r^2) to the bit.
     const int n = areaGrid_;
@@ -145,7 +167,17 @@ void WhittedIntegrator::areaLight(const Light& light, const SurfaceInteraction& 
             Vec3 t = transmittance(si.p, ls->wi, end, ctx.counts);
             if (t == Vec3(0)) continue;
             radiance = radiance * inv;
-            color += lightTerm(si, wo, m, ls->wi, radiance, nDotL) * t;
+            if (!glossyRay) {
+                color += lightTerm(si, wo, m, ls->wi, radiance, nDotL) * t;
+                continue;
+            }
+            // The GGX lobe's reflected ray finds this light too: weigh the two estimates of its
+            // highlight by multiple importance sampling (n x n light samples against one ray).
+            double pl = n * n * ls->pdf();
+            double w = powerHeuristic(pl, ggxReflectionPdf(si, wo, ls->wi, m.roughness));
+            Vec3 diffuse = m.diffuse * nDotL;
+            Vec3 specular = m.specular * (ggxSpecular(si, wo, ls->wi, m.roughness) * w);
+            color += radiance * (diffuse + specular) * t;
         }
 }
 
@@ -186,7 +218,30 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, c
     double g = ggx.g1(wiL);
     if (!(g > 0)) return Vec3(0);
     Vec3 wi = normalize(f.toWorld(wiL));
-    return m.specular * g * trace(spawnRay(si.p, wi, offset), depth + 1, weight, ctx);
+    Ray next = spawnRay(si.p, wi, offset);
+    ctx.counts.reflection++;
+    Hit hit;
+    bool found = scene_.bvh().intersect(next, hit);
+    if (found && anyAreaLights_) {
+        // An area light's surface: its emission weighed against the light's own samples
+        // (areaLight()), on their scale (pi times the physical one, like the course's terms).
+        SurfaceInteraction at = scene_.primitives.interaction(next, hit);
+        const Material& lm = scene_.materials[at.material];
+        if (lm.frontEmissionOnly && lm.diffuse == Vec3(0) && lm.specular == Vec3(0) &&
+            !lm.transmissive()) {
+            Vec3 c = lm.ambient;
+            if (dot(wi, at.ng) < 0) {
+                double pl = 0;
+                for (const Light& light : scene_.lights)
+                    if (light.isArea()) pl += light.pdfLi(si.p, wi);
+                double pb = ggx.g1(woL) * ggx.d(h) / (4 * woL.z);
+                c += lm.emission *
+                     (std::numbers::pi * powerHeuristic(pb, areaGrid_ * areaGrid_ * pl));
+            }
+            return m.specular * g * finiteRadiance(c, ctx.counts);
+        }
+    }
+    return m.specular * g * shade(next, found ? &hit : nullptr, depth + 1, weight, ctx);
 }
 
 [[gnu::always_inline]] inline Vec3 WhittedIntegrator::shadeHit(const Ray& ray,
@@ -196,7 +251,10 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, c
                                                                PathContext& ctx) const {
     // Area lights' surfaces emit from their front face only (shadeSpecial's case).
     Vec3 color = frontOnly && !(dot(ray.dir, si.ng) < 0) ? m.ambient : m.ambient + m.emission;
-    directLight(si, -ray.dir, m, color, ctx);
+    // Whether indirect() traces the GGX lobe's reflected ray.
+    const bool glossyRay =
+        m.roughness > 0 && depth < scene_.maxDepth && !m.transmissive() && !(m.specular == Vec3(0));
+    directLight(si, -ray.dir, m, glossyRay, color, ctx);
     if (depth < scene_.maxDepth) {
         if (m.transmissive() || m.roughness > 0) {
             color += indirect(ray, si, m, depth, weight, ctx);

@@ -52,13 +52,15 @@ class WhittedIntegrator final : public Integrator {
     [[gnu::noinline]] Vec3 shadeSpecial(const Ray& ray, const SurfaceInteraction& si,
                                         const Material& m, int depth, double weight,
                                         PathContext& ctx) const;
-    /// Adds every light's contribution at the hit to `color`.
-    void directLight(const SurfaceInteraction& si, const Vec3& wo, const Material& m, Vec3& color,
-                     PathContext& ctx) const;
+    /// Adds every light's contribution at the hit to `color`. `glossyRay`: indirect() will
+    /// trace the GGX lobe's reflected ray, whose finding of area lights is weighed against
+    /// theirs by multiple importance sampling.
+    void directLight(const SurfaceInteraction& si, const Vec3& wo, const Material& m,
+                     bool glossyRay, Vec3& color, PathContext& ctx) const;
     /// directLight() for one area light: out of line, so that the point and directional
     /// lights' loop stays lean.
     [[gnu::noinline]] void areaLight(const Light& light, const SurfaceInteraction& si,
-                                     const Vec3& wo, const Material& m, Vec3& color,
+                                     const Vec3& wo, const Material& m, bool glossyRay, Vec3& color,
                                      PathContext& ctx) const;
     /// Refraction (with its Fresnel-weighted reflection) or the GGX lobe's reflected ray at a
     /// hit, recursively traced. The course's mirror ray is traced inline by shade().
@@ -67,6 +69,7 @@ class WhittedIntegrator final : public Integrator {
 
     const Scene& scene_;
     bool anyTransmissive_ = false;
+    bool anyAreaLights_ = false;
     bool usesRandomNumbers_ = false;
     int areaGrid_ = 1;
 };

@@ -6,8 +6,11 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 
+#include "glint/render/optics.h"
 #include "glint/render/renderer.h"
+#include "glint/render/whitted.h"
 #include "unit/scene/quad_light_support.h"
 #include "unit/statistics.h"
 #include "unit/test_support.h"
@@ -85,6 +88,73 @@ TEST(AreaLight, WhittedPixelsAreDiffuseTimesTheAnalyticIrradianceOnAverage) {
         // The estimates are usable ones: a 4 x 4 grid gives a few percent of noise per pixel.
         if (grid == 4) {
             EXPECT_LT(ratio.standardError() * std::sqrt(double(ratio.n)), 0.1);
+        }
+    }
+}
+
+/// A rough glossy sphere (no diffuse) under a quad light facing down, nothing else: its
+/// GGX lobe's reflected ray meets the light or nothing.
+std::unique_ptr<Scene> glossySphereUnderQuadLight(double roughness, int maxDepth) {
+    auto scene = std::make_unique<Scene>();
+    scene->lightSamples = 2;
+    scene->maxDepth = maxDepth;
+    Material glossy = test::makeMaterial(Vec3(0), Vec3(0), Vec3(0.8, 0.6, 0.4));
+    glossy.roughness = roughness;
+    scene->primitives.addSphere(Sphere{{0, 0, 0}, 1, {}}, scene->addMaterial(glossy));
+    Light l = test::quadLight({-0.5, 3, -0.5}, {1, 0, 0}, {0, 0, 1});  // facing -y
+    l.color = kRadiance;
+    scene->lights.push_back(l);
+    Material m = test::makeMaterial(Vec3(0));
+    m.emission = l.color;
+    m.frontEmissionOnly = true;
+    uint32_t id = scene->addMaterial(m);
+    scene->primitives.addTriangle(l.position, l.position + l.edge1, l.position + l.edge1 + l.edge2,
+                                  nullptr, id);
+    scene->primitives.addTriangle(l.position, l.position + l.edge1 + l.edge2, l.position + l.edge2,
+                                  nullptr, id);
+    scene->prepare();
+    return scene;
+}
+
+TEST(AreaLightGloss, TheHighlightIsWeighedBetweenLightSamplesAndTheGlossyRay) {
+    // With maxdepth 0 no reflected ray is traced: the highlight comes from light samples
+    // alone. With maxdepth 1 the reflected ray finds the light too, and multiple importance
+    // sampling weighs the two: the same expected highlight, far less noise for a narrow lobe.
+    for (double roughness : {0.05, 0.3}) {
+        auto lightsOnly = glossySphereUnderQuadLight(roughness, 0);
+        auto mis = glossySphereUnderQuadLight(roughness, 1);
+        WhittedIntegrator a(*lightsOnly), b(*mis);
+        // The point of the sphere that mirrors the light's centre towards the eye, found by
+        // search along the meridian facing both, and two points beside it.
+        const Vec3 eye(0, 0, 4), centre(0, 3, 0);
+        Vec3 best;
+        double bestCos = -2;
+        for (int k = 0; k <= 9000; ++k) {
+            double theta = k * (std::numbers::pi / 2) / 9000;
+            Vec3 n(0, std::sin(theta), std::cos(theta));
+            Vec3 r = reflect(normalize(n - eye), n);
+            double c = dot(r, normalize(centre - n));
+            if (c > bestCos) bestCos = c, best = n;
+        }
+        for (Vec3 target :
+             {best, normalize(best + Vec3(0.05, 0, 0)), normalize(best + Vec3(0, 0.04, 0))}) {
+            Ray ray{eye, normalize(target - eye), 0, kInfinity};
+            Hit hit;
+            ASSERT_TRUE(lightsOnly->bvh().intersect(ray, hit));
+            test::MeanEstimate ea, eb;
+            for (int i = 0; i < 20000; ++i) {
+                RayCounts counts;
+                PathContext ca{Rng(1000 + i), counts}, cb{Rng(900000 + i), counts};
+                ea.add(a.li(ray, &hit, ca).y);
+                eb.add(b.li(ray, &hit, cb).y);
+            }
+            EXPECT_NEAR(ea.mean(), eb.mean(),
+                        5 * std::hypot(ea.standardError(), eb.standardError()))
+                << "roughness " << roughness;
+            EXPECT_GT(eb.mean(), 0);
+            if (roughness < 0.1)
+                EXPECT_LT(eb.standardError(), 0.7 * ea.standardError())
+                    << "no less noise from the glossy ray";
         }
     }
 }
