@@ -21,11 +21,11 @@ namespace glint {
 namespace sobol {
 
 constexpr uint32_t reverseBits(uint32_t x) {
+    // Bits within bytes, then the bytes (one instruction).
     x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
     x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
     x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
-    x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
-    return (x >> 16) | (x << 16);
+    return __builtin_bswap32(x);
 }
 
 /// Laine and Karras's hash, which permutes bit i depending only on bits below it.
@@ -47,20 +47,28 @@ constexpr uint32_t owenScramble(uint32_t x, uint32_t seed) {
 /// The Sobol sequence's second dimension as a 32-bit fraction: its direction numbers are
 /// v_0 = 2^31, v_{i+1} = v_i xor (v_i >> 1) (the Pascal matrix mod 2). The first dimension is
 /// reverseBits(index) (van der Corput).
-constexpr uint32_t secondDimension(uint32_t index) {
+constexpr uint32_t secondDimensionByBits(uint32_t index) {
     uint32_t v = 1u << 31, r = 0;
     for (; index; index >>= 1, v ^= v >> 1)
         if (index & 1) r ^= v;
     return r;
 }
 
-constexpr uint32_t hash32(uint64_t v) {
-    v ^= v >> 33;
-    v *= 0xff51afd7ed558ccdULL;
-    v ^= v >> 33;
-    v *= 0xc4ceb9fe1a85ec53ULL;
-    v ^= v >> 33;
-    return static_cast<uint32_t>(v);
+/// secondDimensionByBits() of each byte value at each byte position: the sequence is linear
+/// over GF(2), so the value of an index is the xor of its bytes' values.
+struct SecondDimensionTable {
+    uint32_t byByte[4][256] = {};
+    constexpr SecondDimensionTable() {
+        for (int b = 0; b < 4; ++b)
+            for (uint32_t v = 0; v < 256; ++v) byByte[b][v] = secondDimensionByBits(v << (8 * b));
+    }
+};
+inline constexpr SecondDimensionTable kSecondDimension{};
+
+inline uint32_t secondDimension(uint32_t index) {
+    const auto& t = kSecondDimension.byByte;
+    return t[0][index & 255] ^ t[1][(index >> 8) & 255] ^ t[2][(index >> 16) & 255] ^
+           t[3][index >> 24];
 }
 
 constexpr double toUnit(uint32_t x) { return x * 0x1p-32; }
@@ -76,16 +84,30 @@ class SobolSampler {
 
     /// The next pair of dimensions: a point of [0, 1)^2.
     Point2 get2D() {
-        uint64_t dimSeed = seed_ ^ (0x9e3779b97f4a7c15ULL * (++dimension_));
-        uint32_t i = sobol::owenScramble(index_, sobol::hash32(dimSeed));
-        uint32_t x = sobol::owenScramble(sobol::reverseBits(i), sobol::hash32(dimSeed + 1));
-        uint32_t y = sobol::owenScramble(sobol::secondDimension(i), sobol::hash32(dimSeed + 2));
+        // One 64-bit hash gives the pair's three scrambling seeds (the third is the first
+        // rotated: the Laine-Karras hash mixes it anew after the addition).
+        uint64_t h = mix(seed_ + 0x9e3779b97f4a7c15ULL * (++dimension_));
+        uint32_t s0 = static_cast<uint32_t>(h), s1 = static_cast<uint32_t>(h >> 32);
+        uint32_t s2 = s0 ^ ((s1 << 16) | (s1 >> 16)) ^ 0x5bd1e995u;
+        uint32_t i = sobol::owenScramble(index_, s0);
+        // reverseBits(i) scrambled is laineKarras of i itself, reversed: one reversal saved.
+        uint32_t x = sobol::reverseBits(sobol::laineKarras(i, s1));
+        uint32_t y = sobol::owenScramble(sobol::secondDimension(i), s2);
         return {sobol::toUnit(x), sobol::toUnit(y)};
     }
     /// The next dimension alone: the first of a pair (a stratified 1D sequence itself).
     double get1D() { return get2D().x; }
 
   private:
+    static constexpr uint64_t mix(uint64_t v) {
+        v ^= v >> 31;
+        v *= 0x7fb5d329728ea185ULL;
+        v ^= v >> 27;
+        v *= 0x81dadef4bc2dd44dULL;
+        v ^= v >> 33;
+        return v;
+    }
+
     uint64_t seed_;
     uint32_t index_;
     uint64_t dimension_ = 0;

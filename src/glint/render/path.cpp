@@ -32,7 +32,10 @@ bool specularOnly(const Bsdf& bsdf) {
 }  // namespace
 
 PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
-    : scene_(scene), lights_(scene), strategy_(strategy) {}
+    : scene_(scene), lights_(scene), strategy_(strategy) {
+    bsdfs_.reserve(scene.materials.size());
+    for (const Material& m : scene.materials) bsdfs_.push_back(bsdfFromMaterial(m));
+}
 
 double PathIntegrator::bsdfWeight(double bsdfPdf, double lightPdf) const {
     switch (strategy_) {
@@ -93,7 +96,10 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const Vec3 wo = frame.toLocal(-ray.dir);
 
         // Next-event estimation: one light sample, weighted against the BSDF's density.
-        const double uLight = sampler.get1D();
+        // Three pairs of dimensions per bounce: (light, lobe), the point on the light, the
+        // BSDF's direction; Russian roulette takes the sample's own random numbers.
+        const Point2 uChoices = sampler.get2D();
+        const double uLight = uChoices.x;
         const Point2 uLightPoint = sampler.get2D();
         if (!lights_.empty() && !specularOnly(bsdf)) {
             std::optional<LightSample> ls = lights_.sample(si.p, uLight, uLightPoint);
@@ -117,7 +123,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         }
 
         // The next direction, from the BSDF.
-        const double uLobe = sampler.get1D();
+        const double uLobe = uChoices.y;
         const Point2 uDir = sampler.get2D();
         std::optional<BsdfSample> bs = bsdf.sample(wo, uLobe, uDir);
         if (!bs || !(bs->pdf > 0)) break;
@@ -129,10 +135,9 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
 
         // Russian roulette from the second bounce on: a path of throughput below 1 survives
         // with probability equal to it, and is reweighted so the estimate stays unbiased.
-        const double uRoulette = sampler.get1D();
         double survive = maxComponent(beta);
         if (depth >= 1 && survive < 1) {
-            if (uRoulette >= survive) break;
+            if (ctx.rng.uniform() >= survive) break;
             beta = beta / survive;
         }
 

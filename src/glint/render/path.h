@@ -7,6 +7,9 @@
 /// light. The path length is the scene's `maxdepth`: the number of scattering events, so 1 is
 /// direct lighting only (pbrt's convention; the default is the course's 5).
 
+#include <vector>
+
+#include "glint/render/bsdf.h"
 #include "glint/render/integrator.h"
 #include "glint/render/light_sampler.h"
 
@@ -32,6 +35,7 @@ class PathIntegrator final : public Integrator {
     const Scene& scene_;
     LightSampler lights_;
     Strategy strategy_;
+    std::vector<Bsdf> bsdfs_;  ///< Of each material (textured ones: with the untextured colour).
 };
 
 }  // namespace glint

@@ -49,6 +49,16 @@ TEST(Sobol, EveryDimensionPairIsAZeroTwoSequence) {
         for (int m : {0, 2, 5, 8}) expectNet(0x1234 + pair, pair, m);
 }
 
+TEST(Sobol, TheSecondDimensionByTableIsTheOneByBits) {
+    uint32_t x = 1;
+    for (int i = 0; i < 100000; ++i, x = x * 1664525u + 1013904223u)
+        ASSERT_EQ(sobol::secondDimension(x), sobol::secondDimensionByBits(x)) << x;
+    EXPECT_EQ(sobol::secondDimension(0), 0u);
+    EXPECT_EQ(sobol::secondDimension(1), 0x80000000u);
+    EXPECT_EQ(sobol::secondDimension(2), 0xc0000000u);
+    EXPECT_EQ(sobol::secondDimension(3), 0x40000000u);
+}
+
 TEST(Sobol, PixelsAndDimensionsDiffer) {
     SobolSampler a(1, 0), b(2, 0);
     Point2 a0 = a.get2D(), a1 = a.get2D(), b0 = b.get2D();
