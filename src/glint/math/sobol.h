@@ -14,6 +14,7 @@
 
 #include <cstdint>
 
+#include "glint/math/rng.h"
 #include "glint/math/sampling.h"
 
 namespace glint {
@@ -86,7 +87,7 @@ class SobolSampler {
     Point2 get2D() {
         // One 64-bit hash gives the pair's three scrambling seeds (the third is the first
         // rotated: the Laine-Karras hash mixes it anew after the addition).
-        uint64_t h = mix(seed_ + 0x9e3779b97f4a7c15ULL * (++dimension_));
+        uint64_t h = mixBits(seed_ + 0x9e3779b97f4a7c15ULL * (++dimension_));
         uint32_t s0 = static_cast<uint32_t>(h), s1 = static_cast<uint32_t>(h >> 32);
         uint32_t s2 = s0 ^ ((s1 << 16) | (s1 >> 16)) ^ 0x5bd1e995u;
         uint32_t i = sobol::owenScramble(index_, s0);
@@ -99,15 +100,6 @@ class SobolSampler {
     double get1D() { return get2D().x; }
 
   private:
-    static constexpr uint64_t mix(uint64_t v) {
-        v ^= v >> 31;
-        v *= 0x7fb5d329728ea185ULL;
-        v ^= v >> 27;
-        v *= 0x81dadef4bc2dd44dULL;
-        v ^= v >> 33;
-        return v;
-    }
-
     uint64_t seed_;
     uint32_t index_;
     uint64_t dimension_ = 0;

@@ -18,16 +18,6 @@
 
 namespace glint {
 
-/// A well-mixed 64-bit hash (splitmix64's finaliser).
-constexpr uint64_t mixBits(uint64_t v) {
-    v ^= v >> 30;
-    v *= 0xbf58476d1ce4e5b9ULL;
-    v ^= v >> 27;
-    v *= 0x94d049bb133111ebULL;
-    v ^= v >> 31;
-    return v;
-}
-
 class PixelSampler {
   public:
     PixelSampler(int spp, uint64_t seed, const FilterSpec& filter = {})

@@ -21,6 +21,21 @@ namespace {
 const Vec3 kDiffuse{0.7, 0.5, 0.3};
 const Vec3 kRadiance{2, 3, 4};
 
+/// Adds the quad light `l` of radiance kRadiance with its emitting surface, as the course
+/// loader does.
+void addQuadLight(Scene& scene, Light l) {
+    l.color = kRadiance;
+    scene.lights.push_back(l);
+    Material m = test::makeMaterial(Vec3(0));
+    m.emission = l.color;
+    m.frontEmissionOnly = true;
+    uint32_t id = scene.addMaterial(m);
+    Vec3 c[4] = {l.position, l.position + l.edge1, l.position + l.edge1 + l.edge2,
+                 l.position + l.edge2};
+    scene.primitives.addTriangle(c[0], c[1], c[2], nullptr, id);
+    scene.primitives.addTriangle(c[0], c[2], c[3], nullptr, id);
+}
+
 /// A diffuse floor (no ambient, no specular) and a sheared quad light above it facing down,
 /// with its emitting surface as the course loader adds it; `grid` x `grid` shadow rays per
 /// shading point. The camera sees the floor around the light and, near the top of the image,
@@ -34,17 +49,7 @@ std::unique_ptr<Scene> floorUnderQuadLight(int grid) {
     uint32_t floor = scene->addMaterial(test::makeMaterial(Vec3(0), kDiffuse));
     scene->primitives.addTriangle({-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, nullptr, floor);
     scene->primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, floor);
-    Light l = test::quadLight({-0.6, 1.2, -0.4}, {1.2, 0.1, 0}, {0.2, 0, 0.8});
-    l.color = kRadiance;
-    scene->lights.push_back(l);
-    Material m = test::makeMaterial(Vec3(0));
-    m.emission = l.color;
-    m.frontEmissionOnly = true;
-    uint32_t id = scene->addMaterial(m);
-    Vec3 c[4] = {l.position, l.position + l.edge1, l.position + l.edge1 + l.edge2,
-                 l.position + l.edge2};
-    scene->primitives.addTriangle(c[0], c[1], c[2], nullptr, id);
-    scene->primitives.addTriangle(c[0], c[2], c[3], nullptr, id);
+    addQuadLight(*scene, test::quadLight({-0.6, 1.2, -0.4}, {1.2, 0.1, 0}, {0.2, 0, 0.8}));
     scene->prepare();
     return scene;
 }
@@ -101,17 +106,7 @@ std::unique_ptr<Scene> glossySphereUnderQuadLight(double roughness, int maxDepth
     Material glossy = test::makeMaterial(Vec3(0), Vec3(0), Vec3(0.8, 0.6, 0.4));
     glossy.roughness = roughness;
     scene->primitives.addSphere(Sphere{{0, 0, 0}, 1, {}}, scene->addMaterial(glossy));
-    Light l = test::quadLight({-0.5, 3, -0.5}, {1, 0, 0}, {0, 0, 1});  // facing -y
-    l.color = kRadiance;
-    scene->lights.push_back(l);
-    Material m = test::makeMaterial(Vec3(0));
-    m.emission = l.color;
-    m.frontEmissionOnly = true;
-    uint32_t id = scene->addMaterial(m);
-    scene->primitives.addTriangle(l.position, l.position + l.edge1, l.position + l.edge1 + l.edge2,
-                                  nullptr, id);
-    scene->primitives.addTriangle(l.position, l.position + l.edge1 + l.edge2, l.position + l.edge2,
-                                  nullptr, id);
+    addQuadLight(*scene, test::quadLight({-0.5, 3, -0.5}, {1, 0, 0}, {0, 0, 1}));  // facing -y
     scene->prepare();
     return scene;
 }

@@ -73,53 +73,45 @@ void expectEverywhere(const Scene& scene, const Integrator& integrator, double e
     }
 }
 
-TEST(PathFurnace, LambertianOfAlbedoOneIsInvisible) {
-    Scene scene;
+/// A material of diffuse D, specular S and transmission T.
+Material material(double d, double s, double t = 0) {
     Material m;
-    m.diffuse = Vec3(1);
-    furnace(scene, m);
-    PathIntegrator integrator(scene);
-    expectEverywhere(scene, integrator, 1, 400, "Lambertian albedo 1");
+    m.diffuse = Vec3(d);
+    m.specular = Vec3(s);
+    m.transmission = Vec3(t);
+    return m;
 }
 
-TEST(PathFurnace, LambertianOfAlbedoHalfReflectsHalf) {
-    // A convex object sees the environment over its whole hemisphere: one bounce gives
-    // albedo x 1, and no light returns to it ("the rest" is 0).
-    Scene scene;
+struct FurnaceCase {
+    const char* what;
     Material m;
-    m.diffuse = Vec3(0.5);
-    furnace(scene, m);
-    PathIntegrator integrator(scene);
-    expectEverywhere(scene, integrator, 0.5, 400, "Lambertian albedo 0.5");
-}
+    double expected;  ///< Radiance everywhere on the sphere.
+    int samples;      ///< Per direction.
+};
 
-TEST(PathFurnace, PerfectMirrorIsInvisible) {
-    Scene scene;
-    Material m;
-    m.specular = Vec3(1);
-    furnace(scene, m);
-    PathIntegrator integrator(scene);
-    expectEverywhere(scene, integrator, 1, 16, "mirror");
-}
-
-TEST(PathFurnace, SmoothDielectricIsInvisible) {
-    // Every sample's weight is exactly 1 (reflect or refract by Fresnel, radiance scaled in and
-    // out of the glass); paths still inside after kMaxDepthLimit events are lost: below
-    // 0.1^30 of the light here.
-    Scene scene;
-    Material m;
-    m.transmission = Vec3(1);
-    m.ior = 1.5;
-    furnace(scene, m);
-    PathIntegrator integrator(scene);
-    expectEverywhere(scene, integrator, 1, 64, "smooth dielectric");
+TEST(PathFurnace, SpheresRenderTheirAnalyticRadiance) {
+    const FurnaceCase cases[] = {
+        {"Lambertian of albedo 1 is invisible", material(1, 0), 1, 400},
+        // A convex object sees the environment over its whole hemisphere: one bounce gives
+        // albedo x 1, and no light returns to it ("the rest" is 0).
+        {"Lambertian of albedo 0.5 reflects half", material(0.5, 0), 0.5, 400},
+        {"a perfect mirror is invisible", material(0, 1), 1, 16},
+        // Every sample's weight is exactly 1 (reflect or refract by Fresnel, radiance scaled in
+        // and out of the glass); paths still inside after kMaxDepthLimit events are lost: below
+        // 0.1^30 of the light here.
+        {"a smooth dielectric is invisible", material(0, 0, 1), 1, 64},
+    };
+    for (const FurnaceCase& c : cases) {
+        Scene scene;
+        furnace(scene, c.m);
+        PathIntegrator integrator(scene);
+        expectEverywhere(scene, integrator, c.expected, c.samples, c.what);
+    }
 }
 
 TEST(PathFurnace, TheStrategiesAgreeOnAHalfWhiteSphere) {
     Scene scene;
-    Material m;
-    m.diffuse = Vec3(0.5);
-    furnace(scene, m);
+    furnace(scene, material(0.5, 0));
     for (auto s : {PathIntegrator::Strategy::LightsOnly, PathIntegrator::Strategy::BsdfOnly}) {
         PathIntegrator integrator(scene, s);
         expectEverywhere(scene, integrator, 0.5, 400, "one strategy");
