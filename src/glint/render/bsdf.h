@@ -77,12 +77,39 @@ struct Lambertian {
 /// (Schlick, "An Inexpensive BRDF Model for Physically-based Rendering", 1994) with cos the
 /// angle between wo and the micro-normal. alpha = 0 is a perfect mirror (a delta lobe);
 /// alpha > 0 the GGX (Trowbridge-Reitz) microfacet BRDF with separable Smith masking,
-/// D G2 F / (4 cos_o cos_i) (Walter et al., EGSR 2007), sampled through the distribution of
-/// visible normals (optics.h): its weight is F G1(wi). Single scattering only: rough lobes
-/// lose the energy of light that would scatter between microfacets more than once.
+/// f_ss = D G2 F / (4 cos_o cos_i) (Walter et al., EGSR 2007), plus Kulla and Conty's energy
+/// compensation for the light that bounces between microfacets more than once ("Revisiting
+/// Physically Based Shading at Imageworks", SIGGRAPH 2017 course), which single scattering
+/// loses (up to 69% at alpha = 1, from normal incidence):
+///     f = f_ss + f_ms,  f_ms = F_ms (1 - E(cos_o)) (1 - E(cos_i)) / (pi (1 - E_avg)),
+/// E(mu) the directional albedo of f_ss with F = 1 and E_avg its cosine-weighted average
+/// (ggx_albedo.h: a table of this lobe's own E, not the height-correlated one). With F = 1,
+/// f_ms reflects exactly what f_ss loses, so the directional albedo is 1 at every angle and
+/// roughness, to the table's error (ggx_albedo_table::kMaxError: 6.2e-4 for alpha >= 1e-3; the
+/// compensation fades out below). For a coloured
+/// f0, F_ms = F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), the light that leaves after two or more
+/// bounces each reflecting F_avg, the cosine-weighted average of Schlick's F over the
+/// hemisphere, f0 + (1 - f0) / 21; F_ms <= F_avg^2 <= 1, so no channel gains energy. f_ms is
+/// symmetric in wo and wi (reciprocal) and smooth, like a Lambertian lobe that peaks where
+/// the GGX lobe loses most.
+///
+/// sample() draws wi through the distribution of visible normals (optics.h; alone, its weight
+/// is F G1(wi)) or, with probability p = A_ms / (A_ss + A_ms), cosine-weighted, where
+/// A_ss = E(cos_o) mean(F_avg) and A_ms = (1 - E(cos_o)) mean(F_ms) estimate the two lobes'
+/// albedos at wo; the returned f and pdf are the whole f and the mixture's density (one-sample
+/// MIS), as eval() and pdf() give them. The cosine density matches f_ms poorly for smooth
+/// surfaces: below alpha ~ 0.03, f_ms is small but concentrated at grazing wi, where 1 - E
+/// reaches 0.12 while 1 - E_avg is 0.004 (alpha 0.03) to 2e-5 (alpha 1e-3), so the rare
+/// cosine-weighted draws that land there weigh up to (1 - E) / (1 - E_avg), 30 to 7000: an
+/// unbiased but noisy estimate near grazing views of nearly smooth metal (drawing wi in
+/// proportion to (1 - E(cos_i)) cos_i, from a per-row table of its integral, would remove
+/// this). With `multipleScattering` false the lobe is f_ss alone, sampled by visible normals
+/// only (Cycles offers the same choice: "GGX" or "Multiscatter GGX").
 struct Conductor {
     Vec3 f0;           ///< Reflectance at normal incidence, each channel in [0, 1].
     double alpha = 0;  ///< GGX roughness in [0, 1].
+    /// Kulla and Conty's compensation (f_ms above); false: single scattering only.
+    bool multipleScattering = true;
 
     Vec3 eval(const Vec3& wo, const Vec3& wi) const;
     std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
@@ -125,9 +152,12 @@ struct Dielectric {
 
 /// The course's opaque material made physical: a Lambertian lobe of albedo `diffuse` plus
 /// `specular` times a lobe of constant reflectance 1, the perfect mirror (alpha = 0, the
-/// course's mirror ray) or the GGX lobe (alpha > 0). Energy-conserving when diffuse +
-/// specular <= 1 in each channel. The lobe sampled is chosen by uc, in proportion to the
-/// summed channels of the two colours.
+/// course's mirror ray) or the compensated GGX conductor with f0 = 1 (alpha > 0), whose
+/// directional albedo is 1 (to the table's error; see Conductor). So the directional albedo is
+/// diffuse + specular at every angle and roughness, and energy is conserved when diffuse +
+/// specular <= 1 in each channel: a white furnace of diffuse + specular = 1 reflects
+/// everything. The lobe sampled is chosen by uc, in proportion to the summed channels of the
+/// two colours (and then uc / p is the chosen lobe's own uc).
 struct DiffuseSpecular {
     Vec3 diffuse, specular;
     double alpha = 0;  ///< GGX roughness in [0, 1] of the specular lobe.

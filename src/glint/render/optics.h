@@ -61,11 +61,19 @@ struct Ggx {
     /// Heitz, "Sampling the GGX Distribution of Visible Normals" (JCGT 2018). Reflecting wo
     /// about it gives wi with estimator weight f cos / pdf = F * G1(wi).
     Vec3 sampleVisibleNormal(const Vec3& wo, double u1, double u2) const {
+        auto [p1, p2] = sampleUniformDisk(u1, u2);
+        return visibleNormal(wo, p1, p2);
+    }
+    /// The visible normal that sampleVisibleNormal() reaches from the point (p1, p2) of the
+    /// unit disk: uniform points of the disk give normals with the density of the visible
+    /// normals, so an integral over them is an integral over the disk (ggx_albedo_table.h).
+    /// p1 runs across the plane of wo and the normal: mirroring it mirrors the normal in that
+    /// plane.
+    Vec3 visibleNormal(const Vec3& wo, double p1, double p2raw) const {
         Vec3 vh = normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
         double len2 = vh.x * vh.x + vh.y * vh.y;
         Vec3 t1 = len2 > 0 ? Vec3(-vh.y, vh.x, 0) / std::sqrt(len2) : Vec3(1, 0, 0);
         Vec3 t2 = cross(vh, t1);
-        auto [p1, p2raw] = sampleUniformDisk(u1, u2);
         double s = 0.5 * (1 + vh.z);
         double p2 = (1 - s) * std::sqrt(std::max(0.0, 1 - p1 * p1)) + s * p2raw;
         Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0, 1 - p1 * p1 - p2 * p2));
