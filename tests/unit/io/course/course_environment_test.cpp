@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -70,6 +71,11 @@ class CourseEnvironment : public test::TempDirTest {
         return {};
     }
 };
+
+TEST(CourseEnvironmentCommand, IsAmongTheCommandNames) {
+    auto names = courseCommandNames();
+    EXPECT_NE(std::find(names.begin(), names.end(), "environment"), names.end());
+}
 
 TEST_F(CourseEnvironment, ReadsHdrAndExrRelativeToTheSceneFile) {
     for (const char* file : {"maps/sky.hdr", "maps/sky.exr"}) {
