@@ -121,6 +121,14 @@ const ErrorCase kErrorCases[] = {
      kHead + "vertex 0 0 0\nvertex 2 2 0\nvertex 2 0 0\nvertex 0 1 0\npolygon 0 1 2 3\n",
      "e.test:7:13: error: the polygon's edges cross: the edge from vertex '2' to '3' meets the "
      "edge from vertex '0' to '1'"},
+    // The environment map.
+    {"EnvironmentFileMissing", kHead + "environment sky.hdr 2\n",
+     "e.test:3:13: error: cannot read environment map 'sky.hdr': No such file or directory"},
+    {"EnvironmentNotAnHdrImage", kHead + "environment e.test\n",
+     "e.test:3:13: error: cannot read environment map 'e.test': not a Radiance HDR (.hdr) or "
+     "OpenEXR (.exr) file"},
+    {"EnvironmentNegativeScale", kHead + "environment sky.hdr -2\n",
+     "e.test:3:21: error: environment scale must not be negative, got '-2'"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Cli, SceneErrorMessage, testing::ValuesIn(kErrorCases),

@@ -1,11 +1,14 @@
 #pragma once
 /// Sampling a discrete or piecewise-constant distribution in proportion to given weights: the
-/// choice of a light by its power, and the rows and columns of an environment map.
+/// choice of a light by its power (Distribution1D), and the texels of an environment map
+/// (Distribution2D: its rows, then a column within the row).
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
+
+#include "glint/math/sampling.h"
 
 namespace glint {
 
@@ -89,6 +92,70 @@ class Distribution1D {
     std::vector<double> weights_;
     std::vector<double> cdf_;
     double total_ = 0;
+};
+
+/// A piecewise-constant density on the unit square [0, 1)^2 over a grid of nx columns by ny
+/// rows of weights (>= 0): cell (x, y) covers [x / nx, (x + 1) / nx) x [y / ny, (y + 1) / ny)
+/// and has density weight(x, y) nx ny / sum. Sampled pbrt's way: a row by the marginal
+/// distribution of the rows' sums, then a column by that row's conditional distribution. If
+/// every weight is 0 (or the sum is not finite), it is uniform.
+class Distribution2D {
+  public:
+    Distribution2D() = default;
+
+    /// Weights row by row: `weights[y * nx + x]` is cell (x, y).
+    Distribution2D(const std::vector<double>& weights, size_t nx, size_t ny)
+        : Distribution2D(nx, ny, [&](size_t y) {
+              auto row = weights.begin() + static_cast<std::ptrdiff_t>(y * nx);
+              return std::vector<double>(row, row + static_cast<std::ptrdiff_t>(nx));
+          }) {}
+
+    /// Weights from `rowWeights(y)`, a std::vector<double> of nx weights for row y, called once
+    /// per row in order: so that a large grid needs no array of all its weights at once.
+    template <typename RowWeights>
+    Distribution2D(size_t nx, size_t ny, RowWeights rowWeights) {
+        rows_.reserve(ny);
+        std::vector<double> sums(ny);
+        for (size_t y = 0; y < ny; ++y) {
+            std::vector<double> row = rowWeights(y);
+            row.resize(nx, 0.0);  // a short row's missing cells weigh nothing
+            double sum = 0;
+            for (double w : row) sum += w > 0 && std::isfinite(w) ? w : 0.0;
+            sums[y] = sum;
+            rows_.emplace_back(std::move(row));
+        }
+        marginal_ = Distribution1D(std::move(sums));
+    }
+
+    size_t width() const { return rows_.empty() ? 0 : rows_.front().size(); }
+    size_t height() const { return rows_.size(); }
+
+    /// A point of [0, 1)^2 drawn with `u` in [0, 1)^2 (u.y picks the row, u.x the column
+    /// within it), and its density over the unit square; `column` and `row` receive its cell
+    /// (which rounding of the point's coordinates might not give back at a cell's edge).
+    Point2 sample(Point2 u, double* density = nullptr, size_t* column = nullptr,
+                  size_t* row = nullptr) const {
+        double rowDensity = 0, columnDensity = 0;
+        size_t r = 0, c = 0;
+        double y = marginal_.sampleContinuous(u.y, &rowDensity, &r);
+        double x = rows_[r].sampleContinuous(u.x, &columnDensity, &c);
+        if (density) *density = rowDensity * columnDensity;
+        if (column) *column = c;
+        if (row) *row = r;
+        return {x, y};
+    }
+
+    /// The density of sample() at `p` (coordinates outside [0, 1) read as the nearest cell).
+    double density(Point2 p) const {
+        size_t row = std::min(
+            static_cast<size_t>(std::max(p.y, 0.0) * static_cast<double>(height())), height() - 1);
+        double rowDensity = marginal_.density(p.y);
+        return rowDensity > 0 ? rowDensity * rows_[row].density(p.x) : 0.0;
+    }
+
+  private:
+    std::vector<Distribution1D> rows_;  ///< The conditional distribution of each row.
+    Distribution1D marginal_;           ///< Of the rows, by their sums.
 };
 
 }  // namespace glint

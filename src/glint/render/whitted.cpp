@@ -274,7 +274,7 @@ Vec3 WhittedIntegrator::li(const Ray& ray, const Hit* hit, PathContext& ctx) con
 
 Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double weight,
                               PathContext& ctx) const {
-    if (!hit) return scene_.background.eval(ray.dir);
+    if (!hit) return scene_.backgroundRadiance(ray.dir);
     SurfaceInteraction si = scene_.primitives.interaction(ray, *hit);
     const Material& m = scene_.materials[si.material];
     if (m.texture != 0 || m.frontEmissionOnly) return shadeSpecial(ray, si, m, depth, weight, ctx);

@@ -10,6 +10,7 @@
 #include "glint/accel/bvh.h"
 #include "glint/geometry/primitives.h"
 #include "glint/scene/camera.h"
+#include "glint/scene/environment.h"
 #include "glint/scene/filter_spec.h"
 #include "glint/scene/light.h"
 #include "glint/scene/material.h"
@@ -64,6 +65,9 @@ class Scene {
     std::string output;  ///< Output file the scene asks for; may be empty.
     std::optional<CameraSpec> camera;
     Background background;  ///< Black by default, as the course expects.
+    /// An environment map (`environment`): radiance from every direction at infinity, in place
+    /// of the background. Null: none.
+    std::shared_ptr<const EnvironmentMap> environment;
     std::vector<Light> lights;
     /// Camera rays per pixel the scene asks for (`spp`); 0: not given (the CLI decides).
     int spp = 0;
@@ -83,6 +87,14 @@ class Scene {
     /// allocating anything. `uvs` of the triangles carry texture coordinates.
     static size_t estimateBytes(size_t triangles, size_t spheres, size_t shapes = 0,
                                 size_t normals = 0, size_t uvs = 0);
+
+    /// Radiance arriving along a ray that hits nothing, from unit direction `dir`: the
+    /// environment map's when there is one, else the background's.
+    Vec3 backgroundRadiance(const Vec3& dir) const {
+        if (environment) [[unlikely]]
+            return environment->eval(dir);
+        return background.eval(dir);
+    }
 
     /// Id of `m`, reusing the last material when it is equal (materials change rarely).
     uint32_t addMaterial(const Material& m);

@@ -14,6 +14,20 @@
 namespace glint {
 namespace {
 
+TEST(Scene, BackgroundRadianceIsTheEnvironmentMapsWhenThereIsOne) {
+    Scene scene;
+    scene.background = Background{{0, 0, 1}, {1, 0, 0}};
+    test::expectNear(scene.backgroundRadiance({0, 1, 0}), {1, 0, 0});
+    test::expectNear(scene.backgroundRadiance({1, 0, 0}), {0.5, 0, 0.5});
+    // 1 x 2 texels: up (2, 3, 4), down (5, 6, 7), scaled by 2.
+    scene.environment =
+        std::make_shared<EnvironmentMap>(1, 2, std::vector<float>{2, 3, 4, 5, 6, 7}, 2);
+    test::expectNear(scene.backgroundRadiance({0, 1, 0}), {4, 6, 8});
+    test::expectNear(scene.backgroundRadiance({0, -1, 0}), {10, 12, 14});
+    scene.environment.reset();
+    test::expectNear(scene.backgroundRadiance({0, -1, 0}), {0, 0, 1});
+}
+
 /// Random triangles in a unit cube, plus 24 instances of a shared mesh of random triangles:
 /// large enough for the build's parallel phases.
 std::unique_ptr<Scene> makeScene() {

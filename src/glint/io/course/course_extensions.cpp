@@ -1,5 +1,6 @@
 // Glint's extensions of the scene format: materials (transmission, ior, roughness), area
-// lights, sampling, the thin lens, the integrator and the shapes (docs/scene-format.md).
+// lights, the environment map, sampling, the thin lens, the integrator and the shapes
+// (docs/scene-format.md).
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 
 #include "glint/geometry/polygon.h"
 #include "glint/io/course/course_parser.h"
+#include "glint/io/image/environment_io.h"
 #include "glint/render/integrator.h"
 
 namespace glint::course {
@@ -42,6 +44,33 @@ void Parser::cmdQuadLight() {
     if (!(area > 0) || !std::isfinite(area) || !(area > 1e-12 * length(l.edge1) * length(l.edge2)))
         fail(4, "quadLight edges must not be zero or parallel");
     builder_.addQuadLight(l);
+}
+
+void Parser::cmdEnvironment() {
+    double scale = ntok_ >= 3 ? real(2) : 1;
+    if (!(scale >= 0)) fail(2, "environment scale must not be negative, got " + quoted(2));
+    double rotation = ntok_ == 4 ? number(3) : 0;  // degrees, as for `rotate`
+    if (!limits_.readFiles)
+        fail(1, "environment map " + quoted(1) + " is not read: reading files is off");
+    HdrImage image;
+    try {
+        image = loadEnvironmentImage(scenePath(tok_[1].text), limits_);
+    } catch (const RenderError& e) {
+        fail(1, e.what());
+    }
+    size_t bad = 0;
+    for (float v : image.rgb) bad += !(v >= 0 && v <= static_cast<float>(kMaxRadiance));
+    if (bad)
+        warn(1, "environment map " + quoted(1) + " has " + std::to_string(bad) +
+                    (bad == 1 ? " value" : " values") +
+                    " that are negative, NaN or beyond 1e30: negative and NaN values read as 0, "
+                    "larger ones as 1e30");
+    if (environmentLine_)
+        warn(0,
+             "a second environment replaces the one on line " + std::to_string(environmentLine_));
+    environmentLine_ = line_;
+    scene().environment = std::make_shared<const EnvironmentMap>(
+        image.width, image.height, std::move(image.rgb), scale, rotation);
 }
 
 void Parser::cmdFilter() {

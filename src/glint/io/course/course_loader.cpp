@@ -58,6 +58,7 @@ const std::vector<Command>& Parser::commands() {
         {"filter", 1, 2, "box|gaussian [radius]", &Parser::cmdFilter},
         {"lens", 1, 2, "aperture-radius [focus-distance]", &Parser::cmdLens},
         {"integrator", 1, 1, "name", &Parser::cmdIntegrator},
+        {"environment", 1, 3, "file [scale] [rotation]", &Parser::cmdEnvironment},
         {"plane", 6, 6, "px py pz nx ny nz", &Parser::cmdPlane},
         {"box", 6, 6, "x0 y0 z0 x1 y1 z1", &Parser::cmdBox},
         {"cylinder", 7, 7, "x0 y0 z0 x1 y1 z1 radius", &Parser::cmdCylinder},

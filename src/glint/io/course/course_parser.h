@@ -140,6 +140,7 @@ class Parser {
     void cmdFilter();
     void cmdLens();
     void cmdIntegrator();
+    void cmdEnvironment();
     // The shape extensions (docs/scene-format.md).
     void cmdPlane();
     void cmdBox();
@@ -181,6 +182,7 @@ class Parser {
     long long maxVerts_ = -1, maxVertNorms_ = -1;
     bool warnedVerts_ = false, warnedVertNorms_ = false, warnedDegenerate_ = false;
     int cameraLine_ = 0;
+    int environmentLine_ = 0;  ///< Of the last `environment`, for the warning of a second one.
     int pointLights_ = 0, firstPointLine_ = 0;  ///< For the attenuation warning.
     bool warnedAttenuation_ = false;
     /// Warnings of problems that recur (warnRepeated), by key: the warning and its count.

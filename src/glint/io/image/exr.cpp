@@ -101,6 +101,18 @@ std::string encodeExr(const Film& film, double scale) {
     return out;
 }
 
+std::pair<long long, long long> exrImageSize(std::string_view bytes, const std::string& name) {
+    try {
+        MemoryIStream stream(bytes, name);
+        Imf::InputFile file(stream);
+        const Imath::Box2i window = file.header().dataWindow();
+        return {static_cast<long long>(window.max.x) - window.min.x + 1,
+                static_cast<long long>(window.max.y) - window.min.y + 1};
+    } catch (const std::exception& e) {
+        throw RenderError("cannot read image '" + name + "': " + e.what());
+    }
+}
+
 Film decodeExr(std::string_view bytes, const std::string& name) {
     auto fail = [&](const std::string& why) -> RenderError {
         return RenderError("cannot read image '" + name + "': " + why);

@@ -3,6 +3,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "glint/render/film.h"
 
@@ -19,5 +20,10 @@ std::string encodeExr(const Film& film, double scale = 1);
 /// large: the same limits as a scene's image size, and the memory available. A crafted header
 /// can still make it allocate a film within those limits before the pixel data turns out bad.
 Film decodeExr(std::string_view bytes, const std::string& name);
+
+/// The width and height of the data window of the OpenEXR file held in `bytes`, from its header
+/// alone (no pixel is decoded), so that callers can check their limits first. Throws
+/// RenderError if the header is malformed.
+std::pair<long long, long long> exrImageSize(std::string_view bytes, const std::string& name);
 
 }  // namespace glint
