@@ -68,12 +68,16 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         power.push_back(kPi * area * brightness(m.emission) * (e.frontOnly ? 1 : 2));
     }
 
-    // The background, if it is not black: power 4 pi^2 r^2 times its mean radiance.
-    double env = brightness((scene.background.down + scene.background.up) * 0.5);
+    // The environment map, or the background if it is not black: power 4 pi^2 r^2 times the
+    // mean radiance.
+    double env = scene.environment
+                     ? scene.environment->power(sceneRadius_)
+                     : 4 * kPi * kPi * sceneRadius_ * sceneRadius_ *
+                           brightness((scene.background.down + scene.background.up) * 0.5);
     if (env > 0) {
         environment_ = static_cast<uint32_t>(lights_.size());
         lights_.push_back({Kind::Environment, 0});
-        power.push_back(4 * kPi * kPi * sceneRadius_ * sceneRadius_ * env);
+        power.push_back(env);
     }
     power_ = Distribution1D(std::move(power));
 }
@@ -98,6 +102,11 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
             return LightSample{ls->wi, ls->L, 1, ls->distance, true};
         }
         case Kind::Environment: {
+            if (scene_.environment) {
+                std::optional<EnvironmentMap::Sample> s = scene_.environment->sample(u);
+                if (!s || !(s->pdf > 0)) return std::nullopt;
+                return LightSample{s->wi, s->L, s->pdf, kInfinity, false};
+            }
             Vec3 wi = sampleUniformSphere(u);
             return LightSample{wi, environment(wi), 1 / (4 * kPi), kInfinity, false};
         }
@@ -145,9 +154,10 @@ double LightSampler::pdfHit(const Vec3& from, const Hit& hit, const SurfaceInter
     return power_.probability(index) * pdfArea * d2 / cosLight;
 }
 
-double LightSampler::pdfEnvironment(const Vec3&) const {
+double LightSampler::pdfEnvironment(const Vec3& dir) const {
     if (environment_ == UINT32_MAX) return 0;
-    return power_.probability(environment_) / (4 * kPi);
+    double pdf = scene_.environment ? scene_.environment->pdf(dir) : 1 / (4 * kPi);
+    return power_.probability(environment_) * pdf;
 }
 
 }  // namespace glint

@@ -1,10 +1,11 @@
 #pragma once
 /// Every source of light in a scene, as a physically based integrator samples them: the point
 /// and directional lights, every emissive surface (triangles, meshes, spheres and the other
-/// shapes, including the geometry of quad lights) as an area light, and the background as an
-/// environment light. One is chosen per shading point with probability proportional to an
+/// shapes, including the geometry of quad lights) as an area light, and the environment map or
+/// the background as an environment light. One is chosen per shading point with probability proportional to an
 /// estimate of its power (pbrt's PowerLightSampler), then sampled: emissive surfaces uniformly
-/// by area (see geometry/surface_sampling.h), the environment by its own sampler.
+/// by area (see geometry/surface_sampling.h), an environment map by its luminance
+/// (scene/environment.h), a constant or gradient background uniformly over the sphere.
 ///
 /// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite, and
 /// emissive triangles of instanced meshes. pdfHit() is 0 for them, so an integrator weighting
@@ -51,8 +52,8 @@ class LightSampler {
     /// the environment; 0 if the background is black.
     double pdfEnvironment(const Vec3& dir) const;
 
-    /// Radiance of the environment (the background) arriving from direction `dir`.
-    Vec3 environment(const Vec3& dir) const { return scene_.background.eval(dir); }
+    /// Radiance of the environment (the map, else the background) arriving from direction `dir`.
+    Vec3 environment(const Vec3& dir) const { return scene_.backgroundRadiance(dir); }
 
   private:
     enum class Kind : uint8_t { Point, Directional, Triangle, Sphere, Shape, Environment };

@@ -109,6 +109,39 @@ TEST(PathFurnace, SpheresRenderTheirAnalyticRadiance) {
     }
 }
 
+TEST(PathFurnace, AConstantEnvironmentMapIsAUniformEnvironment) {
+    Scene scene;
+    furnace(scene, material(1, 0));
+    scene.environment = std::make_shared<EnvironmentMap>(4, 2, std::vector<float>(24, 0.5f), 2.0);
+    PathIntegrator integrator(scene);
+    expectEverywhere(scene, integrator, 1, 400, "Lambertian albedo 1 in a map of radiance 1");
+}
+
+TEST(PathFurnace, TheStrategiesAgreeUnderAnEnvironmentMap) {
+    // A dim sky with a small bright sun in front of the sphere (towards +z, 50 degrees up):
+    // light sampling finds the sun, BSDF sampling the sky.
+    const int w = 64, h = 32;
+    std::vector<float> rgb(w * h * 3, 0.2f);
+    for (int y = 8; y < 10; ++y)
+        for (int x = 47; x < 49; ++x)
+            for (int c = 0; c < 3; ++c) rgb[(y * w + x) * 3 + c] = 400.0f * (c + 1);
+    Scene scene;
+    furnace(scene, material(0.6, 0));
+    scene.environment = std::make_shared<EnvironmentMap>(w, h, rgb, 1.0, 20.0);
+    PathIntegrator mis(scene), lightsOnly(scene, PathIntegrator::Strategy::LightsOnly),
+        bsdfOnly(scene, PathIntegrator::Strategy::BsdfOnly);
+    uint64_t seed = 50;
+    for (const Ray& ray : raysAtTheSphere(6)) {
+        test::MeanEstimate a = estimate(scene, mis, ray, 20000, seed);
+        test::MeanEstimate b = estimate(scene, lightsOnly, ray, 20000, seed + 1);
+        test::MeanEstimate d = estimate(scene, bsdfOnly, ray, 20000, seed + 2);
+        seed += 3;
+        EXPECT_NEAR(a.mean(), b.mean(), kZ * std::hypot(a.standardError(), b.standardError()));
+        EXPECT_NEAR(a.mean(), d.mean(), kZ * std::hypot(a.standardError(), d.standardError()));
+        EXPECT_LT(a.standardError(), d.standardError()) << "MIS no better than BSDF sampling";
+    }
+}
+
 TEST(PathFurnace, TheStrategiesAgreeOnAHalfWhiteSphere) {
     Scene scene;
     furnace(scene, material(0.5, 0));
