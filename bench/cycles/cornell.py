@@ -29,9 +29,12 @@ What it sets up (see bench/cycles/README.md for why):
 
 It prints one line that scripts parse, with the time of bpy.ops.render.render alone (scene
 synchronisation, BVH build and path tracing; not Blender's start-up, the import or the write):
+wall-clock seconds, paths (samples) per second from them, and the CPU seconds of the process
+over the same span (all threads; on a busy machine, CPU seconds / threads is what the render
+would have taken alone):
 
     CYCLES_RESULT width=256 height=256 spp=256 threads=2 seed=0 bounces=64 light=front \
-        render_s=12.704 paths=16777216 paths_per_s=1320623
+        render_s=SECONDS paths=16777216 paths_per_s=PATHS/SECONDS cpu_s=CPU_SECONDS
 """
 
 import argparse
@@ -336,9 +339,9 @@ def main():
           f"sampling pattern {scene.cycles.sampling_pattern}, "
           f"light sampling threshold {scene.cycles.light_sampling_threshold:g}", flush=True)
 
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     bpy.ops.render.render(write_still=False)
-    seconds = time.perf_counter() - t0
+    seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
 
     result = bpy.data.images["Render Result"]
     tmp = out + ".tmp.exr"
@@ -347,7 +350,7 @@ def main():
     paths = a.width * a.height * a.spp
     print(f"CYCLES_RESULT width={a.width} height={a.height} spp={a.spp} threads={a.threads} "
           f"seed={a.seed} bounces={a.bounces} light={a.light} render_s={seconds:.3f} "
-          f"paths={paths} paths_per_s={paths / seconds:.0f}", flush=True)
+          f"paths={paths} paths_per_s={paths / seconds:.0f} cpu_s={cpu:.3f}", flush=True)
 
 
 if __name__ == "__main__":

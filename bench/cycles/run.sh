@@ -79,7 +79,7 @@ obj=$(cd "$(dirname "$obj")" && pwd)/$(basename "$obj")
 
 median() { sort -g | awk '{a[NR] = $1} END {print (NR % 2 ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2)}'; }
 
-# cycles SPP SEED OUT.exr -> prints render seconds
+# cycles SPP SEED OUT.exr -> prints "render_seconds cpu_seconds"
 cycles() {
     local log=$out/logs/$(basename "$3" .exr).log
     if ! blender -b --factory-startup --python "$here/cornell.py" -- --obj "$obj" --out "$3" \
@@ -89,22 +89,25 @@ cycles() {
         tail -20 "$log" >&2
         exit 1
     fi
-    sed -n 's/^CYCLES_RESULT .*render_s=\([0-9.]*\).*/\1/p' "$log" | tail -1 | grep . || {
+    sed -n 's/^CYCLES_RESULT .*render_s=\([0-9.]*\).*cpu_s=\([0-9.]*\).*/\1 \2/p' "$log" |
+        tail -1 | grep . || {
         echo "run.sh: no CYCLES_RESULT line in $log" >&2
         exit 1
     }
 }
 
-# glint_render SPP SEED OUT.exr -> prints render seconds (and keeps --stats in the log)
+# glint_render SPP SEED OUT.exr -> prints "render_seconds cpu_seconds" (--stats in the log).
+# The CPU time is the whole process's (parsing, BVH build and write too: milliseconds here).
 glint_render() {
-    local log=$out/logs/$(basename "$3" .exr).log
-    if ! "$glint" "$scene" -q --stats -t "$threads" --size "${size}x$size" --spp "$1" \
-        --seed "$2" -o "$3" >"$log" 2>&1; then
+    local log=$out/logs/$(basename "$3" .exr).log TIMEFORMAT='%U %S' cpu
+    if ! { time "$glint" "$scene" -q --stats -t "$threads" --size "${size}x$size" --spp "$1" \
+        --seed "$2" -o "$3" >"$log" 2>&1; } 2>"$log.cpu"; then
         echo "run.sh: glint failed; $log:" >&2
         cat "$log" >&2
         exit 1
     fi
-    awk '/^Time/ {for (i = 1; i < NF; i++) if ($i == "render") print $(i + 1)}' "$log" | grep . || {
+    cpu=$(awk '{print $1 + $2}' "$log.cpu") && rm -f "$log.cpu"
+    awk -v cpu="$cpu" '/^Time/ {for (i = 1; i < NF; i++) if ($i == "render") print $(i + 1), cpu}' "$log" | grep . || {
         echo "run.sh: no render time in glint's --stats ($log)" >&2
         exit 1
     }
@@ -142,15 +145,15 @@ if [ -f "$ref" ]; then
     echo "Cycles reference: $ref (kept from an earlier run)"
 else
     echo "Rendering the Cycles reference, $ref_spp spp (once; kept in $out/ref) ..."
-    t=$(cycles "$ref_spp" 1000 "$ref")  # written atomically: never a partial reference
-    echo "  $t s"
+    read -r t c < <(cycles "$ref_spp" 1000 "$ref")  # written atomically: never partial
+    echo "  $t s (CPU $c s)"
 fi
 preview "$ref"
 if [ $glint_ok = yes ]; then
     glint_ref=$out/glint-$tag-${glint_ref_spp}spp-seed1000.exr
     echo "Rendering Glint's long render, $glint_ref_spp spp ..."
-    t=$(glint_render "$glint_ref_spp" 1000 "$glint_ref")
-    echo "  $t s"
+    read -r t c < <(glint_render "$glint_ref_spp" 1000 "$glint_ref")
+    echo "  $t s (CPU $c s)"
     preview "$glint_ref"
 fi
 
@@ -165,13 +168,15 @@ for ((i = 0; i < runs; i++)); do
     fi
 done
 preview "$out/cycles-$tag-${spp}spp-seed0.exr"
-tc=$(median <"$out/logs/times-cycles")
-paths=$((size * size * spp))
-echo "  Cycles runs: $(tr '\n' ' ' <"$out/logs/times-cycles")s"
+# Medians of the wall-clock render times (column 1) and of the CPU times (column 2).
+tc=$(cut -d' ' -f1 "$out/logs/times-cycles" | median)
+cc=$(cut -d' ' -f2 "$out/logs/times-cycles" | median)
+echo "  Cycles runs (render s, CPU s): $(paste -sd, "$out/logs/times-cycles")"
 if [ $glint_ok = yes ]; then
     preview "$out/glint-$tag-${spp}spp-seed0.exr"
-    tg=$(median <"$out/logs/times-glint")
-    echo "  Glint runs:  $(tr '\n' ' ' <"$out/logs/times-glint")s"
+    tg=$(cut -d' ' -f1 "$out/logs/times-glint" | median)
+    cg=$(cut -d' ' -f2 "$out/logs/times-glint" | median)
+    echo "  Glint runs (render s, CPU s):  $(paste -sd, "$out/logs/times-glint")"
 fi
 
 # --- (c) Equal time. ------------------------------------------------------------------------
@@ -180,7 +185,7 @@ if [ $glint_ok = yes ]; then
     echo
     echo "Equal time: Glint at $eq_spp spp (Cycles' median $spp-spp time) ..."
     eq=$out/glint-$tag-${eq_spp}spp-equal-time-seed7.exr
-    teq=$(glint_render "$eq_spp" 7 "$eq")
+    read -r teq ceq < <(glint_render "$eq_spp" 7 "$eq")
     echo "  $teq s"
     preview "$eq"
 fi
@@ -195,32 +200,44 @@ if [ "$runs" -ge 2 ]; then
     noise=$(compare "$c0" "$out/cycles-$tag-${spp}spp-seed1.exr")
 fi
 
+# row NAME SPP WALL_S CPU_S RMSE [NOTE]
+row() {
+    awk -v n="$1" -v s="$2" -v t="$3" -v c="$4" -v r="$5" -v note="${6:-}" -v px=$((size * size)) \
+        -v th="$threads" 'BEGIN {printf "%-8s %6d %10.3f %12.0f %10.3f %14.0f %10s %s\n",
+                                 n, s, t, px * s / t, c, px * s * th / c, r, note}'
+}
 echo
 echo "==== Summary (${size}x$size, $threads threads, 64 bounces) ===="
 echo
-printf '%-8s %8s %12s %14s %12s\n' renderer spp median_s paths_per_s rmse_lum
-awk -v n=Cycles -v s="$spp" -v t="$tc" -v p="$paths" -v r="$(echo "$cyc_vs_ref" | field rmse rel_lum)" \
-    'BEGIN {printf "%-8s %8d %12.3f %14.0f %12s\n", n, s, t, p / t, r}'
+printf '%-8s %6s %10s %12s %10s %14s %10s\n' renderer spp render_s paths_per_s cpu_s paths_per_s_cpu rmse_lum
+row Cycles "$spp" "$tc" "$cc" "$(echo "$cyc_vs_ref" | field rmse rel_lum)" "(medians of $runs)"
 if [ $glint_ok = yes ]; then
     g0=$out/glint-$tag-${spp}spp-seed0.exr
     gl_vs_ref=$(compare "$g0" "$ref")
     eq_vs_ref=$(compare "$eq" "$ref")
     eq_vs_own=$(compare "$eq" "$glint_ref")
-    awk -v n=Glint -v s="$spp" -v t="$tg" -v p="$paths" -v r="$(echo "$gl_vs_ref" | field rmse rel_lum)" \
-        'BEGIN {printf "%-8s %8d %12.3f %14.0f %12s\n", n, s, t, p / t, r}'
-    awk -v n=Glint -v s="$eq_spp" -v t="$teq" -v p=$((size * size * eq_spp)) \
-        -v r="$(echo "$eq_vs_ref" | field rmse rel_lum)" \
-        'BEGIN {printf "%-8s %8d %12.3f %14.0f %12s   (equal time)\n", n, s, t, p / t, r}'
+    row Glint "$spp" "$tg" "$cg" "$(echo "$gl_vs_ref" | field rmse rel_lum)" "(medians of $runs)"
+    row Glint "$eq_spp" "$teq" "$ceq" "$(echo "$eq_vs_ref" | field rmse rel_lum)" "(equal time)"
+fi
+echo
+echo "render_s: each renderer's own render time; paths_per_s = pixels x spp / render_s."
+echo "cpu_s: CPU seconds of the process over it (all threads); paths_per_s_cpu = pixels x spp x"
+echo "  threads / cpu_s, about what the render reaches with the machine to itself (load average"
+echo "  now: $(cut -d' ' -f1 /proc/loadavg), on $(nproc) hardware threads)."
+echo "rmse_lum: RMSE of luminance against the Cycles reference, relative to its mean luminance;"
+echo "  the reference's own noise is in it, at $spp/$ref_spp of the variance."
+if [ $glint_ok = yes ]; then
     echo
-    awk -v c="$tc" -v g="$tg" 'BEGIN {printf "Speed: Glint / Cycles samples per second = %.2f (goal: at least 2)\n", c / g}'
+    awk -v tc="$tc" -v tg="$tg" -v cc="$cc" -v cg="$cg" 'BEGIN {
+        printf "Speed: Glint / Cycles samples per second = %.2f by render time, %.2f by CPU time" \
+               " (goal: at least 2)\n", tc / tg, cc / cg}'
+    echo "Equal time, relative RMSE of luminance against the Cycles reference: Cycles" \
+        "$(echo "$cyc_vs_ref" | field rmse rel_lum) at $spp spp, Glint" \
+        "$(echo "$eq_vs_ref" | field rmse rel_lum) at $eq_spp spp (against its own long render:" \
+        "$(echo "$eq_vs_own" | field rmse rel_lum))"
     echo "Glint's --stats of its first $spp-spp run:"
     grep -E '^(Rays|Throughput|Time)' "$out/logs/glint-$tag-${spp}spp-seed0.log" | sed 's/^/  /'
-    echo "Equal time, relative RMSE of luminance against the Cycles reference: Cycles" \
-        "$(echo "$cyc_vs_ref" | field rmse rel_lum), Glint $(echo "$eq_vs_ref" | field rmse rel_lum)" \
-        "(Glint against its own long render: $(echo "$eq_vs_own" | field rmse rel_lum))"
 fi
-echo "(rmse_lum: RMSE of luminance against the Cycles reference, relative to its mean;" \
-    "the reference's own noise is in it, at $spp/$ref_spp of the variance.)"
 
 if [ $glint_ok = yes ]; then
     echo
