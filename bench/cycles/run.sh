@@ -222,8 +222,8 @@ fi
 echo
 echo "render_s: each renderer's own render time; paths_per_s = pixels x spp / render_s."
 echo "cpu_s: CPU seconds of the process over it (all threads); paths_per_s_cpu = pixels x spp x"
-echo "  threads / cpu_s, about what the render reaches with the machine to itself (load average"
-echo "  now: $(cut -d' ' -f1 /proc/loadavg), on $(nproc) hardware threads)."
+echo "  threads / cpu_s: less disturbed than render_s by other jobs, not immune (they share"
+echo "  caches and cores). Load average now: $(cut -d' ' -f1 /proc/loadavg), on $(nproc) hardware threads."
 echo "rmse_lum: RMSE of luminance against the Cycles reference, relative to its mean luminance;"
 echo "  the reference's own noise is in it, at $spp/$ref_spp of the variance."
 if [ $glint_ok = yes ]; then
