@@ -5,8 +5,8 @@
 #   make demo    deps + build + render the built-in scene to glint.png
 #   make test    deps + build + run every test (ctest)
 #   make clean   remove the build directory
-#   make bench   deps for the benchmarks (Embree, POV-Ray) + Release build in build-bench + run
-#                bench/run.sh: Glint against Embree and POV-Ray (see docs/performance.md)
+#   make bench   deps for the benchmarks (Embree, POV-Ray, Blender) + Release build in build-bench
+#                + run bench/run.sh: Glint against Embree, POV-Ray and Cycles (docs/performance.md)
 
 BUILD_DIR   ?= build
 BUILD_TYPE  ?= Release
@@ -18,10 +18,12 @@ DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libgtest-dev libgmock-dev
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
-# the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh).
+# the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh,
+# Blender for the path tracer against Cycles, bench/cycles/: about 580 MB with its libraries).
 BENCH_DIR  ?= build-bench
 BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
-              libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libembree-dev povray bc
+              libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libembree-dev povray bc \
+              blender
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 

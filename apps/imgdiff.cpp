@@ -1,30 +1,156 @@
-// imgdiff: compares two images the way the CSE167x grader does and prints hot-pixel counts.
-// Exit 0 when the count at --threshold is within --budget, 1 when not, 2 on usage errors.
+// imgdiff: compares two images.
+//   imgdiff A B                  8-bit images the way the CSE167x grader does: hot-pixel counts.
+//   imgdiff --blocks N A B       linear float images (EXR, PFM), B the reference: relative
+//                                differences of the image means and of N x N block means, RMSE.
+//   imgdiff --preview OUT.png A  a float image as an sRGB PNG, for looking at.
+// Exit 0 when within the limits asked for (--budget, --max-rel), 1 when not, 2 on usage errors
+// and unreadable images.
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "glint/core/error.h"
-#include "glint/io/image/image_io.h"
 #include "glint/io/image/image_diff.h"
+#include "glint/io/image/image_io.h"
+
+namespace {
+
+/// Reads a linear float image: OpenEXR or PFM, by extension.
+glint::Film readFloatImage(const std::string& path) {
+    std::optional<glint::ImageFormat> f = glint::imageFormatFor(path);
+    if (f == glint::ImageFormat::Exr) return glint::readExr(path);
+    if (f == glint::ImageFormat::Pfm) return glint::readPfm(path);
+    throw glint::RenderError("'" + path + "' is not a float image: --blocks and --preview read " +
+                             "OpenEXR (.exr) and PFM (.pfm) files");
+}
+
+const char* const kChannel[4] = {"r", "g", "b", "lum"};
+
+void printFour(const char* key, const double v[4]) {
+    std::printf("%-10s r=%.6g g=%.6g b=%.6g lum=%.6g\n", key, v[0], v[1], v[2], v[3]);
+}
+
+/// The float comparison; returns the exit code.
+int compareBlocks(const std::string& a, const std::string& b, int block, double maxRel, bool rgb) {
+    glint::Film fa = readFloatImage(a), fb = readFloatImage(b);
+    if (fa.width() != fb.width() || fa.height() != fb.height()) {
+        std::fprintf(stderr, "imgdiff: error: the images differ in size: %dx%d and %dx%d\n",
+                     fa.width(), fa.height(), fb.width(), fb.height());
+        return 2;
+    }
+    glint::FilmComparison r = glint::compareFilms(fa, fb, block);
+    std::printf("size       %dx%d, %d blocks of %dx%d pixels; B (%s) is the reference\n", r.width,
+                r.height, r.blocks, block, block, b.c_str());
+    printFour("mean_a", r.meanA);
+    printFour("mean_b", r.meanB);
+    printFour("mean_rel", r.meanRel);
+    const glint::WorstBlock &wl = r.worstLuminance, &wc = r.worstChannel;
+    std::printf("block_rel  lum=%.6g at=%d,%d rgb=%.6g channel=%s rgb_at=%d,%d\n", wl.rel, wl.x,
+                wl.y, wc.rel, kChannel[wc.channel], wc.x, wc.y);
+    // RMSE relative to the reference's mean luminance (0 for equal images, even black ones).
+    double relRmse = r.rmse[3] == 0 ? 0 : r.rmse[3] / r.meanB[3];
+    std::printf("rmse       r=%.6g g=%.6g b=%.6g lum=%.6g rel_lum=%.6g\n", r.rmse[0], r.rmse[1],
+                r.rmse[2], r.rmse[3], relRmse);
+    if (std::isnan(maxRel)) return 0;
+    // The checked figures: luminance, or every channel with --rgb. NaN fails.
+    double meanWorst = r.meanRel[3], blockWorst = wl.rel;
+    if (rgb) {
+        meanWorst = std::fmax(std::fmax(r.meanRel[0], r.meanRel[1]), r.meanRel[2]);
+        for (int c = 0; c < 3; ++c)
+            if (std::isnan(r.meanRel[c])) meanWorst = r.meanRel[c];
+        blockWorst = wc.rel;
+    }
+    bool ok = meanWorst <= maxRel && blockWorst <= maxRel;
+    std::printf(
+        "%s: %s: relative difference of the image means %.4g, of the block means %.4g; "
+        "limit %.4g\n",
+        ok ? "PASSED" : "FAILED", rgb ? "largest channel" : "luminance", meanWorst, blockWorst,
+        maxRel);
+    return ok ? 0 : 1;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Counts pixels whose largest channel difference exceeds a threshold.", "imgdiff"};
-    std::string a, b, mask;
-    int threshold = 2;
+    CLI::App app{
+        "Compares two images. Without --blocks: 8-bit images as the CSE167x grader did, counting "
+        "pixels whose largest channel difference exceeds a threshold. With --blocks: linear "
+        "float images (EXR, PFM), B the reference.",
+        "imgdiff"};
+    std::string a, b, mask, preview;
+    int threshold = 2, block = 0;
     long long budget = 1000;
-    app.add_option("A", a, "First image (PNG, JPEG, PPM)")->required();
-    app.add_option("B", b, "Second image")->required();
-    app.add_option("--mask", mask, "Grey image; pixels where it is non-zero are ignored");
-    app.add_option("--threshold", threshold, "Levels of difference a hot pixel exceeds")
-        ->check(CLI::Range(0, 255));
-    app.add_option("--budget", budget, "Hot pixels allowed (the course allowed 1000)");
+    double maxRel = NAN, exposure = 0;
+    bool rgb = false;
+    app.add_option("A", a, "First image (PNG, JPEG, PPM; EXR or PFM with --blocks)")->required();
+    app.add_option("B", b, "Second image; with --blocks, the reference");
+    auto* grader = app.add_option_group("8-bit comparison (the grader's rule)");
+    auto* optMask =
+        grader->add_option("--mask", mask, "Grey image; pixels where it is non-zero are ignored");
+    auto* optThreshold =
+        grader->add_option("--threshold", threshold, "Levels of difference a hot pixel exceeds")
+            ->check(CLI::Range(0, 255));
+    auto* optBudget =
+        grader->add_option("--budget", budget, "Hot pixels allowed (the course allowed 1000)");
+    auto* floats = app.add_option_group("Float comparison (renders against a reference)");
+    auto* optBlocks =
+        floats
+            ->add_option("--blocks", block,
+                         "Compare linear float images in N x N blocks: relative differences "
+                         "of the image means and of the block means, and RMSE")
+            ->check(CLI::Range(1, 1 << 16));
+    auto* optMaxRel =
+        floats
+            ->add_option("--max-rel", maxRel,
+                         "With --blocks: exit 1 when the relative difference of the image "
+                         "means or of any block's means exceeds this (luminance)")
+            ->check(CLI::NonNegativeNumber);
+    auto* optRgb = floats->add_flag("--rgb", rgb,
+                                    "With --max-rel: check R, G and B each instead of luminance");
+    auto* out = app.add_option_group("Preview");
+    auto* optPreview = out->add_option(
+        "--preview", preview,
+        "Write the float image A as an 8-bit PNG through the sRGB curve, then exit");
+    auto* optExposure =
+        out->add_option("--exposure", exposure, "With --preview: multiply by 2^EV first")
+            ->check(CLI::Range(-64.0, 64.0));
     try {
         app.parse(argc, argv);
+        auto usage = [](const std::string& what) { throw CLI::ValidationError(what); };
+        bool graderOpts = optMask->count() || optThreshold->count() || optBudget->count();
+        if (optPreview->count()) {
+            if (!b.empty() || graderOpts || optBlocks->count() || optMaxRel->count() ||
+                optRgb->count())
+                usage("--preview takes one image and no comparison options");
+        } else {
+            if (b.empty()) usage("two images are needed (or --preview OUT.png with one)");
+            if (optExposure->count()) usage("--exposure goes with --preview");
+            if (optBlocks->count() && graderOpts)
+                usage(
+                    "--blocks compares float images: --mask, --threshold and --budget are for "
+                    "8-bit ones");
+            if (!optBlocks->count() && (optMaxRel->count() || optRgb->count()))
+                usage("--max-rel and --rgb go with --blocks");
+            if (optRgb->count() && !optMaxRel->count()) usage("--rgb goes with --max-rel");
+            if (optMaxRel->count() && !(maxRel >= 0 && std::isfinite(maxRel)))
+                usage("--max-rel must be a finite number, at least 0");
+        }
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : 2;
     }
     try {
+        if (!preview.empty()) {
+            glint::Film film = readFloatImage(a);
+            std::optional<glint::ImageFormat> f = glint::imageFormatFor(preview);
+            if (f != glint::ImageFormat::Png && f != glint::ImageFormat::Ppm)
+                throw glint::RenderError("--preview writes 8-bit images (.png, .ppm), not '" +
+                                         preview + "'");
+            glint::writeImage(preview, film, glint::DisplayTransform{exposure, true});
+            return 0;
+        }
+        if (block > 0) return compareBlocks(a, b, block, maxRel, rgb);
         glint::Image8 ia = glint::readImage8(a, 3), ib = glint::readImage8(b, 3), im;
         if (!mask.empty()) im = glint::readImage8(mask, 1);
         const glint::Image8* m = mask.empty() ? nullptr : &im;

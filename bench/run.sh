@@ -5,7 +5,9 @@
 #   2. whole renders against POV-Ray 3.7 (bench/render_compare.sh);
 #   3. --stats medians for the official course scenes (bench/course_stats.sh);
 #   4. loading and rendering a generated 1M-triangle OBJ model (bench/mesh_stats.sh);
-#   5. 100 copies of a model, instanced and stored (bench/instancing_stats.sh).
+#   5. 100 copies of a model, instanced and stored (bench/instancing_stats.sh);
+#   6. the path tracer against Blender Cycles on the Cornell box (bench/cycles/run.sh; its long
+#      Cycles reference is rendered once and kept in ../cycles-out beside the repository).
 # Usage: bench/run.sh BUILD_DIR
 set -euo pipefail
 
@@ -43,3 +45,10 @@ header "4. A 1M-triangle OBJ model: glint model.obj"
 
 header "5. Instancing: 100 copies of a 102,400-triangle model"
 "$here/instancing_stats.sh" "$build" 3 2
+
+header "6. Path tracing: Glint vs Blender Cycles, the Cornell box"
+if command -v blender >/dev/null; then
+    "$here/cycles/run.sh" "$build" || echo "(bench/cycles/run.sh failed: exit $?)"
+else
+    echo "(skipped: blender is not installed; make bench installs it)"
+fi

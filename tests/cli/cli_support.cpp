@@ -15,11 +15,14 @@ namespace glint::test {
 
 namespace fs = std::filesystem;
 
-CommandResult runGlint(const std::string& args, const std::string& workDir) {
+namespace {
+
+CommandResult runProgram(const std::string& binary, const std::string& args,
+                         const std::string& workDir) {
     fs::create_directories(workDir);
     fs::path out = fs::path(workDir) / ".stdout", err = fs::path(workDir) / ".stderr";
-    std::string cmd = "cd '" + workDir + "' && '" + std::string(GLINT_BINARY) + "' " + args +
-                      " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
+    std::string cmd = "cd '" + workDir + "' && '" + binary + "' " + args + " >'" + out.string() +
+                      "' 2>'" + err.string() + "' </dev/null";
     int status = std::system(cmd.c_str());
     CommandResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -28,6 +31,16 @@ CommandResult runGlint(const std::string& args, const std::string& workDir) {
     fs::remove(out);
     fs::remove(err);
     return r;
+}
+
+}  // namespace
+
+CommandResult runGlint(const std::string& args, const std::string& workDir) {
+    return runProgram(GLINT_BINARY, args, workDir);
+}
+
+CommandResult runImgdiff(const std::string& args, const std::string& workDir) {
+    return runProgram(GLINT_IMGDIFF_BINARY, args, workDir);
 }
 
 std::string readBytes(const std::string& path) {

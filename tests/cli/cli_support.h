@@ -15,6 +15,9 @@ struct CommandResult {
 /// text: quote paths with spaces yourself.
 CommandResult runGlint(const std::string& args, const std::string& workDir);
 
+/// Runs `imgdiff <args>` the same way.
+CommandResult runImgdiff(const std::string& args, const std::string& workDir);
+
 /// Writes `text` to `path`, creating directories as needed.
 void writeFile(const std::string& path, const std::string& text);
 

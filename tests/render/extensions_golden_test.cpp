@@ -10,8 +10,8 @@
 #include <string>
 
 #include "glint/io/course/course_loader.h"
-#include "glint/io/image/image_io.h"
 #include "glint/io/image/image_diff.h"
+#include "glint/io/image/image_io.h"
 #include "glint/render/renderer.h"
 #include "render/accepted_image.h"
 
@@ -39,7 +39,8 @@ TEST_P(ExtensionScene, MatchesItsAcceptedImage) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ExtensionScene,
-                         testing::Values("shapes", "glass", "arealight", "dof", "antialias"),
+                         testing::Values("shapes", "glass", "arealight", "dof", "antialias",
+                                         "cornell"),
                          [](const auto& p) { return std::string(p.param); });
 
 }  // namespace

@@ -4,6 +4,6 @@
 # change of behaviour, look at every image, and commit them with the change.
 set -euo pipefail
 glint=${1:-build/glint}
-for scene in shapes glass arealight dof antialias; do
+for scene in shapes glass arealight dof antialias cornell; do
     "$glint" "scenes/$scene.test" --size 160x90 --seed 0 -q -o "tests/data/extensions/$scene.png"
 done

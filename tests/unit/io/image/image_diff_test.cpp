@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace glint {
@@ -117,6 +119,134 @@ TEST(ImageDiff, MeanAbsoluteDifferenceAveragesAllChannels) {
     EXPECT_DOUBLE_EQ(meanAbsDifference(p.b, p.a), 272.0 / 24.0);
     EXPECT_DOUBLE_EQ(meanAbsDifference(p.a, p.a), 0.0);
     EXPECT_DOUBLE_EQ(meanAbsDifference(filled(0, 0, 0), filled(0, 0, 0)), 0.0);
+}
+
+// ---- Float images: compareFilms (imgdiff --blocks) ----
+
+Film filledFilm(int w, int h, const Vec3& c) {
+    Film f(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) f.at(x, y) = c;
+    return f;
+}
+
+/// Multiplies the pixels of [x0, x1) x [y0, y1) by `k`.
+void scaleRect(Film& f, int x0, int y0, int x1, int y1, const Vec3& k) {
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) f.at(x, y) = f.at(x, y) * k;
+}
+
+TEST(FilmComparison, RelativeDifferenceIsAgainstTheReference) {
+    EXPECT_NEAR(relativeDifference(1.02, 1.0), 0.02, 1e-15);
+    EXPECT_NEAR(relativeDifference(0.98, 1.0), 0.02, 1e-15);
+    EXPECT_NEAR(relativeDifference(1.0, 1.02), 0.02 / 1.02, 1e-15);
+    EXPECT_EQ(relativeDifference(-3.0, -2.0), 0.5);
+    EXPECT_EQ(relativeDifference(0.0, 0.0), 0.0);
+    EXPECT_EQ(relativeDifference(1e-9, 0.0), std::numeric_limits<double>::infinity());
+    EXPECT_TRUE(std::isnan(relativeDifference(std::nan(""), 1.0)));
+    EXPECT_TRUE(std::isnan(relativeDifference(1.0, std::nan(""))));
+}
+
+TEST(FilmComparison, IdenticalImagesGiveZeroEverywhere) {
+    Film a = filledFilm(40, 24, {0.5, 0.25, 0.125});
+    a.at(3, 5) = {7, 0, 2};
+    FilmComparison r = compareFilms(a, a, 16);
+    EXPECT_EQ(r.blocks, 3 * 2);
+    for (int c = 0; c < 4; ++c) {
+        EXPECT_EQ(r.meanRel[c], 0.0);
+        EXPECT_EQ(r.rmse[c], 0.0);
+        EXPECT_EQ(r.meanA[c], r.meanB[c]);
+    }
+    EXPECT_EQ(r.worstLuminance.rel, 0.0);
+    EXPECT_EQ(r.worstChannel.rel, 0.0);
+}
+
+TEST(FilmComparison, AKnownDifferenceInOneBlock) {
+    // 64 x 48: 4 x 3 blocks of 16. Block (1, 2) of A is 2% brighter than the reference's.
+    Film b = filledFilm(64, 48, {0.5, 0.25, 0.125});
+    Film a = b;
+    scaleRect(a, 16, 32, 32, 48, Vec3(1.02));
+    FilmComparison r = compareFilms(a, b, 16);
+    EXPECT_EQ(r.blocks, 12);
+    EXPECT_NEAR(r.worstLuminance.rel, 0.02, 1e-12);
+    EXPECT_EQ(r.worstLuminance.x, 16);
+    EXPECT_EQ(r.worstLuminance.y, 32);
+    EXPECT_EQ(r.worstLuminance.channel, -1);
+    EXPECT_NEAR(r.worstChannel.rel, 0.02, 1e-12);
+    EXPECT_EQ(r.worstChannel.x, 16);
+    EXPECT_EQ(r.worstChannel.y, 32);
+    // One block of twelve: the image means differ by a twelfth of that.
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(r.meanRel[c], 0.02 / 12, 1e-12) << c;
+    EXPECT_NEAR(r.meanB[3], 0.2126 * 0.5 + 0.7152 * 0.25 + 0.0722 * 0.125, 1e-15);
+    // RMSE: 256 of 3072 pixels differ by 2% of the value.
+    EXPECT_NEAR(r.rmse[0], 0.01 * std::sqrt(256.0 / 3072.0), 1e-12);
+    // With the reference's block 2% brighter instead, the difference is 0.02 / 1.02.
+    FilmComparison s = compareFilms(b, a, 16);
+    EXPECT_NEAR(s.worstLuminance.rel, 0.02 / 1.02, 1e-12);
+}
+
+TEST(FilmComparison, ChannelsAndLuminanceAreReportedApart) {
+    // Blue +10% in block (0, 0), green +1% in block (1, 0): luminance is led by green
+    // (0.7152 * 0.01 * 0.25 against 0.0722 * 0.1 * 0.125 of the block's mean), the channels by
+    // blue.
+    Film b = filledFilm(32, 16, {0.5, 0.25, 0.125});
+    Film a = b;
+    scaleRect(a, 0, 0, 16, 16, {1, 1, 1.1});
+    scaleRect(a, 16, 0, 32, 16, {1, 1.01, 1});
+    FilmComparison r = compareFilms(a, b, 16);
+    EXPECT_NEAR(r.worstChannel.rel, 0.1, 1e-12);
+    EXPECT_EQ(r.worstChannel.channel, 2);
+    EXPECT_EQ(r.worstChannel.x, 0);
+    double lum = 0.2126 * 0.5 + 0.7152 * 0.25 + 0.0722 * 0.125;
+    EXPECT_NEAR(r.worstLuminance.rel, 0.7152 * 0.0025 / lum, 1e-12);
+    EXPECT_EQ(r.worstLuminance.x, 16);
+}
+
+TEST(FilmComparison, RmseOfAConstantOffset) {
+    Film b = filledFilm(10, 10, {0.5, 0.25, 0.125});
+    Film a = filledFilm(10, 10, {0.6, 0.35, 0.225});
+    FilmComparison r = compareFilms(a, b, 4);
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(r.rmse[c], 0.1, 1e-12) << c;  // weights sum to 1
+}
+
+TEST(FilmComparison, EdgeBlocksAreSmallerAndCounted) {
+    // 20 x 20 in blocks of 16: one full block, two strips and a 4 x 4 corner. Only the corner
+    // differs, by 50%: a partial block is compared by its own mean.
+    Film b = filledFilm(20, 20, Vec3(1));
+    Film a = b;
+    scaleRect(a, 16, 16, 20, 20, Vec3(1.5));
+    FilmComparison r = compareFilms(a, b, 16);
+    EXPECT_EQ(r.blocks, 4);
+    EXPECT_NEAR(r.worstLuminance.rel, 0.5, 1e-12);
+    EXPECT_EQ(r.worstLuminance.x, 16);
+    EXPECT_EQ(r.worstLuminance.y, 16);
+    EXPECT_NEAR(r.meanRel[3], 0.5 * 16 / 400, 1e-12);
+}
+
+TEST(FilmComparison, NanAndZeroReferencesShow) {
+    Film b = filledFilm(8, 8, Vec3(1));
+    Film a = b;
+    a.at(5, 5).y = std::nan("");
+    FilmComparison r = compareFilms(a, b, 4);
+    EXPECT_TRUE(std::isnan(r.meanRel[1]));
+    EXPECT_TRUE(std::isnan(r.meanRel[3]));
+    EXPECT_EQ(r.meanRel[0], 0.0);
+    EXPECT_TRUE(std::isnan(r.worstLuminance.rel));
+    EXPECT_EQ(r.worstLuminance.x, 4);
+    // A black reference block that A is not black in: infinitely different.
+    Film black = filledFilm(8, 8, Vec3(0));
+    Film lit = black;
+    lit.at(0, 0) = Vec3(0.1);
+    EXPECT_EQ(compareFilms(lit, black, 4).worstLuminance.rel,
+              std::numeric_limits<double>::infinity());
+    EXPECT_EQ(compareFilms(black, black, 4).worstLuminance.rel, 0.0);
+}
+
+TEST(FilmComparison, SizesMustMatchAndBlocksBePositive) {
+    Film a = filledFilm(8, 8, Vec3(1)), b = filledFilm(8, 9, Vec3(1));
+    EXPECT_THROW(compareFilms(a, b, 4), std::invalid_argument);
+    EXPECT_THROW(compareFilms(a, a, 0), std::invalid_argument);
+    EXPECT_EQ(compareFilms(a, a, 100).blocks, 1);
 }
 
 }  // namespace
