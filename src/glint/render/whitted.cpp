@@ -272,10 +272,16 @@ Vec3 WhittedIntegrator::li(const Ray& ray, const Hit* hit, PathContext& ctx) con
     return shade(ray, hit, 0, 1, ctx);
 }
 
-Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit, int depth, double weight,
-                              PathContext& ctx) const {
+[[gnu::always_inline]] inline Vec3 WhittedIntegrator::shade(const Ray& ray, const Hit* hit,
+                                                            int depth, double weight,
+                                                            PathContext& ctx) const {
     if (!hit) return scene_.backgroundRadiance(ray.dir);
-    SurfaceInteraction si = scene_.primitives.interaction(ray, *hit);
+    return shadeSurface(ray, *hit, depth, weight, ctx);
+}
+
+Vec3 WhittedIntegrator::shadeSurface(const Ray& ray, const Hit& hit, int depth, double weight,
+                                     PathContext& ctx) const {
+    SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
     const Material& m = scene_.materials[si.material];
     if (m.texture != 0 || m.frontEmissionOnly) return shadeSpecial(ray, si, m, depth, weight, ctx);
     return shadeHit(ray, si, m, false, depth, weight, ctx);

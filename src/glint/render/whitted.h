@@ -42,6 +42,10 @@ class WhittedIntegrator final : public Integrator {
     /// `weight`: the largest channel of the product of ray weights down to this ray, for
     /// cutting off negligible branches at transmissive surfaces.
     Vec3 shade(const Ray& ray, const Hit* hit, int depth, double weight, PathContext& ctx) const;
+    /// shade() for a hit. Out of line, so that the miss path (the background or the
+    /// environment map) stays inline in the callers whatever it costs to look up.
+    [[gnu::noinline]] Vec3 shadeSurface(const Ray& ray, const Hit& hit, int depth, double weight,
+                                        PathContext& ctx) const;
     /// shade() for a hit `si` on material `m`, both known; `frontOnly`: m emits from the
     /// front face only.
     Vec3 shadeHit(const Ray& ray, const SurfaceInteraction& si, const Material& m, bool frontOnly,
