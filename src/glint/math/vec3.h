@@ -108,6 +108,12 @@ template <typename T>
 inline Vec3T<T> abs(const Vec3T<T>& a) {
     return {std::abs(a.x), std::abs(a.y), std::abs(a.z)};
 }
+/// Luminance Y of linear RGB with the Rec. 709 (sRGB) primaries.
+template <typename T>
+constexpr T luminance(const Vec3T<T>& c) {
+    return T(0.2126) * c.x + T(0.7152) * c.y + T(0.0722) * c.z;
+}
+
 template <typename T>
 constexpr T maxComponent(const Vec3T<T>& a) {
     return std::max(a.x, std::max(a.y, a.z));

@@ -13,7 +13,7 @@ constexpr double kPi = std::numbers::pi;
 /// Brightness of a colour for weighing lights: its luminance (Rec. 709), or its largest
 /// channel if that is not positive (a colour of negative channels).
 double brightness(const Vec3& c) {
-    double y = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    double y = luminance(c);
     return y > 0 ? y : std::max(maxComponent(c), 0.0);
 }
 

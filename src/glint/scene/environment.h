@@ -33,11 +33,6 @@
 
 namespace glint {
 
-/// Luminance Y of linear RGB with the Rec. 709 (sRGB) primaries.
-inline double luminance(const Vec3& rgb) {
-    return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
-}
-
 /// An equirectangular environment map (see the file comment for its mapping and rotation).
 ///
 /// Lookups are **bilinear** between the four nearest texel centres (as Cycles' default Linear

@@ -147,9 +147,10 @@ TEST(AreaLightGloss, TheHighlightIsWeighedBetweenLightSamplesAndTheGlossyRay) {
                         5 * std::hypot(ea.standardError(), eb.standardError()))
                 << "roughness " << roughness;
             EXPECT_GT(eb.mean(), 0);
-            if (roughness < 0.1)
+            if (roughness < 0.1) {
                 EXPECT_LT(eb.standardError(), 0.7 * ea.standardError())
                     << "no less noise from the glossy ray";
+            }
         }
     }
 }

@@ -124,7 +124,8 @@ TEST(PathFurnace, TheStrategiesAgreeUnderAnEnvironmentMap) {
     std::vector<float> rgb(w * h * 3, 0.2f);
     for (int y = 8; y < 10; ++y)
         for (int x = 47; x < 49; ++x)
-            for (int c = 0; c < 3; ++c) rgb[(y * w + x) * 3 + c] = 400.0f * (c + 1);
+            for (int c = 0; c < 3; ++c)
+                rgb[(y * w + x) * 3 + c] = 400.0f * static_cast<float>(c + 1);
     Scene scene;
     furnace(scene, material(0.6, 0));
     scene.environment = std::make_shared<EnvironmentMap>(w, h, rgb, 1.0, 20.0);

@@ -23,9 +23,6 @@ long long countHotBlocks(const Image8& a, const Image8& b, int block, double thr
 /// Mean absolute difference over all channels of all pixels, in levels.
 double meanAbsDifference(const Image8& a, const Image8& b);
 
-/// Luminance of linear Rec. 709 / sRGB primaries: 0.2126 R + 0.7152 G + 0.0722 B.
-inline double luminance(const Vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
 /// |a - b| / |b|, the difference relative to the reference value b: 0 when both are 0, +inf
 /// when only b is 0, NaN when either is NaN.
 double relativeDifference(double a, double b);
