@@ -50,12 +50,19 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         if (lightOfPrimitive_.empty()) lightOfPrimitive_.assign(bounded, UINT32_MAX);
         const Material& m = scene.materials[prims.materialOf(id)];
         Entry e{Kind::Triangle, id, m.frontEmissionOnly};
+        e.emission = m.emission;
         double area;
         if (id < prims.triangleCount()) {
             auto v = prims.triangleVertices(id);
-            area = 0.5 * length(cross(Vec3(v[1]) - Vec3(v[0]), Vec3(v[2]) - Vec3(v[0])));
+            const Vec3 va(v[0]), vb(v[1]), vc(v[2]);
+            Vec3 normal = cross(vb - va, vc - va);
+            area = 0.5 * length(normal);
             if (!(area > 0)) continue;
             e.pdfArea = 1 / area;
+            e.c = vc;
+            e.ca = va - vc;
+            e.cb = vb - vc;
+            e.n = normal / (2 * area);
         } else if (prims.isSphere(id)) {
             e.kind = Kind::Sphere;
             area = approximateArea(prims.sphere(id - prims.triangleCount()));
@@ -115,8 +122,8 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     }
     SurfaceSample ss;
     if (e.kind == Kind::Triangle) {
-        auto v = prims.triangleVertices(e.index);
-        ss = sampleTriangle(Vec3(v[0]), Vec3(v[1]), Vec3(v[2]), u);
+        auto [b0, b1] = sampleUniformTriangle(u);  // as sampleTriangle, from stored edges
+        ss = {e.c + e.ca * b0 + e.cb * b1, e.n, e.pdfArea};
     } else if (e.kind == Kind::Sphere) {
         ss = sampleSphere(prims.sphere(e.index - prims.triangleCount()), u);
     } else {
@@ -131,8 +138,7 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     if (e.frontOnly ? !(cosLight < 0) : cosLight == 0) return std::nullopt;
     double pdf = ss.pdfArea * d2 / std::abs(cosLight);
     if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
-    const Material& m = scene_.materials[prims.materialOf(e.index)];
-    return LightSample{wi, m.emission, pdf, dist, false};
+    return LightSample{wi, e.emission, pdf, dist, false};
 }
 
 double LightSampler::pdfHit(const Vec3& from, const Hit& hit, const SurfaceInteraction& si) const {

@@ -2,10 +2,10 @@
 /// Every source of light in a scene, as a physically based integrator samples them: the point
 /// and directional lights, every emissive surface (triangles, meshes, spheres and the other
 /// shapes, including the geometry of quad lights) as an area light, and the environment map or
-/// the background as an environment light. One is chosen per shading point with probability proportional to an
-/// estimate of its power (pbrt's PowerLightSampler), then sampled: emissive surfaces uniformly
-/// by area (see geometry/surface_sampling.h), an environment map by its luminance
-/// (scene/environment.h), a constant or gradient background uniformly over the sphere.
+/// the background as an environment light. One is chosen per shading point with probability
+/// proportional to an estimate of its power (pbrt's PowerLightSampler), then sampled: emissive
+/// surfaces uniformly by area (see geometry/surface_sampling.h), an environment map by its
+/// luminance (scene/environment.h), a constant or gradient background uniformly over the sphere.
 ///
 /// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite, and
 /// emissive triangles of instanced meshes. pdfHit() is 0 for them, so an integrator weighting
@@ -62,6 +62,10 @@ class LightSampler {
         uint32_t index;          ///< Into scene.lights, or a primitive id.
         bool frontOnly = false;  ///< Triangles of quad lights emit from their front face only.
         double pdfArea = 0;      ///< Triangles: 1 / area.
+        Vec3 emission{};         ///< Emissive surfaces: their radiance.
+        /// Triangles: the corner c, the edges a - c and b - c, and the unit normal of
+        /// cross(b - a, c - a): a point is c + (a - c) b0 + (b - c) b1.
+        Vec3 c{}, ca{}, cb{}, n{};
     };
     std::optional<LightSample> sampleEntry(const Entry& e, const Vec3& p, Point2 u) const;
 
