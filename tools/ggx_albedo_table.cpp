@@ -35,6 +35,7 @@
 #include <thread>
 #include <vector>
 
+#include "glint/math/quadrature.h"
 #include "glint/render/ggx_albedo.h"
 #include "glint/render/optics.h"
 
@@ -46,33 +47,11 @@ using namespace glint::ggx_albedo_table;
 constexpr double kPi = std::numbers::pi;
 constexpr double kTolerance = 1e-8;
 
-/// Adaptive Simpson quadrature of f over [a, b] to about `tolerance` (absolute), the interval
-/// first cut into `pieces`.
+/// The integral of f over [a, b] to about `tolerance`, the interval first cut into `pieces`:
+/// adaptive Simpson, each piece halved up to 40 times (deep: the table wants 1e-8).
 template <typename F>
 double integrate(const F& f, double a, double b, double tolerance, int pieces) {
-    struct Simpson {
-        const F& f;
-        double step(double a, double fa, double b, double fb, double m, double fm, double whole,
-                    double tol, int depth) const {
-            double lm = 0.5 * (a + m), rm = 0.5 * (m + b);
-            double flm = f(lm), frm = f(rm);
-            double left = (m - a) / 6 * (fa + 4 * flm + fm);
-            double right = (b - m) / 6 * (fm + 4 * frm + fb);
-            double diff = left + right - whole;
-            if (depth <= 0 || std::abs(diff) <= 15 * tol) return left + right + diff / 15;
-            return step(a, fa, m, fm, lm, flm, left, tol / 2, depth - 1) +
-                   step(m, fm, b, fb, rm, frm, right, tol / 2, depth - 1);
-        }
-    };
-    Simpson s{f};
-    double sum = 0, h = (b - a) / pieces;
-    for (int k = 0; k < pieces; ++k) {
-        double x0 = a + k * h, x1 = k + 1 == pieces ? b : x0 + h, xm = 0.5 * (x0 + x1);
-        double f0 = f(x0), f1 = f(x1), fm = f(xm);
-        double whole = (x1 - x0) / 6 * (f0 + 4 * fm + f1);
-        sum += s.step(x0, f0, x1, f1, xm, fm, whole, tolerance / pieces, 40);
-    }
-    return sum;
+    return integrateAdaptive(f, a, b, tolerance, pieces, 40);
 }
 
 /// E(mu, alpha) by quadrature over the disk of visible normals (see the top of the file).
