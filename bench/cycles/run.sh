@@ -193,11 +193,13 @@ fi
 # --- Comparisons. ---------------------------------------------------------------------------
 c0=$out/cycles-$tag-${spp}spp-seed0.exr
 cyc_vs_ref=$(compare "$c0" "$ref")
-noise=
+noise_c= noise_g=
 if [ "$runs" -ge 2 ]; then
-    # Two independent Cycles renders: what noise alone gives at $spp spp. Scaled to the long
-    # renders by sqrt(spp / ref_spp) (both images noisy in both cases).
-    noise=$(compare "$c0" "$out/cycles-$tag-${spp}spp-seed1.exr")
+    # Two renders of one renderer with different seeds: what noise alone gives at $spp spp.
+    noise_c=$(compare "$c0" "$out/cycles-$tag-${spp}spp-seed1.exr")
+    if [ $glint_ok = yes ]; then
+        noise_g=$(compare "$out/glint-$tag-${spp}spp-seed0.exr" "$out/glint-$tag-${spp}spp-seed1.exr")
+    fi
 fi
 
 # row NAME SPP WALL_S CPU_S RMSE [NOTE]
@@ -244,14 +246,25 @@ if [ $glint_ok = yes ]; then
     echo "Converged: Glint $glint_ref_spp spp (A) against Cycles $ref_spp spp (B):"
     compare "$glint_ref" "$ref" --max-rel 0.03 | sed 's/^/  /'
 fi
-if [ -n "$noise" ]; then
+if [ -n "$noise_c" ]; then
+    # A pair's difference has twice the variance of one render at $spp spp; the variance of one
+    # render falls as 1/spp. So Glint at G spp against Cycles at C spp differs by noise alone by
+    # about sqrt(x_c^2 spp / 2C + x_g^2 spp / 2G), x the pairs' figures (as many blocks, so the
+    # largest block's too, roughly). Without Glint: two Cycles renders at C spp, x_c sqrt(spp / C).
     echo
-    awk -v m="$(echo "$noise" | field mean_rel lum)" -v b="$(echo "$noise" | field block_rel lum)" \
-        -v s="$spp" -v r="$ref_spp" 'BEGIN {
-        f = sqrt(s / r)
-        printf "Noise alone: two Cycles renders at %d spp differ by %.4f (image mean) and %.4f " \
-               "(largest 16x16 block) in luminance: about %.4f and %.4f at %d spp.\n",
-               s, m, b, m * f, b * f, r}'
+    awk -v mc="$(echo "$noise_c" | field mean_rel lum)" -v bc="$(echo "$noise_c" | field block_rel lum)" \
+        -v mg="$(echo "$noise_g" | field mean_rel lum)" -v bg="$(echo "$noise_g" | field block_rel lum)" \
+        -v s="$spp" -v c="$ref_spp" -v g="$glint_ref_spp" -v glint=$glint_ok 'BEGIN {
+        printf "Noise alone, luminance: two Cycles renders at %d spp (seeds 0, 1) differ by %.4f" \
+               " (image mean) and %.4f (largest 16x16 block)", s, mc, bc
+        if (glint == "yes") {
+            printf ", two Glint renders by %.4f and %.4f.\n", mg, bg
+            printf "Noise alone would give Glint at %d spp against Cycles at %d spp about %.4f and" \
+                   " %.4f.\n", g, c, sqrt(mc^2 * s / (2 * c) + mg^2 * s / (2 * g)),
+                   sqrt(bc^2 * s / (2 * c) + bg^2 * s / (2 * g))
+        } else {
+            printf ": about %.4f and %.4f at %d spp.\n", mc * sqrt(s / c), bc * sqrt(s / c), c
+        }}'
 fi
 if [ $glint_ok = no ]; then
     echo
