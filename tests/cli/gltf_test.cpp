@@ -24,7 +24,6 @@ std::string dirWith(const std::string& name, std::initializer_list<const char*> 
     return dir;
 }
 
-
 TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     std::string dir = dirWith("gltf-scene", {"scene.glb"});
     CommandResult r = runGlint("scene.glb", dir);

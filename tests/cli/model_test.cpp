@@ -23,7 +23,6 @@ std::string dirWith(const std::string& name, std::initializer_list<const char*> 
     return dir;
 }
 
-
 /// Pixels of `img` whose colour is close to (r, g, b).
 int pixelsNear(const Image8& img, int r, int g, int b, int tolerance = 40) {
     int n = 0;

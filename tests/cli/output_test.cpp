@@ -40,8 +40,6 @@ const char* const kBrightScene =
     "emission 1.5 0.2 0.1\n"
     "sphere 1.2 0 -0.5 0.8\n";
 
-
-
 std::string brightDir(const std::string& name) {
     std::string dir = freshDir(name);
     writeFile(dir + "/scene.test", kBrightScene);

@@ -18,7 +18,6 @@ namespace fs = std::filesystem;
 /// Two valid lines; a case's own lines start at line 3.
 const std::string kHead = "size 64 48\ncamera 0 0 5 0 0 0 0 1 0 45\n";
 
-
 struct ErrorCase {
     const char* name;
     std::string scene;     ///< Contents of e.test.

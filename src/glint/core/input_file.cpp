@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <system_error>
 
 #include "glint/core/system.h"
 
@@ -22,6 +23,17 @@ std::string inputFileProblem(const std::string& path, long long maxBytes) {
 
 size_t memoryAvailable(const LoadLimits& limits) {
     return limits.memoryBytes ? limits.memoryBytes : availableMemoryBytes();
+}
+
+std::unique_ptr<MappedFile> mapInputFile(const std::string& path, std::string& problem) {
+    problem = inputFileProblem(path);
+    if (!problem.empty()) return nullptr;
+    try {
+        return std::make_unique<MappedFile>(path);
+    } catch (const std::system_error& e) {
+        problem = e.code().message();
+        return nullptr;
+    }
 }
 
 }  // namespace glint

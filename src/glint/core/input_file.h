@@ -3,7 +3,10 @@
 /// textures), and the limits they share.
 
 #include <cstddef>
+#include <memory>
 #include <string>
+
+#include "glint/core/mapped_file.h"
 
 namespace glint {
 
@@ -21,6 +24,10 @@ struct LoadLimits {
 /// Why `path` cannot be read as an input file (it is missing, a directory, not a regular file,
 /// or larger than `maxBytes`), or an empty string if it can.
 std::string inputFileProblem(const std::string& path, long long maxBytes = kMaxSceneFileBytes);
+
+/// `path` checked by inputFileProblem() and mapped into memory; null, with `problem` saying
+/// why, if it cannot be read.
+std::unique_ptr<MappedFile> mapInputFile(const std::string& path, std::string& problem);
 
 /// `limits.memoryBytes`, or the memory available now when that is 0.
 size_t memoryAvailable(const LoadLimits& limits);

@@ -41,8 +41,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     struct Sample {
         int pixel;  ///< Index within the block.
         Ray ray;
-        Rng rng;  ///< The sample's own random numbers, after the lens's.
-        uint32_t index = 0;  ///< Within the pixel.
+        Rng rng;                 ///< The sample's own random numbers, after the lens's.
+        uint32_t index = 0;      ///< Within the pixel.
+        uint64_t pixelSeed = 0;  ///< Of its pixel (seeded samples only).
     };
     auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
                            RayCounts& counts) {
@@ -58,12 +59,14 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                     continue;
                 }
                 int index = 0;
+                const uint64_t pixelSeed = sampler.pixelSeed(bx + x, by + y);  // once per pixel
                 sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
                     Rng rng(sampler.sampleSeed(bx + x, by + y, index++));
                     Ray ray = camera.hasLens()
                                   ? camera.generateRay(px, py, rng.uniform(), rng.uniform())
                                   : camera.generateRay(px, py);
-                    samples.push_back({y * 4 + x, ray, rng, static_cast<uint32_t>(index - 1)});
+                    samples.push_back(
+                        {y * 4 + x, ray, rng, static_cast<uint32_t>(index - 1), pixelSeed});
                 });
             }
         Vec3 sum[8];
@@ -84,10 +87,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 bool found = hit.t < std::numeric_limits<float>::infinity();
                 const Sample& s = samples[i + k];
                 PathContext ctx{s.rng, counts};
-                if (seeded) {
-                    ctx.pixelSeed = sampler.pixelSeed(bx + s.pixel % 4, by + s.pixel / 4);
-                    ctx.sampleIndex = s.index;
-                }
+                ctx.pixelSeed = s.pixelSeed;
+                ctx.sampleIndex = s.index;
                 sum[s.pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
             }
         }

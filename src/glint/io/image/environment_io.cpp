@@ -73,13 +73,9 @@ HdrImage decodeOpenExr(std::string_view bytes, const std::string& name, const Lo
 }  // namespace
 
 HdrImage loadEnvironmentImage(const std::string& path, const LoadLimits& limits) {
-    if (std::string problem = inputFileProblem(path); !problem.empty()) cannot(path, problem);
-    std::unique_ptr<MappedFile> file;
-    try {
-        file = std::make_unique<MappedFile>(path);
-    } catch (const std::system_error& e) {
-        cannot(path, e.code().message());
-    }
+    std::string problem;
+    std::unique_ptr<MappedFile> file = mapInputFile(path, problem);
+    if (!file) cannot(path, problem);
     return decodeEnvironmentImage(file->text(), path, limits);
 }
 

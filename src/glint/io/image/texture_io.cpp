@@ -7,9 +7,9 @@
 #include <system_error>
 
 #include "glint/core/error.h"
+#include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/io/image/image_io.h"
-#include "glint/core/mapped_file.h"
 
 namespace glint {
 namespace {
@@ -48,13 +48,9 @@ std::shared_ptr<TextureImage> makeTexture(Image8 img, bool srgb, const std::stri
 
 std::shared_ptr<TextureImage> loadTextureImage(const std::string& path, bool srgb,
                                                const LoadLimits& limits) {
-    if (std::string problem = inputFileProblem(path); !problem.empty()) cannot(path, problem);
-    std::unique_ptr<MappedFile> file;
-    try {
-        file = std::make_unique<MappedFile>(path);
-    } catch (const std::system_error& e) {
-        cannot(path, e.code().message());
-    }
+    std::string problem;
+    std::unique_ptr<MappedFile> file = mapInputFile(path, problem);
+    if (!file) cannot(path, problem);
     return decodeTextureImage(file->text(), path, srgb, limits);
 }
 
