@@ -34,6 +34,46 @@ void Primitives::addAttributes(const Vec3* normals, const TexCoord* uvs) {
     }
 }
 
+void Primitives::addExtras(const TriangleExtras* extras) {
+    const size_t earlier = triangles_.size() - 1;
+    if (triangleExtras_.empty()) triangleExtras_.assign(earlier, kFlat);
+    if (extras && extras->present) {
+        triangleExtras_.push_back(static_cast<uint32_t>(extras_.size()));
+        extras_.push_back(*extras);
+    } else {
+        triangleExtras_.push_back(kFlat);
+    }
+}
+
+void Primitives::extrasAt(uint32_t id, double b1, double b2, SurfaceInteraction& si) const {
+    const uint32_t xi = triangleExtras_[id];
+    if (xi == kFlat) return;
+    const TriangleExtras& x = extras_[xi];
+    const double b0 = 1 - b1 - b2;
+    if (x.present & TriangleExtras::kUv1) {
+        si.u1 = x.uv1[0][0] * b0 + x.uv1[1][0] * b1 + x.uv1[2][0] * b2;
+        si.v1 = x.uv1[0][1] * b0 + x.uv1[1][1] * b1 + x.uv1[2][1] * b2;
+        si.hasUv1 = true;
+    }
+    auto lerp4 = [&](const std::array<std::array<float, 4>, 3>& c, int k) {
+        return c[0][k] * b0 + c[1][k] * b1 + c[2][k] * b2;
+    };
+    if (x.present & TriangleExtras::kColor) {
+        si.color = {lerp4(x.color, 0), lerp4(x.color, 1), lerp4(x.color, 2)};
+        si.colorAlpha = lerp4(x.color, 3);
+        si.hasColor = true;
+    }
+    if (x.present & TriangleExtras::kTangent) {
+        Vec3 t(lerp4(x.tangent, 0), lerp4(x.tangent, 1), lerp4(x.tangent, 2));
+        double len = length(t);
+        if (len > 0 && std::isfinite(len)) {
+            si.tangent = t / len;
+            si.tangentSign = x.tangent[0][3] < 0 ? -1 : 1;
+            si.hasTangent = true;
+        }
+    }
+}
+
 void Primitives::addSphere(const Sphere& sphere, uint32_t material) {
     spheres_.push_back(sphere);
     sphereSearch_.push_back(sphereSearch(sphere));
@@ -165,7 +205,14 @@ SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const
                 si.u = uv[0][0] * b0 + uv[1][0] * th.b1 + uv[2][0] * th.b2;
                 si.v = uv[0][1] * b0 + uv[1][1] * th.b1 + uv[2][1] * th.b2;
                 si.hasUv = true;
+                // dp/du from the edges and their coordinate differences.
+                const Vec3 e1 = Vec3(tri.v1) - Vec3(tri.v0), e2 = Vec3(tri.v2) - Vec3(tri.v0);
+                const double du1 = uv[1][0] - uv[0][0], dv1 = uv[1][1] - uv[0][1];
+                const double du2 = uv[2][0] - uv[0][0], dv2 = uv[2][1] - uv[0][1];
+                const double det = du1 * dv2 - du2 * dv1;
+                if (det != 0) si.dpdu = (e1 * dv2 - e2 * dv1) / det;
             }
+            if (!triangleExtras_.empty()) extrasAt(hit.primId, th.b1, th.b2, si);
         }
     } else if (uint32_t i = hit.primId - triangleCount(); i < sphereCount()) {
         const Sphere& s = spheres_[i];
@@ -193,6 +240,14 @@ SurfaceInteraction Primitives::shapeInteraction(const Ray& ray, const Hit& hit) 
         Ray local{w.inversePoint(ray.origin), w.inverseVector(ray.dir), ray.tMin, ray.tMax};
         si = sharedMeshes_[in.search.mesh()]->interaction(local, Hit{hit.t, hit.subId});
         si.p = w.point(si.p);
+        si.dpdu = w.vector(si.dpdu);
+        if (si.hasTangent) {
+            Vec3 t = w.vector(si.tangent);
+            double tl = length(t);
+            if (tl > 0 && std::isfinite(tl)) si.tangent = t / tl;
+            // A mirroring placement turns the frame's handedness.
+            if (w.determinant() < 0) si.tangentSign = -si.tangentSign;
+        }
         si.ng = normalize(w.normal(si.ng));
         Vec3 n = w.normal(si.n);
         double len = length(n);

@@ -39,6 +39,31 @@ struct SurfaceInteraction {
     /// per-corner coordinates): left unset otherwise, so that the course's hits, which have
     /// none, pay nothing for them.
     double u = 0, v = 0;
+    /// The second set of texture coordinates (glTF's TEXCOORD_1), set only when `hasUv1`.
+    bool hasUv1 = false;
+    double u1 = 0, v1 = 0;
+    /// Interpolated vertex colour (RGB linear, and alpha), set only when `hasColor`.
+    bool hasColor = false;
+    Vec3 color{1};
+    double colorAlpha = 1;
+    /// Unit tangent (world space, along increasing u) and the bitangent's sign (B = sign
+    /// n x t), from the file or generated; set only when `hasTangent`.
+    bool hasTangent = false;
+    Vec3 tangent;
+    double tangentSign = 1;
+    /// dp/du of the triangle (world space) from its first texture coordinates: the tangent
+    /// direction for surfaces without tangents; zero when the coordinates are degenerate.
+    Vec3 dpdu;
+};
+
+/// A triangle's attributes beyond normals and first texture coordinates: glTF's second
+/// texture coordinates, vertex colours and tangents (each present or absent as a whole).
+struct TriangleExtras {
+    static constexpr uint8_t kUv1 = 1, kColor = 2, kTangent = 4;
+    uint8_t present = 0;  ///< Which of the three are set.
+    std::array<TexCoord, 3> uv1{};
+    std::array<std::array<float, 4>, 3> color{};    ///< Linear RGBA per corner.
+    std::array<std::array<float, 4>, 3> tangent{};  ///< xyz world space, w the sign (+-1).
 };
 
 class Primitives {
@@ -57,6 +82,13 @@ class Primitives {
                      const TexCoord* uvs, uint32_t material) {
         if (!pushTriangle(a, b, c, material)) return false;
         if (normals || uvs || !triangleNormals_.empty()) addAttributes(normals, uvs);
+        return true;
+    }
+    /// As above, with `extras` (may be null) for glTF's further attributes.
+    bool addTriangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* normals,
+                     const TexCoord* uvs, const TriangleExtras* extras, uint32_t material) {
+        if (!addTriangle(a, b, c, normals, uvs, material)) return false;
+        if (extras || !triangleExtras_.empty()) addExtras(extras);
         return true;
     }
     void addSphere(const Sphere& sphere, uint32_t material);
@@ -181,6 +213,10 @@ class Primitives {
     bool pushTriangle(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t material);
     /// Records the newest triangle's normals and texture coordinates (either may be null).
     [[gnu::noinline]] void addAttributes(const Vec3* normals, const TexCoord* uvs);
+    /// Records the newest triangle's extras (may be null).
+    [[gnu::noinline]] void addExtras(const TriangleExtras* extras);
+    /// Fills the extras of triangle `id` at barycentrics (b1, b2) into `si`.
+    void extrasAt(uint32_t id, double b1, double b2, SurfaceInteraction& si) const;
 
     // Large arrays in huge pages: scenes of millions of triangles fill them in one go.
     LargeVector<Triangle> triangles_;
@@ -192,6 +228,9 @@ class Primitives {
     /// Index into cornerUvs_, or kFlat; empty while no triangle has texture coordinates.
     LargeVector<uint32_t> triangleUvs_;
     LargeVector<std::array<TexCoord, 3>> cornerUvs_;
+    /// Index into extras_, or kFlat; empty while no triangle has extras.
+    LargeVector<uint32_t> triangleExtras_;
+    LargeVector<TriangleExtras> extras_;
     LargeVector<Sphere> spheres_;
     LargeVector<ShapeSearch> sphereSearch_;
     LargeVector<uint32_t> sphereMaterial_;

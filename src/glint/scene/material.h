@@ -30,6 +30,9 @@ struct Material {
     bool frontEmissionOnly = false;
     /// Id of the texture whose value replaces `diffuse` at each hit (Scene::texture); 0: none.
     uint32_t texture = 0;
+    /// Id of the physically based material the path tracer renders instead (Scene::pbr);
+    /// 0: none, the path tracer makes its BSDF from this material.
+    uint32_t pbr = 0;
 
     bool transmissive() const { return !(transmission == Vec3(0)); }
 

@@ -52,31 +52,54 @@ MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mes
     for (size_t i = 0; i < mesh.materials.size(); ++i) {
         Material m = mesh.materials[i].material;
         if (mesh.materials[i].texture) m.texture = scene.addTexture(*mesh.materials[i].texture);
+        if (mesh.materials[i].pbr) m.pbr = scene.addPbrMaterial(*mesh.materials[i].pbr);
         materialIds[i] = scene.addMaterial(m);
     }
 
     // A mirroring transform would turn the winding, and with it the face normal, inside out:
     // corners are taken in the other order then, so the front stays the front (as the mapped
     // face normal of an instance does).
-    const int second = mirrors(worldFromObject) ? 2 : 1;
+    const bool mirrored = mirrors(worldFromObject);
+    const int second = mirrored ? 2 : 1;
+    const bool anyExtras = !mesh.uv1s.empty() || !mesh.colors.empty() || !mesh.tangents.empty();
     target.reserve(mesh.triangles.size(), 0);
     target.reserveAttributes(mesh.normalTriangles, mesh.uvTriangles);
     MeshPlacement placed;
     for (const MeshData::Triangle& t : mesh.triangles) {
         Vec3 p[3], n[3];
         TexCoord uv[3];
+        TriangleExtras extras;
         for (int k = 0; k < 3; ++k) {
             const MeshData::Corner& c = t.corners[k == 0 ? 0 : k == 1 ? second : 3 - second];
             if (!placedInRange[c.position]) beyondRange(mesh, c.position);
             p[k] = world[c.position];
             if (c.normal != MeshData::kNone) n[k] = normals[c.normal];
             if (c.uv != MeshData::kNone) uv[k] = mesh.uvs[c.uv];
+            if (!anyExtras) continue;
+            const auto kk = static_cast<size_t>(k);
+            if (c.uv1 != MeshData::kNone) {
+                extras.uv1[kk] = mesh.uv1s[c.uv1];
+                extras.present |= TriangleExtras::kUv1;
+            }
+            if (c.color != MeshData::kNone) {
+                extras.color[kk] = mesh.colors[c.color];
+                extras.present |= TriangleExtras::kColor;
+            }
+            if (c.tangent != MeshData::kNone) {
+                const auto& tg = mesh.tangents[c.tangent];
+                Vec3 wt = worldFromObject.vector(Vec3(tg[0], tg[1], tg[2]));
+                const float sign = (tg[3] < 0) != mirrored ? -1.0f : 1.0f;
+                extras.tangent[kk] = {static_cast<float>(wt.x), static_cast<float>(wt.y),
+                                      static_cast<float>(wt.z), sign};
+                extras.present |= TriangleExtras::kTangent;
+            }
         }
         const MeshData::Corner& c0 = t.corners[0];
         uint32_t material =
             t.material == MeshData::kNone ? defaultMaterial : materialIds[t.material];
         bool ok = target.addTriangle(p[0], p[1], p[2], c0.normal != MeshData::kNone ? n : nullptr,
-                                     c0.uv != MeshData::kNone ? uv : nullptr, material);
+                                     c0.uv != MeshData::kNone ? uv : nullptr,
+                                     anyExtras ? &extras : nullptr, material);
         ++(ok ? placed.added : placed.degenerate);
     }
     return placed;

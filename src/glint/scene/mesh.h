@@ -13,6 +13,7 @@
 #include "glint/core/error.h"
 #include "glint/core/huge_pages.h"
 #include "glint/math/transform.h"
+#include "glint/scene/pbr_material.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
@@ -20,28 +21,37 @@ namespace glint {
 /// A material a mesh file defines (an MTL entry), already in Glint's model.
 struct MeshMaterial {
     std::string name;
-    Material material;  ///< Its `texture` is 0; the texture, if any, is `texture`.
+    Material material;  ///< Its `texture` and `pbr` are 0: they are the two below.
     std::optional<Texture> texture;
+    /// The physically based material the path tracer renders (glTF, OBJ's PBR extensions);
+    /// `material` is its flat approximation for the Whitted integrator.
+    std::optional<PbrMaterial> pbr;
 };
 
 /// A triangle mesh in its own (object) space.
 struct MeshData {
     static constexpr uint32_t kNone = UINT32_MAX;
 
-    /// One corner of a triangle: indices into positions, normals and uvs (kNone: absent).
-    /// A triangle has normals at all three corners or at none, and likewise uvs.
+    /// One corner of a triangle: indices into positions, normals, uvs, uv1s, colors and
+    /// tangents (kNone: absent). A triangle has normals at all three corners or at none, and
+    /// likewise each other attribute.
     struct Corner {
         uint32_t position = 0, normal = kNone, uv = kNone;
+        uint32_t uv1 = kNone, color = kNone, tangent = kNone;
     };
     struct Triangle {
         std::array<Corner, 3> corners;  ///< Counter-clockwise seen from the front.
         uint32_t material = kNone;      ///< Index into `materials`; kNone: the placing default.
     };
 
-    std::string name;                 ///< The file it came from, for messages.
-    LargeVector<Vec3f> positions;     ///< Object space.
-    LargeVector<Vec3f> normals;       ///< Object space, unit length or zero.
-    LargeVector<TexCoord> uvs;        ///< (u, v): u to the right, v up the image.
+    std::string name;                          ///< The file it came from, for messages.
+    LargeVector<Vec3f> positions;              ///< Object space.
+    LargeVector<Vec3f> normals;                ///< Object space, unit length or zero.
+    LargeVector<TexCoord> uvs;                 ///< (u, v): u to the right, v up the image.
+    LargeVector<TexCoord> uv1s;                ///< A second set (glTF's TEXCOORD_1), like uvs.
+    LargeVector<std::array<float, 4>> colors;  ///< Linear RGBA vertex colours.
+    /// Object-space unit tangents along increasing u, w the bitangent's sign: B = w (N x T).
+    LargeVector<std::array<float, 4>> tangents;
     LargeVector<Triangle> triangles;  ///< Polygons are already split into triangles.
     std::vector<MeshMaterial> materials;
     size_t normalTriangles = 0;  ///< Triangles with vertex normals.

@@ -14,6 +14,7 @@
 #include "glint/scene/filter_spec.h"
 #include "glint/scene/light.h"
 #include "glint/scene/material.h"
+#include "glint/scene/pbr_material.h"
 #include "glint/scene/texture.h"
 
 namespace glint {
@@ -78,6 +79,8 @@ class Scene {
     std::vector<Material> materials;
     /// Textures named by Material::texture: id k is textures[k - 1].
     std::vector<Texture> textures;
+    /// Physically based materials named by Material::pbr: id k is pbrMaterials[k - 1].
+    std::vector<PbrMaterial> pbrMaterials;
     Primitives primitives;
 
     /// Bytes a scene of this many triangles, spheres and other shapes (boxes, cylinders,
@@ -103,6 +106,12 @@ class Scene {
         textures.push_back(std::move(t));
         return static_cast<uint32_t>(textures.size());
     }
+    /// Id (from 1) of a new physically based material for Material::pbr.
+    uint32_t addPbrMaterial(PbrMaterial m) {
+        pbrMaterials.push_back(std::move(m));
+        return static_cast<uint32_t>(pbrMaterials.size());
+    }
+    const PbrMaterial& pbr(uint32_t id) const { return pbrMaterials[id - 1]; }
     /// The texture of id `id` (1 to textures.size()).
     const Texture& texture(uint32_t id) const { return textures[id - 1]; }
 

@@ -23,6 +23,11 @@ const std::array<double, 256>& srgbTable() {
 /// A texel index for the integer position `i` (perhaps -1 or n) on an axis of `n` texels.
 int wrapIndex(int i, int n, TextureWrap wrap) {
     if (wrap == TextureWrap::Clamp) return std::clamp(i, 0, n - 1);
+    if (wrap == TextureWrap::MirroredRepeat) {  // period 2n: 0 .. n-1, then n-1 .. 0
+        i %= 2 * n;
+        if (i < 0) i += 2 * n;
+        return i < n ? i : 2 * n - 1 - i;
+    }
     i %= n;
     return i < 0 ? i + n : i;
 }
@@ -31,6 +36,11 @@ int wrapIndex(int i, int n, TextureWrap wrap) {
 double wrapCoordinate(double x, TextureWrap wrap) {
     if (!std::isfinite(x)) return 0;
     if (wrap == TextureWrap::Clamp) return std::clamp(x, 0.0, 1.0);
+    if (wrap == TextureWrap::MirroredRepeat) {
+        double f = x - 2 * std::floor(x / 2);  // [0, 2)
+        f = f <= 1 ? f : 2 - f;
+        return std::clamp(f, 0.0, 1.0);
+    }
     double f = x - std::floor(x);
     return f < 1 ? f : 0;  // x just below an integer can round up to 1
 }
@@ -56,20 +66,52 @@ Vec3 TextureImage::average() const {
     return n ? sum * (1.0 / static_cast<double>(n)) : sum;
 }
 
-Vec3 sampleBilinear(const TextureImage& image, double u, double v, TextureWrap wrap) {
+namespace {
+
+/// The four texels around (u, v) and their bilinear weights.
+struct Footprint {
+    int xa, xb, ya, yb;
+    double fx, fy;
+};
+
+Footprint footprint(const TextureImage& image, double u, double v, TextureWrap wrapS,
+                    TextureWrap wrapT) {
     const int w = image.width, h = image.height;
     // Texel centres sit at (i + 0.5) / w; row 0 is the top, v = 1.
-    double x = wrapCoordinate(u, wrap) * w - 0.5;
-    double y = (1 - wrapCoordinate(v, wrap)) * h - 0.5;
+    double x = wrapCoordinate(u, wrapS) * w - 0.5;
+    double y = (1 - wrapCoordinate(v, wrapT)) * h - 0.5;
     double x0 = std::floor(x), y0 = std::floor(y);
-    double fx = x - x0, fy = y - y0;
     // x and y lie in [-0.5, w - 0.5] and [-0.5, h - 0.5]: the casts are safe.
     int ix = static_cast<int>(x0), iy = static_cast<int>(y0);
-    int xa = wrapIndex(ix, w, wrap), xb = wrapIndex(ix + 1, w, wrap);
-    int ya = wrapIndex(iy, h, wrap), yb = wrapIndex(iy + 1, h, wrap);
-    Vec3 top = image.texel(xa, ya) * (1 - fx) + image.texel(xb, ya) * fx;
-    Vec3 bottom = image.texel(xa, yb) * (1 - fx) + image.texel(xb, yb) * fx;
-    return top * (1 - fy) + bottom * fy;
+    return {wrapIndex(ix, w, wrapS),
+            wrapIndex(ix + 1, w, wrapS),
+            wrapIndex(iy, h, wrapT),
+            wrapIndex(iy + 1, h, wrapT),
+            x - x0,
+            y - y0};
+}
+
+}  // namespace
+
+Vec3 sampleBilinear(const TextureImage& image, double u, double v, TextureWrap wrap) {
+    const Footprint f = footprint(image, u, v, wrap, wrap);
+    Vec3 top = image.texel(f.xa, f.ya) * (1 - f.fx) + image.texel(f.xb, f.ya) * f.fx;
+    Vec3 bottom = image.texel(f.xa, f.yb) * (1 - f.fx) + image.texel(f.xb, f.yb) * f.fx;
+    return top * (1 - f.fy) + bottom * f.fy;
+}
+
+Rgba sampleBilinearRgba(const TextureImage& image, double u, double v, TextureWrap wrapS,
+                        TextureWrap wrapT) {
+    const Footprint f = footprint(image, u, v, wrapS, wrapT);
+    Vec3 top = image.texel(f.xa, f.ya) * (1 - f.fx) + image.texel(f.xb, f.ya) * f.fx;
+    Vec3 bottom = image.texel(f.xa, f.yb) * (1 - f.fx) + image.texel(f.xb, f.yb) * f.fx;
+    Rgba out{top * (1 - f.fy) + bottom * f.fy, 1};
+    if (!image.alpha.empty()) {
+        double at = image.alphaTexel(f.xa, f.ya) * (1 - f.fx) + image.alphaTexel(f.xb, f.ya) * f.fx;
+        double ab = image.alphaTexel(f.xa, f.yb) * (1 - f.fx) + image.alphaTexel(f.xb, f.yb) * f.fx;
+        out.a = at * (1 - f.fy) + ab * f.fy;
+    }
+    return out;
 }
 
 int checkerParity(double x, double scale) {

@@ -18,6 +18,9 @@ namespace glint {
 struct TextureImage {
     int width = 0, height = 0;
     std::vector<uint8_t> rgb;  ///< width * height * 3 bytes.
+    /// Alpha bytes (width * height, linear, 255 opaque) of images that have an alpha channel
+    /// that is not everywhere 255; empty: opaque.
+    std::vector<uint8_t> alpha;
     /// The bytes are sRGB-encoded (PNG and JPEG files nearly always are) and are decoded to
     /// linear values; false: they are linear already (value / 255).
     bool srgb = true;
@@ -25,19 +28,34 @@ struct TextureImage {
 
     /// Linear value of texel (x, y), 0 <= x < width, 0 <= y < height.
     Vec3 texel(int x, int y) const;
+    /// Alpha of texel (x, y) in [0, 1]; 1 for images without alpha.
+    double alphaTexel(int x, int y) const {
+        return alpha.empty() ? 1.0 : alpha[static_cast<size_t>(y) * width + x] * (1 / 255.0);
+    }
     /// Mean linear value over all texels.
     Vec3 average() const;
 };
 
 /// What lookups outside [0, 1] see.
 enum class TextureWrap : uint8_t {
-    Repeat,  ///< The image tiles the plane.
-    Clamp,   ///< Coordinates are clamped to [0, 1]: the edge texels stretch outwards.
+    Repeat,          ///< The image tiles the plane.
+    Clamp,           ///< Coordinates are clamped to [0, 1]: the edge texels stretch outwards.
+    MirroredRepeat,  ///< The image tiles the plane, every other tile mirrored (glTF, OpenGL).
+};
+
+/// A filtered texture value with its alpha.
+struct Rgba {
+    Vec3 rgb;
+    double a = 1;
 };
 
 /// The linear value of `image` at (u, v), bilinearly filtered between the four nearest texel
 /// centres. u runs left to right, v bottom to top. Non-finite coordinates read as 0.
 Vec3 sampleBilinear(const TextureImage& image, double u, double v, TextureWrap wrap);
+
+/// As sampleBilinear, with a wrap mode per axis (u: `wrapS`, v: `wrapT`), and alpha.
+Rgba sampleBilinearRgba(const TextureImage& image, double u, double v, TextureWrap wrapS,
+                        TextureWrap wrapT);
 
 /// The decoded linear value of an sRGB-encoded byte (IEC 61966-2-1).
 double srgbToLinear(uint8_t byte);

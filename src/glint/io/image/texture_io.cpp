@@ -66,12 +66,34 @@ std::shared_ptr<TextureImage> decodeTextureImage(std::string_view bytes, const s
     int w = 0, h = 0, n = 0;
     if (!stbi_info_from_memory(data, size, &w, &h, &n)) cannot(name, stbi_failure_reason());
     checkTextureSize(name, w, h, limits);
+    // Images with an alpha channel (grey-alpha, RGBA) keep it, unless it is opaque everywhere.
+    const bool hasAlpha = n == 2 || n == 4;
+    const int channels = hasAlpha ? 4 : 3;
     std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-        stbi_load_from_memory(data, size, &w, &h, &n, 3), stbi_image_free);
+        stbi_load_from_memory(data, size, &w, &h, &n, channels), stbi_image_free);
     if (!pixels) cannot(name, stbi_failure_reason());
+    const size_t texels = static_cast<size_t>(w) * h;
     Image8 img{w, h, 3, {}};
-    img.data.assign(pixels.get(), pixels.get() + static_cast<size_t>(w) * h * 3);
-    return makeTexture(std::move(img), srgb, name);
+    std::vector<uint8_t> alpha;
+    if (hasAlpha) {
+        img.data.resize(texels * 3);
+        alpha.resize(texels);
+        bool opaque = true;
+        for (size_t i = 0; i < texels; ++i) {
+            const stbi_uc* p = pixels.get() + i * 4;
+            img.data[i * 3] = p[0];
+            img.data[i * 3 + 1] = p[1];
+            img.data[i * 3 + 2] = p[2];
+            alpha[i] = p[3];
+            opaque = opaque && p[3] == 255;
+        }
+        if (opaque) alpha.clear();
+    } else {
+        img.data.assign(pixels.get(), pixels.get() + texels * 3);
+    }
+    std::shared_ptr<TextureImage> texture = makeTexture(std::move(img), srgb, name);
+    texture->alpha = std::move(alpha);
+    return texture;
 }
 
 }  // namespace glint
