@@ -53,6 +53,9 @@ struct PbrMaterial {
     double metallic = 1, roughness = 1;  ///< Perceptual roughness: GGX alpha = roughness^2.
     /// Roughness in green, metalness in blue, both linear (multiplying the factors).
     TextureSlot metallicRoughnessTexture;
+    /// Separate maps (MTL's map_Pr and map_Pm, the scene file's): the red channel, linear,
+    /// multiplies the roughness and the metalness.
+    TextureSlot roughnessTexture, metallicTexture;
     /// Tangent-space normals (x right along the tangent, y along the bitangent), linear.
     TextureSlot normalTexture;
     double normalScale = 1;  ///< Scales the map's x and y.

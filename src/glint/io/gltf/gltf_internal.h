@@ -79,12 +79,10 @@ class Materials {
 
   private:
     MeshMaterial map(int index);
-    /// The image of a texture slot of a material, or null (with a warning) if it has none Glint
-    /// can use; `wrap` receives the sampler's wrapping.
-    std::shared_ptr<const TextureImage> slotImage(const tinygltf::TextureInfo& info,
-                                                  const std::string& material, const char* slot,
-                                                  bool srgb, const char* instead,
-                                                  TextureWrap* wrap = nullptr);
+    /// A texture slot of a material (image, sampler, coordinate set, KHR_texture_transform);
+    /// empty (with a warning) if it has no image Glint can use.
+    TextureSlot slot(int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
+                     const std::string& material, const char* slot, bool srgb, const char* instead);
     std::shared_ptr<const TextureImage> image(int index, bool srgb, std::string& problem);
 
     Context& ctx_;
