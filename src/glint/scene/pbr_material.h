@@ -31,6 +31,8 @@ struct TextureSlot {
     std::array<double, 6> transform{1, 0, 0, 0, 1, 0};
 
     explicit operator bool() const { return image != nullptr; }
+    bool operator==(const TextureSlot&) const =
+        default;  ///< The same image (pointer) and settings.
     /// The transform from glTF's offset, rotation (radians) and scale, as KHR_texture_transform
     /// composes them: translation * rotation * scale.
     void setTransform(double offsetU, double offsetV, double rotation, double scaleU,
