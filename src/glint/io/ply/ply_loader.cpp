@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <system_error>
+#include <type_traits>
 
 #include "glint/core/mapped_file.h"
 #include "glint/io/mesh_memory.h"
@@ -272,17 +273,40 @@ void Reader::readVertices(Source& s, const Element& e) {
     std::array<double, kRoles> v{};
     std::array<Type, kRoles> types{};
     for (size_t i = 0; i < e.properties.size(); ++i) types[l.roles[i]] = e.properties[i].type;
+    // Binary records of fixed size: one bounds check per record, the values Glint uses read
+    // at their offsets.
+    struct Used {
+        Role role;
+        Type type;
+        size_t offset;
+    };
+    std::vector<Used> used;
+    size_t offset = 0;
+    for (size_t i = 0; i < e.properties.size(); ++i) {
+        const Property& p = e.properties[i];
+        if (l.roles[i] != kSkip) used.push_back({l.roles[i], p.type, offset});
+        offset += typeSize(p.list ? p.countType : p.type);
+    }
+    constexpr bool binary = std::is_same_v<Source, BinarySource>;
+    const bool fixed = binary && !e.hasList();
     for (uint64_t r = 0; r < e.count; ++r) {
         s.at(r);
-        for (size_t i = 0; i < e.properties.size(); ++i) {
-            const Property& p = e.properties[i];
-            if (p.list)
-                s.skipItems(s.count(p.countType, p.type), p.type);
-            else if (l.roles[i] == kSkip)
-                s.skip(p.type);
-            else
-                v[l.roles[i]] = s.real(p.type);
+        if constexpr (binary) {
+            if (fixed) {
+                const unsigned char* record = s.fixedRecord(offset);
+                for (const Used& u : used) v[u.role] = s.valueAt(u.type, record + u.offset);
+            }
         }
+        if (!fixed)
+            for (size_t i = 0; i < e.properties.size(); ++i) {
+                const Property& p = e.properties[i];
+                if (p.list)
+                    s.skipItems(s.count(p.countType, p.type), p.type);
+                else if (l.roles[i] == kSkip)
+                    s.skip(p.type);
+                else
+                    v[l.roles[i]] = s.real(p.type);
+            }
         Vec3f pos(toFloat(v[kX]), toFloat(v[kY]), toFloat(v[kZ]));
         if (!std::isfinite(pos.x) || !std::isfinite(pos.y) || !std::isfinite(pos.z))
             s.fail("vertex coordinates must be finite numbers (at most about 3.4e38)");
@@ -334,18 +358,7 @@ void Reader::readFaces(Source& s, const Element& e, const Layout& l, bool strips
             if (role == kIndices) {
                 uint64_t n = s.count(p.countType, p.type);
                 indices_.resize(n);
-                for (uint64_t k = 0; k < n; ++k) {
-                    int64_t x = s.integer(p.type);
-                    if (strips && x == -1) {
-                        indices_[k] = MeshData::kNone;  // a strip's end
-                    } else if (x < 0 || static_cast<uint64_t>(x) >= vertices) {
-                        s.fail("vertex index " + std::to_string(x) +
-                               " is out of range: the file has " + std::to_string(vertices) +
-                               " vertices (0 to " + std::to_string(vertices) + " - 1)");
-                    } else {
-                        indices_[k] = static_cast<uint32_t>(x);
-                    }
-                }
+                s.indices(p.type, n, indices_.data(), vertices, strips);
             } else if (role == kTexcoord && faceUvs) {
                 uint64_t n = s.count(p.countType, p.type);
                 for (uint64_t k = 0; k < n; ++k) texcoords_.push_back(toFloat(s.real(p.type)));
@@ -370,7 +383,7 @@ void Reader::readFaces(Source& s, const Element& e, const Layout& l, bool strips
             // Runs between -1s; every other triangle turns the other way.
             size_t start = 0;
             for (size_t k = 0; k <= indices_.size(); ++k) {
-                if (k < indices_.size() && indices_[k] != MeshData::kNone) continue;
+                if (k < indices_.size() && indices_[k] != kNoIndex) continue;
                 for (size_t j = start + 2; j < k; ++j) {
                     bool odd = (j - start) % 2 == 1;
                     addTriangle(indices_[odd ? j - 1 : j - 2], indices_[odd ? j - 2 : j - 1],

@@ -18,6 +18,15 @@
 
 namespace glint::ply {
 
+/// A strip's end (-1 in a `tristrips` list).
+constexpr uint32_t kNoIndex = UINT32_MAX;
+
+/// Why vertex index `x` is not one of `vertices`.
+inline std::string indexProblem(int64_t x, uint64_t vertices) {
+    return "vertex index " + std::to_string(x) + " is out of range: the file has " +
+           std::to_string(vertices) + " vertices (0 to " + std::to_string(vertices) + " - 1)";
+}
+
 /// The record being read, for messages: "face 12", "the file ends in face 12 of 100".
 class Place {
   public:
@@ -51,15 +60,18 @@ class BinarySource : public Place {
     double real(Type t) {
         const size_t n = typeSize(t);
         if (remaining() < n) truncated();
-        double v = decode(t);
+        double v = valueAt(t, p_);
         last_ = p_;
         p_ += n;
         return v;
     }
     /// A value of an integer type.
     int64_t integer(Type t) {
-        double v = real(t);
-        return std::isfinite(v) && std::abs(v) < 9e15 ? static_cast<int64_t>(v) : -1;
+        if (remaining() < typeSize(t)) truncated();
+        int64_t v = integerAt(t, p_);
+        last_ = p_;
+        p_ += typeSize(t);
+        return v;
     }
     /// A list's count: not negative, and no more items of `item` than the bytes left hold.
     uint64_t count(Type t, Type item) {
@@ -67,6 +79,42 @@ class BinarySource : public Place {
         if (n < 0) fail("a list count is negative (" + std::to_string(n) + ")");
         if (static_cast<uint64_t>(n) > remaining() / typeSize(item)) truncated();
         return static_cast<uint64_t>(n);
+    }
+    /// The `n` vertex indices of type `t` of a list whose count() was just read, each below
+    /// `vertices` (or -1 where `strips`: stored as kNoIndex).
+    void indices(Type t, uint64_t n, uint32_t* out, uint64_t vertices, bool strips) {
+        const size_t size = typeSize(t);
+        if (n > remaining() / size) truncated();
+        for (uint64_t k = 0; k < n; ++k, p_ += size) {
+            int64_t x = integerAt(t, p_);
+            if (x >= 0 && static_cast<uint64_t>(x) < vertices) {
+                out[k] = static_cast<uint32_t>(x);
+            } else if (strips && x == -1) {
+                out[k] = kNoIndex;
+            } else {
+                last_ = p_;
+                fail(indexProblem(x, vertices));
+            }
+        }
+    }
+    /// The next `n` bytes, a record of fixed size whose values valueAt() reads; errors about
+    /// it point at its start.
+    const unsigned char* fixedRecord(size_t n) {
+        if (remaining() < n) truncated();
+        last_ = p_;
+        p_ += n;
+        return last_;
+    }
+    /// The value of type `t` at `q`, as a double.
+    double valueAt(Type t, const unsigned char* q) const {
+        switch (t) {
+            case Type::Float32:
+                return load<float>(q);
+            case Type::Float64:
+                return load<double>(q);
+            default:
+                return static_cast<double>(integerAt(t, q));
+        }
     }
     void skip(Type t) { skipBytes(typeSize(t)); }
     void skipItems(uint64_t n, Type t) { skipBytes(n * typeSize(t)); }  // n checked by count()
@@ -88,34 +136,37 @@ class BinarySource : public Place {
     std::string offset() const { return std::to_string(p_ - begin_); }
 
     template <typename T>
-    T load() const {
+    T load(const unsigned char* q) const {
         std::array<unsigned char, sizeof(T)> b;
-        std::memcpy(b.data(), p_, sizeof(T));
+        std::memcpy(b.data(), q, sizeof(T));
         if (swap_) std::reverse(b.begin(), b.end());
         T v;
         std::memcpy(&v, b.data(), sizeof(T));
         return v;
     }
-    double decode(Type t) const {
+    /// An integer type's value at `q`; a float type's if it is a whole number below 2^53 in
+    /// magnitude, else -1.
+    int64_t integerAt(Type t, const unsigned char* q) const {
         switch (t) {
             case Type::Int8:
-                return load<int8_t>();
+                return load<int8_t>(q);
             case Type::UInt8:
-                return load<uint8_t>();
+                return load<uint8_t>(q);
             case Type::Int16:
-                return load<int16_t>();
+                return load<int16_t>(q);
             case Type::UInt16:
-                return load<uint16_t>();
+                return load<uint16_t>(q);
             case Type::Int32:
-                return load<int32_t>();
+                return load<int32_t>(q);
             case Type::UInt32:
-                return load<uint32_t>();
+                return load<uint32_t>(q);
             case Type::Float32:
-                return load<float>();
-            case Type::Float64:
-                return load<double>();
+            case Type::Float64: {
+                double v = t == Type::Float32 ? load<float>(q) : load<double>(q);
+                return v == std::floor(v) && std::abs(v) < 9e15 ? static_cast<int64_t>(v) : -1;
+            }
         }
-        return 0;
+        return -1;
     }
 
     const unsigned char* begin_;
@@ -141,6 +192,36 @@ class AsciiSource : public Place {
     size_t remaining() const { return static_cast<size_t>(end_ - p_); }
 
     double real(Type t) {
+        // The common case at once: a number that ends at a blank.
+        skipBlanks();
+        wordLine_ = line_;
+        wordColumn_ = static_cast<int>(p_ - lineStart_) + 1;
+        if (isInteger(t)) {
+            int64_t i = 0;
+            auto [stop, code] = std::from_chars(p_, end_, i);
+            if (code == std::errc() && (stop == end_ || isBlank(*stop))) {
+                word_ = std::string_view(p_, static_cast<size_t>(stop - p_));
+                p_ = stop;
+                return static_cast<double>(i);
+            }
+        } else if (t == Type::Float32) {  // read as a float: rounded once
+            float f = 0;
+            auto [stop, code] = std::from_chars(p_, end_, f);
+            if (code == std::errc() && (stop == end_ || isBlank(*stop))) {
+                word_ = std::string_view(p_, static_cast<size_t>(stop - p_));
+                p_ = stop;
+                return f;
+            }
+        } else {
+            double v = 0;
+            auto [stop, code] = std::from_chars(p_, end_, v);
+            if (code == std::errc() && (stop == end_ || isBlank(*stop))) {
+                word_ = std::string_view(p_, static_cast<size_t>(stop - p_));
+                p_ = stop;
+                return v;
+            }
+        }
+        // Otherwise the word, and what it is (or what is wrong with it).
         std::string_view w = word();
         const char* first = w.data() + (w.size() > 1 && w[0] == '+');
         const char* last = w.data() + w.size();
@@ -169,6 +250,17 @@ class AsciiSource : public Place {
         if (static_cast<uint64_t>(n) > remaining() / 2 + 1) truncated();
         return static_cast<uint64_t>(n);
     }
+    void indices(Type t, uint64_t n, uint32_t* out, uint64_t vertices, bool strips) {
+        for (uint64_t k = 0; k < n; ++k) {
+            int64_t x = integer(t);
+            if (x >= 0 && static_cast<uint64_t>(x) < vertices)
+                out[k] = static_cast<uint32_t>(x);
+            else if (strips && x == -1)
+                out[k] = kNoIndex;
+            else
+                fail(indexProblem(x, vertices));
+        }
+    }
     void skip(Type) { word(); }
     void skipItems(uint64_t n, Type) {
         for (uint64_t i = 0; i < n; ++i) word();
@@ -189,17 +281,17 @@ class AsciiSource : public Place {
     }
 
   private:
+    static bool isBlank(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
     void skipBlanks() {
-        while (p_ < end_) {
-            char c = *p_;
-            if (c == '\n') {
+        const char* p = p_;  // a local: stores through char pointers would reload members
+        while (p < end_ && isBlank(*p)) {
+            if (*p == '\n') {
                 ++line_;
-                lineStart_ = p_ + 1;
-            } else if (c != ' ' && c != '\t' && c != '\r' && c != '\v' && c != '\f') {
-                break;
+                lineStart_ = p + 1;
             }
-            ++p_;
+            ++p;
         }
+        p_ = p;
     }
     std::string_view word() {
         skipBlanks();
@@ -207,10 +299,10 @@ class AsciiSource : public Place {
         const char* start = p_;
         wordLine_ = line_;
         wordColumn_ = static_cast<int>(start - lineStart_) + 1;
-        while (p_ < end_ && *p_ != ' ' && *p_ != '\t' && *p_ != '\n' && *p_ != '\r' &&
-               *p_ != '\v' && *p_ != '\f')
-            ++p_;
-        word_ = std::string_view(start, static_cast<size_t>(p_ - start));
+        const char* p = start;
+        while (p < end_ && !isBlank(*p)) ++p;
+        p_ = p;
+        word_ = std::string_view(start, static_cast<size_t>(p - start));
         return word_;
     }
 

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -38,6 +37,11 @@ Diagnostic warningAt(FileLoc loc, std::string message) {
     return d;
 }
 
+/// Blanks and line breaks (what std::isspace says in the C locale, without its call per byte).
+constexpr bool isBlank(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
+
+constexpr char lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }
+
 uint32_t loadU32(const unsigned char* p) {
     return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
@@ -51,8 +55,8 @@ bool isAscii(std::string_view bytes) {
     size_t i = head.find_first_not_of(" \t\r\n");
     if (i == std::string_view::npos || head.size() - i < 5) return false;
     for (size_t k = 0; k < 5; ++k)
-        if (std::tolower(static_cast<unsigned char>(head[i + k])) != "solid"[k]) return false;
-    if (head.size() > i + 5 && !std::isspace(static_cast<unsigned char>(head[i + 5]))) return false;
+        if (lower(head[i + k]) != "solid"[k]) return false;
+    if (head.size() > i + 5 && !isBlank(head[i + 5])) return false;
     for (char ch : head) {
         unsigned char c = static_cast<unsigned char>(ch);
         if ((c < 0x20 && !(c >= '\t' && c <= '\r')) || c == 0x7F) return false;
@@ -130,49 +134,71 @@ class AsciiReader {
 
   private:
     void skipBlanks() {
-        while (p_ < end_ && std::isspace(static_cast<unsigned char>(*p_))) {
-            if (*p_ == '\n') {
+        const char* p = p_;  // a local: stores through char pointers would reload members
+        while (p < end_ && isBlank(*p)) {
+            if (*p == '\n') {
                 ++line_;
-                lineStart_ = p_ + 1;
+                lineStart_ = p + 1;
             }
-            ++p_;
+            ++p;
         }
+        p_ = p;
     }
     /// The next word ("" at the end of the file), and where it starts.
     std::string_view word() {
         skipBlanks();
         const char* start = p_;
-        wordLoc_ = {file_, line_, static_cast<int>(start - lineStart_) + 1};
-        while (p_ < end_ && !std::isspace(static_cast<unsigned char>(*p_))) ++p_;
-        return {start, static_cast<size_t>(p_ - start)};
+        wordLine_ = line_;  // not a FileLoc: no copy of the file name per word
+        wordColumn_ = static_cast<int>(start - lineStart_) + 1;
+        const char* p = start;
+        while (p < end_ && !isBlank(*p)) ++p;
+        p_ = p;
+        return {start, static_cast<size_t>(p - start)};
     }
     static bool is(std::string_view w, std::string_view keyword) {
         if (w.size() != keyword.size()) return false;
         for (size_t i = 0; i < w.size(); ++i)
-            if (std::tolower(static_cast<unsigned char>(w[i])) != keyword[i]) return false;
+            if (lower(w[i]) != keyword[i]) return false;
         return true;
     }
-    /// Whether the next word is `keyword` (consumed if so).
+    /// Whether the next word is `keyword` (in any case; consumed if so).
     bool accept(std::string_view keyword) {
-        const char* p = p_;
-        const char* lineStart = lineStart_;
-        int line = line_;
-        if (is(word(), keyword)) return true;
-        p_ = p, lineStart_ = lineStart, line_ = line;
-        return false;
+        skipBlanks();
+        const size_t n = keyword.size();
+        if (static_cast<size_t>(end_ - p_) < n ||
+            (static_cast<size_t>(end_ - p_) > n && !isBlank(p_[n])))
+            return false;
+        for (size_t i = 0; i < n; ++i)
+            if (lower(p_[i]) != keyword[i]) return false;
+        wordLine_ = line_;
+        wordColumn_ = static_cast<int>(p_ - lineStart_) + 1;
+        p_ += n;
+        return true;
     }
     void expect(std::string_view keyword, const char* context) {
+        if (accept(keyword)) return;
         std::string_view w = word();
-        if (is(w, keyword)) return;
         fail((w.empty() ? std::string("the file ends") : quoted(w)) + " where '" +
              std::string(keyword) + "' " + context + " should be" +
              (w.empty() ? ": is it complete?" : ""));
     }
     float number() {
+        // The common case at once: a number that ends at a blank, within the float range
+        // (read as a float: rounded once).
+        skipBlanks();
+        wordLine_ = line_;
+        wordColumn_ = static_cast<int>(p_ - lineStart_) + 1;
+        float f = 0;
+        auto [stop, code] = std::from_chars(p_, end_, f);
+        if (code == std::errc() && (stop == end_ || isBlank(*stop)) && std::isfinite(f)) {
+            p_ = stop;
+            return f;
+        }
+        double v = 0;
+        // Otherwise the word, and what is wrong with it (or a leading '+').
         std::string_view w = word();
         if (w.empty()) fail("the file ends where a number should be: is it complete?");
         const char* first = w.data() + (w.size() > 1 && w[0] == '+');
-        double v = 0;
         auto [end, ec] = std::from_chars(first, w.data() + w.size(), v);
         if (end != w.data() + w.size() ||
             (ec != std::errc() && ec != std::errc::result_out_of_range))
@@ -186,14 +212,15 @@ class AsciiReader {
         while (p_ < end_ && *p_ != '\n') ++p_;
     }
     [[noreturn]] void fail(const std::string& message) const {
-        throw SceneError(wordLoc_, message);
+        throw SceneError(wordLoc(), message);
     }
 
     const char* p_;
     const char* end_;
     const char* lineStart_;
     int line_ = 1;
-    FileLoc wordLoc_;
+    FileLoc wordLoc() const { return {file_, wordLine_, wordColumn_}; }
+    int wordLine_ = 0, wordColumn_ = 0;  ///< Where the last word read starts.
     const std::string& file_;
     std::vector<Diagnostic>& warnings_;
     MeshData mesh_;
@@ -208,7 +235,7 @@ MeshData AsciiReader::run(const LoadLimits& limits) {
         std::string_view w = word();
         if (w.empty()) {
             warnings_.push_back(
-                warningAt(wordLoc_, "the file ends without 'endsolid': is it complete?"));
+                warningAt(wordLoc(), "the file ends without 'endsolid': is it complete?"));
             break;
         }
         if (is(w, "endsolid")) {
@@ -221,7 +248,7 @@ MeshData AsciiReader::run(const LoadLimits& limits) {
             break;
         }
         if (!is(w, "facet")) fail(quoted(w) + " where 'facet' or 'endsolid' should be");
-        const FileLoc facet = wordLoc_;
+        const int facetLine = wordLine_, facetColumn = wordColumn_;
         expect("normal", "(after 'facet')");
         for (int k = 0; k < 3; ++k) number();  // the normal: not used
         expect("outer", "(of 'outer loop')");
@@ -234,11 +261,12 @@ MeshData AsciiReader::run(const LoadLimits& limits) {
         expect("endloop", "(after a facet's vertices)");
         expect("endfacet", "(after 'endloop')");
         if (loop_.size() < 3)
-            throw SceneError(facet,
+            throw SceneError({file_, facetLine, facetColumn},
                              "a facet needs 3 vertices, got " + std::to_string(loop_.size()));
         if (loop_.size() > 3) ++bigFacets;
         if (mesh_.positions.size() + 3 * (loop_.size() - 2) >= MeshData::kNone)
-            throw SceneError(facet, "more triangles than Glint can index");
+            throw SceneError({file_, facetLine, facetColumn},
+                             "more triangles than Glint can index");
         for (size_t k = 1; k + 1 < loop_.size(); ++k)
             addTriangle(mesh_, {loop_[0], loop_[k], loop_[k + 1]});
     }
