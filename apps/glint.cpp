@@ -343,8 +343,8 @@ int run(const Options& opt) {
 int main(int argc, char** argv) {
     CLI::App app{
         "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
-        "\nWithout SCENE it renders a built-in demo scene to glint.png; given an .obj, .gltf"
-        "\nor .glb model it adds what the model lacks of a camera, lights and a floor.",
+        "\nWithout SCENE it renders a built-in demo scene to glint.png; given a model (.obj,"
+        "\n.gltf, .glb, .ply, .stl) it adds what the model lacks of a camera, lights and a floor.",
         "glint"};
     app.get_formatter()->column_width(30);
     // One style for every usage error, whether CLI11 or Glint finds it.
@@ -353,8 +353,8 @@ int main(int argc, char** argv) {
     });
     Options opt;
     app.add_option("SCENE", opt.scene,
-                   "Scene file to render (CSE167x .test format), or an .obj, .gltf or .glb "
-                   "model to frame");
+                   "Scene file to render (CSE167x .test format), or an .obj, .gltf, .glb, .ply "
+                   "or .stl model to frame");
 
     const char* input = "Input";
     app.add_flag("--lenient", opt.lenient,

@@ -1,8 +1,10 @@
-// glint_gen_mesh [OPTIONS] OUT.obj|OUT.glb: writes a finely subdivided smooth surface as a
-// Wavefront OBJ, or as a binary glTF when the name ends in .glb, with vertex normals, for
-// benchmarking the OBJ and glTF loaders and `glint model.obj` on a real-sized mesh
-// (docs/performance.md, "Meshes"). Nothing is downloaded: the surface is computed. Both formats
-// hold the same vertices and triangles (the glTF's in float, 32-bit indices, no material).
+// glint_gen_mesh [OPTIONS] OUT.obj|OUT.glb|OUT.ply|OUT.stl: writes a finely subdivided smooth
+// surface as a Wavefront OBJ, a binary glTF, a PLY (binary little-endian unless --ascii or
+// --big-endian) or an STL (binary unless --ascii), by the name's extension, with vertex normals
+// (but STL, which has none), for benchmarking the mesh loaders and `glint model.obj` on a
+// real-sized mesh (docs/performance.md, "Meshes"). Nothing is downloaded: the surface is
+// computed. Every format holds the same vertices and triangles (the binary ones in float, 32-bit
+// indices, no material; STL repeats each triangle's three corners).
 //
 // The surface is a rippled tube around a trefoil knot, the (2, 3) torus knot
 //   C(t) = ((2 + cos 3t) cos 2t, (2 + cos 3t) sin 2t, -sin 3t),
@@ -14,7 +16,9 @@
 //
 //   --segments N   steps along the knot (default 2048)
 //   --sides N      steps around the tube (default 256)
-//   --uv           write texture coordinates too
+//   --uv           write texture coordinates too (OBJ, glTF, PLY)
+//   --ascii        PLY and STL: the text form
+//   --big-endian   PLY: binary big-endian
 
 #include <algorithm>
 #include <array>
@@ -214,9 +218,105 @@ std::string glbFile(const Mesh& mesh) {
            "JSON" + json + u32(bin.size()) + std::string("BIN\0", 4) + bin;
 }
 
+/// The mesh as PLY: x y z nx ny nz (s t) per vertex, faces as `list uchar int vertex_indices`.
+std::string plyFile(const Mesh& mesh, bool ascii, bool bigEndian) {
+    const bool uv = !mesh.uv.empty();
+    Out out;
+    out.put("ply\nformat ");
+    out.put(ascii ? "ascii" : bigEndian ? "binary_big_endian" : "binary_little_endian");
+    out.put(" 1.0\ncomment written by glint_gen_mesh (bench/gen_mesh.cpp)\nelement vertex ");
+    out.put(static_cast<long long>(mesh.p.size()));
+    out.put(
+        "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\n"
+        "property float ny\nproperty float nz\n");
+    if (uv) out.put("property float s\nproperty float t\n");
+    out.put("element face ");
+    out.put(static_cast<long long>(mesh.tri.size()));
+    out.put("\nproperty list uchar int vertex_indices\nend_header\n");
+    auto bytes = [&](const void* p, size_t n) {
+        const char* c = static_cast<const char*>(p);
+        for (size_t i = 0; i < n; ++i) out.text.push_back(c[bigEndian ? n - 1 - i : i]);
+    };
+    auto value = [&](double v, bool last) {
+        if (ascii) {
+            out.put(static_cast<double>(static_cast<float>(v)));
+            out.put(last ? "\n" : " ");
+        } else {
+            float f = static_cast<float>(v);
+            bytes(&f, 4);
+        }
+    };
+    out.text.reserve(out.text.size() + mesh.p.size() * (ascii ? 80 : 32) + mesh.tri.size() * 24);
+    for (size_t k = 0; k < mesh.p.size(); ++k) {
+        for (double c : mesh.p[k]) value(c, false);
+        for (int i = 0; i < 3; ++i) value(mesh.n[k][i], i == 2 && !uv);
+        if (uv) value(mesh.uv[k][0], false), value(mesh.uv[k][1], true);
+    }
+    for (const auto& t : mesh.tri) {
+        if (ascii) {
+            out.put("3 "), out.put(t[0]), out.put(" "), out.put(t[1]), out.put(" "), out.put(t[2]);
+            out.put("\n");
+        } else {
+            out.text.push_back(3);
+            for (long long k : t) {
+                int32_t i = static_cast<int32_t>(k);
+                bytes(&i, 4);
+            }
+        }
+    }
+    return std::move(out.text);
+}
+
+/// The mesh as STL: each triangle's corners (and its unit normal) in float.
+std::string stlFile(const Mesh& mesh, bool ascii) {
+    Out out;
+    auto facetNormal = [&](const std::array<long long, 3>& t) {
+        V n = cross(mesh.p[t[1]] - mesh.p[t[0]], mesh.p[t[2]] - mesh.p[t[0]]);
+        double len = std::sqrt(dot(n, n));
+        return len > 0 ? n * (1 / len) : V{0, 0, 0};
+    };
+    if (ascii) {
+        out.text.reserve(mesh.tri.size() * 260);
+        out.put("solid trefoil\n");
+        for (const auto& t : mesh.tri) {
+            V n = facetNormal(t);
+            out.put("  facet normal ");
+            out.put(n[0]), out.put(" "), out.put(n[1]), out.put(" "), out.put(n[2]);
+            out.put("\n    outer loop\n");
+            for (long long k : t) {
+                out.put("      vertex ");
+                const V& p = mesh.p[k];
+                out.put(static_cast<double>(static_cast<float>(p[0]))), out.put(" ");
+                out.put(static_cast<double>(static_cast<float>(p[1]))), out.put(" ");
+                out.put(static_cast<double>(static_cast<float>(p[2]))), out.put("\n");
+            }
+            out.put("    endloop\n  endfacet\n");
+        }
+        out.put("endsolid trefoil\n");
+        return std::move(out.text);
+    }
+    std::string bin = "binary STL written by glint_gen_mesh (bench/gen_mesh.cpp)";
+    bin.resize(80, ' ');
+    bin.reserve(84 + 50 * mesh.tri.size());
+    auto u32 = [&](uint32_t v) { bin.append(reinterpret_cast<const char*>(&v), 4); };
+    auto f32 = [&](double v) {
+        float f = static_cast<float>(v);
+        bin.append(reinterpret_cast<const char*>(&f), 4);
+    };
+    u32(static_cast<uint32_t>(mesh.tri.size()));
+    for (const auto& t : mesh.tri) {
+        for (double c : facetNormal(t)) f32(c);
+        for (long long k : t)
+            for (double c : mesh.p[k]) f32(c);
+        bin.append(2, '\0');
+    }
+    return bin;
+}
+
 int usage() {
     std::fprintf(stderr,
-                 "usage: glint_gen_mesh [--segments N] [--sides N] [--uv] OUT.obj|OUT.glb\n");
+                 "usage: glint_gen_mesh [--segments N] [--sides N] [--uv] [--ascii] "
+                 "[--big-endian] OUT.obj|OUT.glb|OUT.ply|OUT.stl\n");
     return 2;
 }
 
@@ -224,7 +324,7 @@ int usage() {
 
 int main(int argc, char** argv) {
     long long segments = 2048, sides = 256;
-    bool uv = false;
+    bool uv = false, ascii = false, bigEndian = false;
     std::string path;
     for (int i = 1; i < argc; ++i) {
         std::string_view a = argv[i];
@@ -234,6 +334,10 @@ int main(int argc, char** argv) {
             (a == "--segments" ? segments : sides) = v;
         } else if (a == "--uv") {
             uv = true;
+        } else if (a == "--ascii") {
+            ascii = true;
+        } else if (a == "--big-endian") {
+            bigEndian = true;
         } else if (!a.empty() && a[0] != '-' && path.empty()) {
             path = a;
         } else {
@@ -272,8 +376,11 @@ int main(int argc, char** argv) {
         }
 
     std::string_view name = path;
-    bool glb = name.size() >= 4 && name.substr(name.size() - 4) == ".glb";
-    std::string bytes = glb ? glbFile(mesh) : objText(mesh);
+    std::string_view ext = name.size() >= 4 ? name.substr(name.size() - 4) : "";
+    std::string bytes = ext == ".glb"   ? glbFile(mesh)
+                        : ext == ".ply" ? plyFile(mesh, ascii, bigEndian)
+                        : ext == ".stl" ? stlFile(mesh, ascii)
+                                        : objText(mesh);
     FILE* f = std::fopen(path.c_str(), "wb");
     if (!f || std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size() ||
         std::fclose(f) != 0) {

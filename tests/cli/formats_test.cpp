@@ -15,7 +15,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::string_literals;
 
-const std::string kReads = "; it reads CSE167x scenes (.test), OBJ (.obj) and glTF (.gltf, .glb)";
+const std::string kReads =
+    "; it reads CSE167x scenes (.test), OBJ (.obj), glTF (.gltf, .glb), PLY (.ply) and STL (.stl)";
 
 struct UnreadableCase {
     const char* name;
@@ -39,20 +40,7 @@ TEST_P(UnreadableFile, GetsOneLineNamingWhatGlintReadsAndExitsOne) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
 
-std::string binaryStl() {
-    std::string s(80, ' ');
-    s += "\x01\0\0\0"s;  // one triangle of 50 bytes
-    return s + std::string(50, '\0');
-}
-
 const UnreadableCase kUnreadable[] = {
-    {"AsciiPly", "cow.ply", "ply\nformat ascii 1.0\nelement vertex 3\n",
-     "Glint cannot read PLY files (yet)" + kReads},
-    {"BinaryPly", "cow.ply", "ply\nformat binary_little_endian 1.0\nend_header\n\0\0"s,
-     "Glint cannot read PLY files (yet)" + kReads},
-    {"AsciiStl", "part.stl", "solid part\nfacet normal 0 0 1\n",
-     "Glint cannot read STL files (yet)" + kReads},
-    {"BinaryStl", "part.stl", binaryStl(), "Glint cannot read STL files (yet)" + kReads},
     {"BinaryFbx", "rig.fbx", "Kaydara FBX Binary  \0\x1a\0\xe8\x1c\0\0"s,
      "Glint cannot read FBX files" + kReads},
     {"AsciiFbx", "rig.fbx", "; FBX 7.4.0 project file\nFBXHeaderExtension:  {\n",
@@ -63,8 +51,8 @@ const UnreadableCase kUnreadable[] = {
      "Glint cannot read this file: it is binary, and CSE167x scene files are text" + kReads},
     {"BinaryNamedAsObj", "model.obj", "\x1f\x8b\x08\0\0\0\0\0"s,
      "Glint cannot read this file: it is binary, and OBJ files are text" + kReads},
-    {"PlyNamedAsAScene", "cow.test", "ply\nformat ascii 1.0\n",
-     "Glint cannot read PLY files (yet)" + kReads},
+    {"FbxNamedAsAScene", "rig.test", "Kaydara FBX Binary  \0\x1a\0\xe8\x1c\0\0"s,
+     "Glint cannot read FBX files" + kReads},
 };
 
 INSTANTIATE_TEST_SUITE_P(Cli, UnreadableFile, testing::ValuesIn(kUnreadable),
@@ -94,21 +82,21 @@ TEST(CliFormats, ASceneWithoutExtensionIsAScene) {
 }
 
 TEST(CliFormats, AMeshGlintCannotReadIsAnErrorAtTheMeshLine) {
-    std::string dir = freshDir("mesh-ply");
-    writeFile(dir + "/cow.ply", "ply\nformat ascii 1.0\n");
-    writeFile(dir + "/s.test", "camera 0 0 5 0 0 0 0 1 0 45\n\n  mesh cow.ply\n");
+    std::string dir = freshDir("mesh-fbx");
+    writeFile(dir + "/rig.fbx", "; FBX 7.4.0 project file\n");
+    writeFile(dir + "/s.test", "camera 0 0 5 0 0 0 0 1 0 45\n\n  mesh rig.fbx\n");
     CommandResult r = runGlint("s.test", dir);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_EQ(r.err,
-              "s.test:3:3: error: mesh 'cow.ply': Glint cannot read PLY files (yet); it reads "
-              "meshes from OBJ (.obj) and glTF (.gltf, .glb)\n");
+              "s.test:3:3: error: mesh 'rig.fbx': Glint cannot read FBX files; it reads "
+              "meshes from OBJ (.obj), glTF (.gltf, .glb), PLY (.ply) and STL (.stl)\n");
     writeFile(dir + "/s.test", "camera 0 0 5 0 0 0 0 1 0 45\nmesh other.test\n");
     writeFile(dir + "/other.test", "size 1 1\n");
     r = runGlint("s.test", dir);
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_EQ(r.err,
               "s.test:2:1: error: mesh 'other.test': a CSE167x scene is not a mesh; it reads "
-              "meshes from OBJ (.obj) and glTF (.gltf, .glb)\n");
+              "meshes from OBJ (.obj), glTF (.gltf, .glb), PLY (.ply) and STL (.stl)\n");
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include "glint/io/course/course_loader.h"
 #include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/obj/obj_loader.h"
+#include "glint/io/ply/ply_loader.h"
+#include "glint/io/stl/stl_loader.h"
 
 namespace glint {
 namespace {
@@ -43,7 +45,7 @@ bool stlMagic(std::string_view head, uint64_t size) {
     if (head.size() >= 84) {
         uint64_t count = 0;
         for (int i = 3; i >= 0; --i) count = count << 8 | static_cast<unsigned char>(head[80 + i]);
-        if (size == 84 + 50 * count) return true;
+        if (size == binaryStlBytes(count)) return true;
     }
     return startsWithWord(trimmedStart(head), "solid");
 }
@@ -74,6 +76,20 @@ Model loadGltfModel(const std::string& path, std::vector<Diagnostic>& warnings,
     GltfOptions options;
     options.limits = limits;
     return loadGltf(path, warnings, options);
+}
+
+Model loadPlyModel(const std::string& path, std::vector<Diagnostic>& warnings,
+                   const LoadLimits& limits) {
+    PlyOptions options;
+    options.limits = limits;
+    return singleMeshModel(loadPly(path, warnings, options));
+}
+
+Model loadStlModel(const std::string& path, std::vector<Diagnostic>& warnings,
+                   const LoadLimits& limits) {
+    StlOptions options;
+    options.limits = limits;
+    return singleMeshModel(loadStl(path, warnings, options));
 }
 
 /// Whether `head` is not text: it has a NUL byte, or control characters other than blanks in
@@ -127,8 +143,8 @@ const std::vector<FileFormat>& fileFormats() {
         {"CSE167x scene", "CSE167x scenes", {".test"}, nullptr, true, loadCourse, nullptr},
         {"OBJ", "OBJ", {".obj"}, nullptr, true, nullptr, loadObjModel},
         {"glTF", "glTF", {".gltf", ".glb"}, gltfMagic, false, nullptr, loadGltfModel},
-        {"PLY", "PLY", {".ply"}, plyMagic, false, nullptr, nullptr, true},
-        {"STL", "STL", {".stl"}, stlMagic, false, nullptr, nullptr, true},
+        {"PLY", "PLY", {".ply"}, plyMagic, false, nullptr, loadPlyModel},
+        {"STL", "STL", {".stl"}, stlMagic, false, nullptr, loadStlModel},
         {"FBX", "FBX", {".fbx"}, fbxMagic, false, nullptr, nullptr},
         {"Blender", "Blender", {".blend"}, blenderMagic, false, nullptr, nullptr},
     };

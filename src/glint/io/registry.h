@@ -78,8 +78,8 @@ FormatChoice chooseFormat(const std::string& path, std::string_view head, uint64
 /// alone, so that its loader reports why.
 FormatChoice chooseFormat(const std::string& path, FileUse use, std::vector<Diagnostic>& warnings);
 
-/// Reads the model at `path` (OBJ, glTF). Throws SceneError for a file of another format, or
-/// as its loader does.
+/// Reads the model at `path` (OBJ, glTF, PLY, STL). Throws SceneError for a file of another format,
+/// or as its loader does.
 Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
                 const LoadLimits& limits = {});
 

@@ -1,4 +1,4 @@
-// Every input the fuzzers start from (fuzz/corpus/course, fuzz/corpus/obj, fuzz/corpus/gltf) and
+// Every input the fuzzers start from (fuzz/corpus/course, obj, gltf, ply, stl) and
 // every input they ever found a problem with (fuzz/regressions/...) goes through what the fuzz
 // harness does, in every normal build: it parses or fails with a SceneError, and when it parses it
 // renders with finite pixels.
@@ -14,6 +14,8 @@
 #include "glint/io/course/course_loader.h"
 #include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/obj/obj_loader.h"
+#include "glint/io/ply/ply_loader.h"
+#include "glint/io/stl/stl_loader.h"
 #include "glint/render/renderer.h"
 #include "glint/scene/model_framing.h"
 
@@ -174,6 +176,74 @@ TEST(FuzzInputs, EveryGltfRegressionFromFuzzingStaysFixed) {
     auto files = inputs("regressions/gltf");
     if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
     for (const auto& f : files) gltfLoadsAndRendersFinite(read(f), f.filename().string());
+}
+
+/// What fuzz/ply_fuzzer.cpp and fuzz/stl_fuzzer.cpp do with one input (`parse` is parsePly or
+/// parseStl): returns false for a clean SceneError; a mesh that loads becomes the scene `glint
+/// model.ply` makes, rendered tiny, every pixel finite.
+template <typename Options, typename Parse>
+bool meshLoadsAndRendersFinite(const std::string& input, const std::string& name, Parse parse) {
+    Options options;
+    options.limits.readFiles = false;
+    options.limits.memoryBytes = size_t(64) << 20;
+    std::vector<Diagnostic> warnings;
+    MeshData mesh;
+    try {
+        mesh = parse(input, name, warnings, options);
+    } catch (const SceneError&) {
+        return false;
+    }
+    ModelScene m;
+    try {
+        m = frameModelScene(singleMeshModel(std::move(mesh)), 8, 8);
+    } catch (const SceneError&) {
+        return true;
+    }
+    m.scene->maxDepth = 2;
+    m.scene->prepare();
+    RenderOptions o;
+    o.threads = 1;
+    Film f = render(*m.scene, o).film;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x)
+            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
+    return true;
+}
+
+bool plyLoadsAndRendersFinite(const std::string& input, const std::string& name) {
+    return meshLoadsAndRendersFinite<PlyOptions>(input, name, parsePly);
+}
+
+bool stlLoadsAndRendersFinite(const std::string& input, const std::string& name) {
+    return meshLoadsAndRendersFinite<StlOptions>(input, name, parseStl);
+}
+
+TEST(FuzzInputs, PlySeedCorpusLoadsOrFailsCleanlyAndRendersFinite) {
+    auto files = inputs("corpus/ply");
+    ASSERT_GE(files.size(), 10u) << "the PLY seed corpus is missing";
+    int loaded = 0;
+    for (const auto& f : files) loaded += plyLoadsAndRendersFinite(read(f), f.filename().string());
+    EXPECT_GE(loaded, 8);
+}
+
+TEST(FuzzInputs, EveryPlyRegressionFromFuzzingStaysFixed) {
+    auto files = inputs("regressions/ply");
+    if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
+    for (const auto& f : files) plyLoadsAndRendersFinite(read(f), f.filename().string());
+}
+
+TEST(FuzzInputs, StlSeedCorpusLoadsOrFailsCleanlyAndRendersFinite) {
+    auto files = inputs("corpus/stl");
+    ASSERT_GE(files.size(), 10u) << "the STL seed corpus is missing";
+    int loaded = 0;
+    for (const auto& f : files) loaded += stlLoadsAndRendersFinite(read(f), f.filename().string());
+    EXPECT_GE(loaded, 5);
+}
+
+TEST(FuzzInputs, EveryStlRegressionFromFuzzingStaysFixed) {
+    auto files = inputs("regressions/stl");
+    if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
+    for (const auto& f : files) stlLoadsAndRendersFinite(read(f), f.filename().string());
 }
 
 }  // namespace

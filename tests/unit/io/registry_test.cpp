@@ -19,8 +19,10 @@ namespace {
 using ::testing::HasSubstr;
 using namespace std::string_literals;
 
-const std::string kReads = "; it reads CSE167x scenes (.test), OBJ (.obj) and glTF (.gltf, .glb)";
-const std::string kReadsMeshes = "; it reads meshes from OBJ (.obj) and glTF (.gltf, .glb)";
+const std::string kReads =
+    "; it reads CSE167x scenes (.test), OBJ (.obj), glTF (.gltf, .glb), PLY (.ply) and STL (.stl)";
+const std::string kReadsMeshes =
+    "; it reads meshes from OBJ (.obj), glTF (.gltf, .glb), PLY (.ply) and STL (.stl)";
 
 struct Choice {
     std::string format;  ///< The chosen format's name, or "" for none.
@@ -62,15 +64,24 @@ TEST(Registry, TextOfNoKnownExtensionIsWhatTheCallerWants) {
     EXPECT_EQ(choose("empty", "").format, "CSE167x scene");
 }
 
+TEST(Registry, PlyAndStlAreReadByTheirSignatureOrExtension) {
+    EXPECT_EQ(choose("cow.ply", "ply\nformat ascii 1.0\nelement vertex 8\n").format, "PLY");
+    EXPECT_EQ(choose("cow.PLY", "ply\r\nformat binary_little_endian 1.0\r\n").format, "PLY");
+    EXPECT_EQ(choose("cow.ply", "ply\n", FileUse::Model).format, "PLY");
+    EXPECT_EQ(choose("part.stl", "solid part\n  facet normal 0 0 1\n").format, "STL");
+    EXPECT_EQ(choose("part.stl", binaryStl(2)).format, "STL");
+    EXPECT_EQ(choose("part.stl", binaryStl(2), FileUse::Model).format, "STL");
+    // A binary STL is known by its size (84 + 50 bytes per triangle), whatever its name or
+    // header; a file of another size named .stl goes to the STL reader, which says what is
+    // wrong.
+    EXPECT_EQ(choose("download", binaryStl(3)).format, "STL");
+    std::string header = binaryStl(0).substr(0, 80);
+    header[0] = '\x01';
+    EXPECT_EQ(choose("part.stl", header + "\x05\0\0\0"s).format, "STL");
+    EXPECT_EQ(choose("part.bin", header + "\x05\0\0\0"s).format, "");
+}
+
 TEST(Registry, FormatsGlintCannotReadGetOneMessage) {
-    Choice ply = choose("cow.ply", "ply\nformat ascii 1.0\nelement vertex 8\n");
-    EXPECT_EQ(ply.format, "");
-    EXPECT_EQ(ply.problem, "Glint cannot read PLY files (yet)" + kReads);
-    EXPECT_EQ(choose("cow.ply", "ply\r\nformat binary_little_endian 1.0\r\n").problem, ply.problem);
-    EXPECT_EQ(choose("part.stl", "solid part\n  facet normal 0 0 1\n").problem,
-              "Glint cannot read STL files (yet)" + kReads);
-    EXPECT_EQ(choose("part.stl", binaryStl(2)).problem,
-              "Glint cannot read STL files (yet)" + kReads);
     EXPECT_EQ(choose("rig.fbx", "Kaydara FBX Binary  \0\x1a\0"s).problem,
               "Glint cannot read FBX files" + kReads);
     EXPECT_EQ(choose("rig.fbx", "; FBX 7.4.0 project file\n").problem,
@@ -79,17 +90,22 @@ TEST(Registry, FormatsGlintCannotReadGetOneMessage) {
               "Glint cannot read FBX files" + kReads);
     EXPECT_EQ(choose("room.blend", "BLENDER-v300").problem,
               "Glint cannot read Blender files" + kReads);
-    // Inside a scene, `mesh cow.ply` lists what `mesh` reads.
-    EXPECT_EQ(choose("cow.ply", "ply\n", FileUse::Model).problem,
-              "Glint cannot read PLY files (yet)" + kReadsMeshes);
+    // Inside a scene, `mesh rig.fbx` lists what `mesh` reads.
+    EXPECT_EQ(choose("rig.fbx", "Kaydara FBX Binary  \0"s, FileUse::Model).problem,
+              "Glint cannot read FBX files" + kReadsMeshes);
 }
 
 TEST(Registry, ContentsWinOverAnExtensionThatLies) {
     // The signature of a foreign format, whatever the name: never parsed as a scene.
-    EXPECT_EQ(choose("cow.test", "ply\nformat ascii 1.0\n").problem,
-              "Glint cannot read PLY files (yet)" + kReads);
-    EXPECT_EQ(choose("scene.test", "solid cube\nfacet normal 0 0 1\n").problem,
-              "Glint cannot read STL files (yet)" + kReads);
+    EXPECT_EQ(choose("rig.test", "Kaydara FBX Binary  \0"s).problem,
+              "Glint cannot read FBX files" + kReads);
+    Choice ply = choose("cow.test", "ply\nformat ascii 1.0\n");
+    EXPECT_EQ(ply.format, "PLY");
+    ASSERT_EQ(ply.warnings.size(), 1u);
+    EXPECT_EQ(ply.warnings[0].message,
+              "the file is PLY, whatever its name says: it is read as PLY");
+    EXPECT_EQ(choose("scene.test", "solid cube\nfacet normal 0 0 1\n").format, "STL");
+    EXPECT_EQ(choose("model.obj", binaryStl(1), FileUse::Model).format, "STL");
     // A readable format is read as what it is, with a warning.
     Choice glb = choose("scene.test", "glTF\x02\0\0\0"s);
     EXPECT_EQ(glb.format, "glTF");
@@ -129,8 +145,8 @@ TEST(Registry, ASceneFileIsNotAMesh) {
 class RegistryFiles : public test::TempDirTest {};
 
 TEST_F(RegistryFiles, LoadingAFileGlintCannotReadNamesIt) {
-    std::string file = path("cow.ply");
-    std::ofstream(file) << "ply\nformat ascii 1.0\nend_header\n";
+    std::string file = path("rig.fbx");
+    std::ofstream(file, std::ios::binary) << "Kaydara FBX Binary  \0\x1a\0"s;
     std::vector<Diagnostic> warnings;
     try {
         loadSceneFile(file, warnings);
@@ -138,7 +154,7 @@ TEST_F(RegistryFiles, LoadingAFileGlintCannotReadNamesIt) {
     } catch (const SceneError& e) {
         EXPECT_EQ(e.diagnostic().loc.file, file);
         EXPECT_EQ(e.diagnostic().loc.line, 0);
-        EXPECT_THAT(e.diagnostic().message, HasSubstr("Glint cannot read PLY files (yet)"));
+        EXPECT_THAT(e.diagnostic().message, HasSubstr("Glint cannot read FBX files"));
     }
     EXPECT_THROW(loadModel(file, warnings), SceneError);
     // chooseFormat reads the first bytes: a glTF binary named .test is glTF.
