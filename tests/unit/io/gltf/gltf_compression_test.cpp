@@ -3,8 +3,10 @@
 // (gltf_compression_support.h) load as their uncompressed originals do, within the encoders'
 // quantization, and render alike; broken ones are errors that name the extension.
 
+#include <dlfcn.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <stb_image.h>
 
 #include <algorithm>
 #include <cmath>
@@ -496,6 +498,17 @@ TEST(GltfCompression, AnUnsupportedRequiredExtensionIsNamed) {
     b.json["extensionsRequired"] = {"EXT_future_compression"};
     EXPECT_EQ(errorOf(b),
               "the file requires extension EXT_future_compression, which Glint does not support");
+}
+
+TEST(GltfCompression, StbImageIsLibstbsNotLibdracos) {
+    // Debian's libdraco exports its own stb_image (and tinygltf): the link order must leave
+    // Glint's image reading to libstb (src/CMakeLists.txt).
+    Dl_info info{};
+    ASSERT_NE(dladdr(reinterpret_cast<void*>(&stbi_load_from_memory), &info), 0);
+    ASSERT_NE(info.dli_fname, nullptr);
+    EXPECT_THAT(info.dli_fname, HasSubstr("libstb.so"));
+    ASSERT_NE(dladdr(reinterpret_cast<void*>(&stbi_failure_reason), &info), 0);
+    EXPECT_THAT(info.dli_fname, HasSubstr("libstb.so"));
 }
 
 }  // namespace
