@@ -448,6 +448,16 @@ std::vector<unsigned char> decodeMeshopt(const Context& ctx, Compression& c, siz
                  std::to_string(m.byteOffset) + " lie beyond the end of buffer " +
                  std::to_string(m.buffer) + " (" + std::to_string(data.size()) + " bytes)");
     const unsigned char* source = data.data() + m.byteOffset;
+    // What the codecs can make of so many bytes at most (each stores at least 2 bits per 16
+    // bytes of attributes, a byte per triangle, a byte per index): a count beyond it is refused
+    // before its memory is taken.
+    const size_t most = m.mode == MeshoptMode::Attributes  ? m.byteLength * 64
+                        : m.mode == MeshoptMode::Triangles ? m.byteLength * 3 * stride
+                                                           : m.byteLength * stride;
+    if (bv.byteLength > most)
+        ctx.fail(label + ": its " + std::to_string(m.byteLength) +
+                 " compressed bytes cannot hold " + std::to_string(count) + " elements of " +
+                 std::to_string(stride) + " bytes");
     reserveDecoded(ctx, c, double(bv.byteLength), label);
 
     std::vector<unsigned char> out(bv.byteLength);

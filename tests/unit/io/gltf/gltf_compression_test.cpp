@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -447,6 +449,12 @@ TEST(GltfMeshopt, TheExtensionsRulesAreChecked) {
     b = a;
     ext(b, 1)["buffer"] = 1;
     EXPECT_THAT(errorOf(b), HasSubstr("its compressed data is in buffer 1, a fallback buffer"));
+    // A count the compressed bytes cannot hold is refused before its memory is taken.
+    b = a;
+    ext(b, 1)["count"] = 100000000;
+    b.json["bufferViews"][1]["byteLength"] = 1200000000;
+    EXPECT_THAT(errorOf(b), HasSubstr("compressed bytes cannot hold 100000000 elements of 12 "
+                                      "bytes"));
     b = a;
     ext(b, 1).erase("count");
     EXPECT_THAT(errorOf(b), HasSubstr("bufferView 1: EXT_meshopt_compression: 'count' is "
@@ -498,6 +506,28 @@ TEST(GltfCompression, AnUnsupportedRequiredExtensionIsNamed) {
     b.json["extensionsRequired"] = {"EXT_future_compression"};
     EXPECT_EQ(errorOf(b),
               "the file requires extension EXT_future_compression, which Glint does not support");
+}
+
+TEST(GltfCompression, TheFuzzSeedsDecodeUnderTheHarnessLimits) {
+    // The seeds made with draco_transcoder and gltfpack (fuzz/corpus/gltf, docs/robustness.md)
+    // load as the harness loads them, so that fuzzing starts inside the decoders.
+    int seeds = 0;
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::string(GLINT_FUZZ_DIR) + "/corpus/gltf")) {
+        const std::string name = e.path().filename().string();
+        if (!name.starts_with("draco-") && !name.starts_with("meshopt-")) continue;
+        SCOPED_TRACE(name);
+        std::ifstream in(e.path(), std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)),
+                                std::istreambuf_iterator<char>());
+        GltfOptions options;
+        options.limits.readFiles = false;
+        options.limits.memoryBytes = size_t(64) << 20;
+        std::vector<Diagnostic> warnings;
+        EXPECT_GT(parseGltf(bytes, name, warnings, options).triangles(), 0u);
+        ++seeds;
+    }
+    EXPECT_GE(seeds, 6);
 }
 
 TEST(GltfCompression, StbImageIsLibstbsNotLibdracos) {
