@@ -1,11 +1,13 @@
 #pragma once
 // Shared by gltf_loader.cpp (the file, node trees, cameras, lights), gltf_meshes.cpp
-// (accessors and meshes) and gltf_materials.cpp (materials and their images). Internal to
-// glint/io: use gltf_loader.h.
+// (accessors and meshes), gltf_materials.cpp (materials and their images) and
+// gltf_compression.cpp (compressed meshes). Internal to glint/io: use gltf_loader.h.
 
 #include <bit>
 #include <map>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -22,6 +24,8 @@ namespace glint::gltf {
 static_assert(std::endian::native == std::endian::little,
               "glTF's binary data is little-endian, and Glint reads it as it lies");
 
+struct Compression;  // gltf_compression.cpp
+
 /// What loading one asset shares: the file, tinygltf's model of it, and the warnings.
 struct Context {
     Context(const std::string& file, std::vector<Diagnostic>& warnings, const GltfOptions& options);
@@ -32,6 +36,9 @@ struct Context {
     const GltfOptions& options;
     tinygltf::Model model;
     size_t externalBytes = 0;  ///< Read from external buffer files so far.
+    /// What the compression extensions need (gltf_compression.cpp): null when the file uses
+    /// none. Its decoded data is made when first asked for, through a const Context too.
+    std::shared_ptr<Compression> compression;
 
     /// Throws SceneError naming the file.
     [[noreturn]] void fail(const std::string& message) const;
@@ -59,6 +66,31 @@ std::string describe(const char* kind, size_t index, const std::string& name);
 /// The bytes of bufferView `index`, checked to lie in its buffer. `user` names who refers to
 /// it, for messages.
 std::string_view bufferViewBytes(const Context& ctx, int index, const std::string& user);
+
+// Compressed meshes (gltf_compression.cpp): KHR_draco_mesh_compression through libdraco,
+// EXT_meshopt_compression and KHR_meshopt_compression through libmeshoptimizer.
+
+/// Whether JSON text may use a compression extension (a look at its text: false means it does
+/// not; true that prepareCompression() must see the parsed JSON).
+bool mayUseCompression(std::string_view json);
+/// Prepares the parsed JSON `j` for tinygltf, which (as Debian builds it, without Draco) cannot
+/// read compressed files: takes the `indices` of Draco primitives out (their accessors have no
+/// bufferView, which tinygltf rejects) and replaces meshopt fallback buffers (which may have
+/// no data) by a byte, after checking the extensions' objects. What it takes and what the
+/// decoders need go to ctx.compression. Returns whether `j` changed. `glb`: the JSON of a .glb.
+bool prepareCompression(Context& ctx, nlohmann::json& j, bool glb);
+/// After tinygltf's parse: puts the Draco primitives' indices back, and finds which accessors
+/// Draco primitives decode.
+void restoreCompression(Context& ctx);
+/// The elements of accessor `index` decoded from its KHR_draco_mesh_compression primitive, laid
+/// out tightly as the accessor declares them (type, component type, count); null if no Draco
+/// primitive holds the accessor. The primitive is decoded when first asked for.
+const std::vector<unsigned char>* dracoAccessor(const Context& ctx, int index);
+/// The decoded bytes of bufferView `index` (in range) if it is meshopt-compressed (its
+/// byteLength), decoded when first asked for; nullopt if it is not compressed.
+std::optional<std::string_view> meshoptBufferView(const Context& ctx, int index);
+/// Bytes the decoders hold (for memory estimates).
+size_t decompressedBytes(const Context& ctx);
 
 /// Counts of a mesh, for the memory estimate: an upper bound of what readMesh() stores.
 struct MeshCounts {

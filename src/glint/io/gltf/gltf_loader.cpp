@@ -59,6 +59,7 @@ std::string_view bufferViewBytes(const Context& ctx, int index, const std::strin
     const auto& views = ctx.model.bufferViews;
     if (index < 0 || static_cast<size_t>(index) >= views.size())
         missing(ctx, "bufferView", index, views.size(), user);
+    if (std::optional<std::string_view> decoded = meshoptBufferView(ctx, index)) return *decoded;
     const tinygltf::BufferView& bv = views[static_cast<size_t>(index)];
     const std::string label = "bufferView " + std::to_string(index);
     const auto& buffers = ctx.model.buffers;
@@ -324,8 +325,8 @@ void readMeshes(Context& ctx, Model& out) {
     const double perNormal = double(Scene::estimateBytes(1000, 0, 0, 1000, 0)) / 1000 - perTriangle;
     const double perUv = double(Scene::estimateBytes(1000, 0, 0, 0, 1000)) / 1000 - perTriangle;
     const double perInstance = double(Scene::estimateBytes(0, 0, 1000, 0, 0)) / 1000;
-    double needed = meshBytes + placed * perTriangle + placedNormals * perNormal +
-                    placedUvs * perUv + instances * perInstance +
+    double needed = double(decompressedBytes(ctx)) + meshBytes + placed * perTriangle +
+                    placedNormals * perNormal + placedUvs * perUv + instances * perInstance +
                     double(meshPlacementBytes(maxPositions, maxNormals));
     size_t available = memoryAvailable(ctx.options.limits);
     if (available > 0 && needed > double(available))

@@ -89,6 +89,10 @@ AccessorView viewAccessor(const Context& ctx, int index, const std::string& user
     v.normalized = a.normalized;
     const size_t element = static_cast<size_t>(v.bytes) * static_cast<size_t>(v.components);
     v.stride = element;
+    if (const std::vector<unsigned char>* decoded = dracoAccessor(ctx, index)) {
+        v.data = decoded->data();  // decoded from Draco, tightly, as the accessor declares
+        return v;
+    }
     if (a.bufferView < -1)
         missing(ctx, "bufferView", a.bufferView, ctx.model.bufferViews.size(), v.label);
     if (a.bufferView == -1) return v;  // zeros, perhaps with sparse values
