@@ -6,9 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <numeric>
 #include <vector>
 
 #include "glint/core/error.h"
@@ -37,7 +38,12 @@ Vec3 unitOrZero(const Vec3& v) {
 struct CornerKey {
     std::array<float, 8> v;  // position, normal, uv
 
-    auto operator<=>(const CornerKey&) const = default;
+    Vec3 position() const { return {v[0], v[1], v[2]}; }
+    Vec3 normal() const { return {v[3], v[4], v[5]}; }
+    /// Whether the normal and uv are those of `o` (the position is compared apart).
+    bool sameNormalAndUv(const CornerKey& o) const {
+        return std::equal(v.begin() + 3, v.end(), o.v.begin() + 3);
+    }
 };
 
 float canonical(float x) { return x + 0.0f; }
@@ -46,8 +52,8 @@ float canonical(float x) { return x + 0.0f; }
 struct Tri {
     size_t index;               ///< In MeshData::triangles.
     std::array<uint32_t, 3> w;  ///< Welded vertex of each corner.
-    Vec3 tangent;               ///< dp/du, normalised; zero when the uvs have no area.
-    int orientation = 0;        ///< +1, -1; 0: the uvs have no area (decided from neighbours).
+    Vec3f tangent;              ///< dp/du, normalised; zero when the uvs have no area.
+    int8_t orientation = 0;     ///< +1, -1; 0: the uvs have no area (decided from neighbours).
     bool degenerate = false;    ///< Two equal corner positions (no area).
     std::array<uint32_t, 3> neighbour{kNone, kNone, kNone};  ///< Across edge k (corner k, k+1).
     std::array<uint32_t, 3> group{kNone, kNone, kNone};      ///< Of corner k.
@@ -61,18 +67,15 @@ struct Group {
     uint32_t tangent;  ///< Index in MeshData::tangents.
 };
 
-/// A triangle's corner positions and the normals its tangents are made for: the vertex normals,
-/// else its face normal (zero when it has no area).
+/// A selected triangle's corner positions and the normals its tangents are made for, from its
+/// corner keys.
 struct Corners {
     std::array<Vec3, 3> p, n;
 
-    Corners(const MeshData& mesh, const MeshData::Triangle& t) {
-        for (size_t k = 0; k < 3; ++k) p[k] = Vec3(mesh.positions[t.corners[k].position]);
-        const Vec3 face = unitOrZero(cross(p[1] - p[0], p[2] - p[0]));
+    explicit Corners(const CornerKey* keys) {
         for (size_t k = 0; k < 3; ++k) {
-            const uint32_t i = t.corners[k].normal;
-            const Vec3 vn = i != kNone ? Vec3(mesh.normals[i]) : Vec3(0);
-            n[k] = notZero(length(vn)) ? vn : face;
+            p[k] = keys[k].position();
+            n[k] = keys[k].normal();
         }
     }
 };
@@ -84,12 +87,19 @@ Vec3 anyTangent(const Vec3& n) {
     return Frame(n / len).t;
 }
 
-/// Reads the selected triangles: corners, per-triangle tangents and handedness.
+/// Reads the selected triangles: corner keys (the vertex normals, else the face normal, zero
+/// when the triangle has no area), the mesh position of each corner, per-triangle tangents and
+/// handedness.
 std::vector<Tri> readTriangles(const MeshData& mesh, const TangentRequest& request,
-                               std::vector<CornerKey>& keys) {
+                               std::vector<CornerKey>& keys, std::vector<uint32_t>& positionOf) {
     const auto& uvs = request.secondUvs ? mesh.uv1s : mesh.uvs;
     const size_t last = std::min(request.last, mesh.triangles.size());
     std::vector<Tri> tris;
+    if (request.first < last) {
+        tris.reserve(last - request.first);
+        keys.reserve(3 * (last - request.first));
+        positionOf.reserve(3 * (last - request.first));
+    }
     for (size_t i = request.first; i < last; ++i) {
         const MeshData::Triangle& t = mesh.triangles[i];
         const MeshData::Corner& c0 = t.corners[0];
@@ -102,67 +112,118 @@ std::vector<Tri> readTriangles(const MeshData& mesh, const TangentRequest& reque
             const MeshData::Corner& c = t.corners[k];
             uv[k] = uvs[request.secondUvs ? c.uv1 : c.uv];
         }
-        const Corners g(mesh, t);
-        const Vec3 e1 = g.p[1] - g.p[0], e2 = g.p[2] - g.p[0];
-        tri.degenerate = g.p[0] == g.p[1] || g.p[1] == g.p[2] || g.p[0] == g.p[2];
+        std::array<Vec3, 3> p, n;
+        for (size_t k = 0; k < 3; ++k) p[k] = Vec3(mesh.positions[t.corners[k].position]);
+        const Vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+        const Vec3 face = unitOrZero(cross(e1, e2));
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t ni = t.corners[k].normal;
+            const Vec3 vn = ni != kNone ? Vec3(mesh.normals[ni]) : Vec3(0);
+            n[k] = notZero(length(vn)) ? vn : face;
+        }
+        tri.degenerate = p[0] == p[1] || p[1] == p[2] || p[0] == p[2];
         // dp/du and dp/dv from e1 = dp/du du1 + dp/dv dv1 and e2 likewise: times the uv area.
         const double du1 = double(uv[1][0]) - uv[0][0], dv1 = double(uv[1][1]) - uv[0][1];
         const double du2 = double(uv[2][0]) - uv[0][0], dv2 = double(uv[2][1]) - uv[0][1];
         const double area = du1 * dv2 - du2 * dv1;
         if (notZero(area)) {
             tri.orientation = area > 0 ? 1 : -1;
-            tri.tangent = unitOrZero((e1 * dv2 - e2 * dv1) * double(tri.orientation));
+            tri.tangent = Vec3f(unitOrZero((e1 * dv2 - e2 * dv1) * double(tri.orientation)));
         }
         for (size_t k = 0; k < 3; ++k) {
             CornerKey key;
-            key.v = {float(g.p[k].x), float(g.p[k].y), float(g.p[k].z), float(g.n[k].x),
-                     float(g.n[k].y), float(g.n[k].z), uv[k][0],        uv[k][1]};
+            key.v = {float(p[k].x), float(p[k].y), float(p[k].z), float(n[k].x),
+                     float(n[k].y), float(n[k].z), uv[k][0],      uv[k][1]};
             for (float& x : key.v) x = canonical(x);
             keys.push_back(key);
+            positionOf.push_back(t.corners[k].position);
         }
         tris.push_back(tri);
     }
     return tris;
 }
 
-/// Numbers the distinct corner keys: corners of equal position, normal and uv are one vertex.
-void weld(std::vector<Tri>& tris, const std::vector<CornerKey>& keys) {
-    std::vector<uint32_t> order(keys.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        return keys[a] < keys[b] || (keys[a] == keys[b] && a < b);
-    });
-    uint32_t vertex = 0;
-    for (size_t i = 0; i < order.size(); ++i) {
-        if (i > 0 && keys[order[i]] != keys[order[i - 1]]) ++vertex;
-        tris[order[i] / 3].w[order[i] % 3] = vertex;
+/// A well-mixed 64-bit hash of `x` (the finaliser of MurmurHash3).
+uint64_t mix(uint64_t x) {
+    x ^= x >> 33;
+    x *= 0xff51afd7ed558ccdULL;
+    x ^= x >> 33;
+    x *= 0xc4ceb9fe1a85ec53ULL;
+    return x ^ (x >> 33);
+}
+
+/// Numbers the distinct corner keys, in the order they first occur: corners of equal position,
+/// normal and uv are one vertex. Returns the number of vertices. Equal positions are found by
+/// value once per mesh position (a hash table), then the few vertices at each position by
+/// their normal and uv.
+uint32_t weld(std::vector<Tri>& tris, const std::vector<CornerKey>& keys,
+              const std::vector<uint32_t>& positionOf) {
+    // Mesh position -> distinct position value (a place), for the range of mesh positions the
+    // corners use (a glTF primitive's are contiguous).
+    const auto [lo, hi] = std::minmax_element(positionOf.begin(), positionOf.end());
+    const uint32_t first = *lo;
+    std::vector<uint32_t> place(size_t(*hi - first) + 1, kNone);
+    const size_t mask =
+        std::bit_ceil(std::max<size_t>(2 * std::min(place.size(), keys.size()), 16)) - 1;
+    std::vector<uint32_t> slots(mask + 1, kNone), slotPlace(mask + 1);
+    // Each place's vertices: a list through `next`, each vertex known by one of its corners.
+    std::vector<uint32_t> head, next, corner;
+    for (uint32_t c = 0; c < keys.size(); ++c) {
+        const CornerKey& key = keys[c];
+        uint32_t& at = place[positionOf[c] - first];
+        if (at == kNone) {
+            uint64_t h = 0;
+            for (size_t k = 0; k < 3; ++k) h = mix(h ^ std::bit_cast<uint32_t>(key.v[k]));
+            size_t i = h & mask;
+            while (slots[i] != kNone &&
+                   !std::equal(key.v.begin(), key.v.begin() + 3, keys[slots[i]].v.begin()))
+                i = (i + 1) & mask;
+            if (slots[i] == kNone) {
+                slots[i] = c;
+                slotPlace[i] = uint32_t(head.size());
+                head.push_back(kNone);
+            }
+            at = slotPlace[i];
+        }
+        uint32_t v = head[at];
+        while (v != kNone && !keys[corner[v]].sameNormalAndUv(key)) v = next[v];
+        if (v == kNone) {
+            v = uint32_t(corner.size());
+            corner.push_back(c);
+            next.push_back(head[at]);
+            head[at] = v;
+        }
+        tris[c / 3].w[c % 3] = v;
     }
+    return uint32_t(corner.size());
 }
 
 /// Links triangles across their edges: edge (a, b) of one and (b, a) of another (the same
-/// winding). Degenerate triangles have no neighbours.
-void linkNeighbours(std::vector<Tri>& tris) {
-    struct Edge {
-        uint32_t a, b, tri, k;
-    };
-    std::vector<Edge> edges;
-    edges.reserve(tris.size() * 3);
+/// winding; of several, the first). Degenerate triangles have no neighbours.
+void linkNeighbours(std::vector<Tri>& tris, uint32_t vertices) {
+    // The triangles at each vertex, in order.
+    std::vector<uint32_t> start(size_t(vertices) + 1, 0), at;
+    for (const Tri& t : tris)
+        if (!t.degenerate)
+            for (uint32_t v : t.w) ++start[v + 1];
+    for (size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+    at.resize(start[vertices]);
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t t = 0; t < tris.size(); ++t)
+        if (!tris[t].degenerate)
+            for (uint32_t v : tris[t].w) at[fill[v]++] = uint32_t(t);
     for (size_t t = 0; t < tris.size(); ++t) {
-        if (tris[t].degenerate) continue;
-        for (uint32_t k = 0; k < 3; ++k)
-            edges.push_back({tris[t].w[k], tris[t].w[(k + 1) % 3], uint32_t(t), k});
-    }
-    auto less = [](const Edge& x, const Edge& y) {
-        return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.tri < y.tri;
-    };
-    std::sort(edges.begin(), edges.end(), less);
-    for (const Edge& e : edges) {
-        auto it = std::lower_bound(edges.begin(), edges.end(), Edge{e.b, e.a, 0, 0}, less);
-        for (; it != edges.end() && it->a == e.b && it->b == e.a; ++it)
-            if (it->tri != e.tri) {
-                tris[e.tri].neighbour[e.k] = it->tri;
-                break;
+        Tri& tri = tris[t];
+        if (tri.degenerate) continue;
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t a = tri.w[k], b = tri.w[(k + 1) % 3];
+            for (uint32_t i = start[b]; i < start[b + 1] && tri.neighbour[k] == kNone; ++i) {
+                const Tri& u = tris[at[i]];
+                if (at[i] == t) continue;
+                for (size_t j = 0; j < 3; ++j)
+                    if (u.w[j] == b && u.w[(j + 1) % 3] == a) tri.neighbour[k] = at[i];
             }
+        }
     }
 }
 
@@ -235,23 +296,35 @@ double cornerAngle(const Corners& g, size_t k, const Vec3& n) {
 
 }  // namespace
 
+size_t tangentGenerationBytes(size_t triangles) {
+    // Per triangle: its record; per corner, its key, at most one group, and a dozen indices
+    // (its mesh position, the vertex lists, the triangles at each vertex, the hash table).
+    return triangles *
+           (sizeof(Tri) + 3 * (sizeof(CornerKey) + sizeof(Group) + 12 * sizeof(uint32_t)));
+}
+
 TangentReport generateTangents(MeshData& mesh, const TangentRequest& request) {
     std::vector<CornerKey> keys;
-    std::vector<Tri> tris = readTriangles(mesh, request, keys);
+    std::vector<uint32_t> positionOf;
+    std::vector<Tri> tris = readTriangles(mesh, request, keys, positionOf);
     TangentReport report;
     if (tris.empty()) return report;
-    weld(tris, keys);
-    keys = {};
-    linkNeighbours(tris);
+    if (keys.size() >= kNone)
+        throw SceneError({mesh.name, 0, 0},
+                         "too many triangles to generate tangents for (more than 1.4 billion)");
+    const uint32_t vertices = weld(tris, keys, positionOf);
+    positionOf = {};
+    linkNeighbours(tris, vertices);
     decideOrientations(tris);
     std::vector<Group> groups = formGroups(tris);
 
     // Each group's sum of its triangles' tangents, projected and weighted by angle.
-    for (const Tri& tri : tris) {
-        if (tri.degenerate || tri.tangent == Vec3(0)) continue;
-        const Corners g(mesh, mesh.triangles[tri.index]);
+    for (size_t i = 0; i < tris.size(); ++i) {
+        const Tri& tri = tris[i];
+        if (tri.degenerate || tri.tangent == Vec3f(0)) continue;
+        const Corners g(&keys[3 * i]);
         for (size_t k = 0; k < 3; ++k) {
-            const Vec3 t = unitOrZero(project(tri.tangent, g.n[k]));
+            const Vec3 t = unitOrZero(project(Vec3(tri.tangent), g.n[k]));
             if (t == Vec3(0)) continue;
             groups[tri.group[k]].sum += t * cornerAngle(g, k, g.n[k]);
         }
@@ -278,17 +351,19 @@ TangentReport generateTangents(MeshData& mesh, const TangentRequest& request) {
         if (firstGroupOf[g.vertex] == kNone) firstGroupOf[g.vertex] = g.tangent;
         return g.tangent;
     };
-    for (const Tri& tri : tris) {
+    for (size_t i = 0; i < tris.size(); ++i) {
+        const Tri& tri = tris[i];
         if (tri.degenerate) continue;
-        const Corners g(mesh, mesh.triangles[tri.index]);
         auto& corners = mesh.triangles[tri.index].corners;
-        for (size_t k = 0; k < 3; ++k) corners[k].tangent = tangentOf(groups[tri.group[k]], g.n[k]);
+        for (size_t k = 0; k < 3; ++k)
+            corners[k].tangent = tangentOf(groups[tri.group[k]], keys[3 * i + k].normal());
         ++report.triangles;
     }
     // Corners of degenerate triangles: another group's tangent at the same vertex, else any.
-    for (const Tri& tri : tris) {
+    for (size_t i = 0; i < tris.size(); ++i) {
+        const Tri& tri = tris[i];
         if (!tri.degenerate) continue;
-        const Corners g(mesh, mesh.triangles[tri.index]);
+        const Corners g(&keys[3 * i]);
         auto& corners = mesh.triangles[tri.index].corners;
         for (size_t k = 0; k < 3; ++k) {
             const uint32_t v = tri.w[k];

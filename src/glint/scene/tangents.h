@@ -51,6 +51,10 @@ struct TangentReport {
     size_t fallback = 0;   ///< Of those, ones without a tangent from the uvs (see above).
 };
 
+/// Bytes generateTangents() needs while it runs, for `triangles` selected triangles (beyond the
+/// tangents it adds): for memory estimates.
+size_t tangentGenerationBytes(size_t triangles);
+
 /// Gives the triangles `request` selects tangents at their three corners, appended to
 /// `mesh.tangents` (object space, unit length, w = +1 or -1), as MikkTSpace computes them over
 /// those triangles together. Triangles without the texture coordinates asked for, or with
