@@ -281,10 +281,6 @@ void checkAsset(Context& ctx) {
             ctx.fail("the file requires extension " + e + ", which Glint does not support");
     if (!ctx.model.animations.empty())
         ctx.warnOnce("animations", "animations are not supported: nodes keep their own transforms");
-    if (!ctx.model.skins.empty())
-        ctx.warnOnce("skins",
-                     "skins are not supported: skinned meshes are shown in their bind "
-                     "pose, placed by their nodes");
 }
 
 }  // namespace glint::gltf
