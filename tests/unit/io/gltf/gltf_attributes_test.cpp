@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 
@@ -190,6 +192,40 @@ TEST(GltfAttributes, NoTangentsAreGeneratedWithoutANormalMapOrWhenTheFileHasThem
                   &warnings, noFiles);
     ASSERT_EQ(model.meshes[0].tangents.size(), 4u);  // the file's, not generated ones
     EXPECT_EQ(model.meshes[0].tangents[0], (std::array<float, 4>{0, 1, 0, -1}));
+}
+
+TEST(GltfAttributes, GeneratedTangentsMatchBlendersMikkTSpace) {
+    // Blender 3.4's Suzanne (smooth, triangulated, its uv layout mirrored on the left half),
+    // exported with the tangents Blender's MikkTSpace computes (make_blender_monkey.py); read
+    // as it is, and without its TANGENT attribute, so that Glint generates them: every corner
+    // gets Blender's tangent (to float precision) and sign.
+    std::ifstream in(dataPath("blender-monkey.gltf"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string attribute = R"("TANGENT" : 3)";
+    const size_t at = text.find(attribute);
+    ASSERT_NE(at, std::string::npos);
+    std::string without = text;
+    const size_t comma = without.rfind(',', at);
+    without.erase(comma, at + attribute.size() - comma);
+    Model blender = parse(text), glint = parse(without);
+    const MeshData &a = blender.meshes[0], &b = glint.meshes[0];
+    ASSERT_EQ(a.triangles.size(), b.triangles.size());
+    ASSERT_FALSE(b.tangents.empty());
+    size_t corners = 0, close = 0, mirrored = 0;
+    double worst = 1;
+    for (size_t t = 0; t < a.triangles.size(); ++t)
+        for (size_t k = 0; k < 3; ++k) {
+            const auto& ta = a.tangents[corner(a, t, k).tangent];
+            const auto& tb = b.tangents[corner(b, t, k).tangent];
+            const double d = dot(Vec3(ta[0], ta[1], ta[2]), Vec3(tb[0], tb[1], tb[2]));
+            EXPECT_EQ(ta[3], tb[3]) << "triangle " << t << " corner " << k;
+            worst = std::min(worst, d);
+            close += d > 0.99999;  // within 0.26 degrees
+            mirrored += ta[3] < 0;
+            ++corners;
+        }
+    EXPECT_GT(mirrored, corners / 4);  // its left half is mirrored
+    EXPECT_EQ(close, corners) << "worst cosine " << worst;
 }
 
 TEST(GltfAttributes, ExtrasReachTheScene) {
