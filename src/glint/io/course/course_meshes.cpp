@@ -28,7 +28,9 @@ void Parser::cmdMesh() {
         FormatChoice format = chooseFormat(path, FileUse::Model, warnings_);
         if (!format.format) fail(0, "mesh " + quoted(1) + ": " + format.problem);
         // Errors inside the mesh file name that file (and its line and column for OBJ).
-        it = models_.emplace(path, format.format->loadModel(path, warnings_, limits_)).first;
+        LoadOptions options;
+        options.limits = limits_;
+        it = models_.emplace(path, format.format->loadModel(path, warnings_, options)).first;
     }
     // Placed when the file ends (SceneBuilder::finish), so that a mesh placed several times is
     // stored once. A glTF asset's meshes are placed by its nodes, under the current transform;

@@ -336,10 +336,6 @@ void checkAsset(Context& ctx) {
     checkRequiredExtensions(ctx, ctx.model.extensionsRequired);
     if (!ctx.model.animations.empty())
         ctx.warnOnce("animations", "animations are not supported: nodes keep their own transforms");
-    if (!ctx.model.skins.empty())
-        ctx.warnOnce("skins",
-                     "skins are not supported: skinned meshes are shown in their bind "
-                     "pose, placed by their nodes");
 }
 
 }  // namespace glint::gltf

@@ -1,9 +1,12 @@
 #pragma once
 // Shared by gltf_loader.cpp (the file, node trees, cameras, lights), gltf_meshes.cpp
-// (accessors and meshes), gltf_materials.cpp (materials and their images) and
-// gltf_compression.cpp (compressed meshes). Internal to glint/io: use gltf_loader.h.
+// (accessors and meshes), gltf_skins.cpp (skinned meshes posed), gltf_materials.cpp
+// (materials and their images) and gltf_compression.cpp (compressed meshes). Internal to
+// glint/io: use gltf_loader.h.
 
+#include <array>
 #include <bit>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
@@ -17,7 +20,9 @@
 #include "glint/core/error.h"
 #include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/gltf/tinygltf.h"
+#include "glint/math/mat4.h"
 #include "glint/scene/mesh.h"
+#include "glint/scene/model.h"
 
 namespace glint::gltf {
 
@@ -96,6 +101,13 @@ size_t decompressedBytes(const Context& ctx);
 struct MeshCounts {
     size_t positions = 0, normals = 0, uvs = 0, triangles = 0;
     size_t normalTriangles = 0, uvTriangles = 0;  ///< Triangles with normals, with uvs.
+    size_t uv1s = 0, colors = 0, tangents = 0;    ///< Read from the file.
+    size_t generatedTangents = 0;  ///< At most, for primitives with a normal map and no TANGENT.
+    size_t largestGeneration = 0;  ///< Triangles of the largest such primitive.
+    size_t extraTriangles = 0;     ///< Triangles with TEXCOORD_1, COLOR_0 or tangents.
+
+    /// Bytes of the MeshData.
+    double bytes() const;
 };
 
 /// Checks every primitive of glTF mesh `mesh` (modes, attribute and index accessors and their
@@ -126,9 +138,49 @@ class Materials {
     std::map<std::pair<int, bool>, Decoded> images_;  ///< By (image, sRGB).
 };
 
+/// The joints and weights of a mesh's vertices (JOINTS_0/WEIGHTS_0, and _1), by MeshData
+/// position: up to kInfluences per vertex, weights as the file has them (0 where it has none).
+struct VertexWeights {
+    static constexpr size_t kInfluences = 8;
+    struct Vertex {
+        std::array<uint16_t, kInfluences> joints{};
+        std::array<float, kInfluences> weights{};
+        bool operator==(const Vertex&) const = default;
+    };
+    std::vector<Vertex> vertices;
+};
+
 /// Reads glTF mesh `mesh` (checked by countMesh) into a MeshData: its primitives' triangles,
-/// with positions, normals and texture coordinates, and their materials through `materials`.
-/// `counts` (from countMesh) reserves the storage.
-MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials);
+/// with positions, normals, texture coordinates (both sets), colours and tangents (generated,
+/// MikkTSpace-compatibly, for primitives whose material has a normal map and that have no
+/// TANGENT), and their materials through `materials`. `counts` (from countMesh) reserves the
+/// storage. With `weights`, also reads the joints and weights of its vertices for skinning.
+MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials,
+                  VertexWeights* weights = nullptr);
+
+/// The matrices (MAT4, column-major in the file) of accessor `index`, at least `count` of them;
+/// `user` names who refers to it, for messages.
+std::vector<Mat4> readMatrices(const Context& ctx, int index, size_t count,
+                               const std::string& user);
+
+/// A node's transform relative to its parent: its matrix, or translation x rotation x scale.
+/// `label` names the node in messages.
+Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label);
+
+/// A node placing a mesh with a skin: its placement is posed by the skin (gltf_skins.cpp).
+struct SkinnedPlacement {
+    size_t placement = 0;  ///< Index in Model::placements.
+    int skin = -1, node = -1;
+    Mat4 nodeWorld;  ///< The node's world transform: for vertices without weights.
+};
+
+/// Poses every skinned placement: each vertex v' = sum_i w_i (world(joint_i) x
+/// inverseBind_i) v (the glTF specification's skinning, in the pose the nodes' own transforms
+/// give), normals by the inverse transpose of that matrix and tangents by the matrix. A mesh
+/// posed by one skin and placed by no other node is posed where it is; otherwise each (mesh,
+/// skin) is a copy appended to `out.meshes`. `weights` holds, by mesh, the weights readMesh()
+/// read (for each mesh a skinned placement uses). The placements then have the identity.
+void poseSkins(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& skinned,
+               std::vector<VertexWeights>& weights);
 
 }  // namespace glint::gltf
