@@ -101,17 +101,17 @@ Model loadModelAs(const FileFormat& format, const std::string& path,
 }
 
 Model loadPlyModel(const std::string& path, std::vector<Diagnostic>& warnings,
-                   const LoadLimits& limits) {
-    PlyOptions options;
-    options.limits = limits;
-    return singleMeshModel(loadPly(path, warnings, options));
+                   const LoadOptions& options) {
+    PlyOptions ply;
+    ply.limits = options.limits;
+    return singleMeshModel(loadPly(path, warnings, ply));
 }
 
 Model loadStlModel(const std::string& path, std::vector<Diagnostic>& warnings,
-                   const LoadLimits& limits) {
-    StlOptions options;
-    options.limits = limits;
-    return singleMeshModel(loadStl(path, warnings, options));
+                   const LoadOptions& options) {
+    StlOptions stl;
+    stl.limits = options.limits;
+    return singleMeshModel(loadStl(path, warnings, stl));
 }
 
 /// Whether `head` is not text: it has a NUL byte, or control characters other than blanks in
