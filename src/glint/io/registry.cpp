@@ -145,8 +145,25 @@ const std::vector<FileFormat>& fileFormats() {
         {"glTF", "glTF", {".gltf", ".glb"}, gltfMagic, false, nullptr, loadGltfModel},
         {"PLY", "PLY", {".ply"}, plyMagic, false, nullptr, loadPlyModel},
         {"STL", "STL", {".stl"}, stlMagic, false, nullptr, loadStlModel},
-        {"FBX", "FBX", {".fbx"}, fbxMagic, false, nullptr, nullptr},
-        {"Blender", "Blender", {".blend"}, blenderMagic, false, nullptr, nullptr},
+        // FBX stays unread: docs/performance.md, "PLY and STL: Glint's readers or Assimp".
+        {"FBX",
+         "FBX",
+         {".fbx"},
+         fbxMagic,
+         false,
+         nullptr,
+         nullptr,
+         false,
+         "export it as glTF, e.g. from Blender: File > Import > FBX, File > Export > glTF 2.0"},
+        {"Blender",
+         "Blender",
+         {".blend"},
+         blenderMagic,
+         false,
+         nullptr,
+         nullptr,
+         false,
+         "export it as glTF from Blender: File > Export > glTF 2.0"},
     };
     return formats;
 }
@@ -175,7 +192,8 @@ FormatChoice chooseFormat(const std::string& path, std::string_view head, uint64
     }
     if (!format->loadScene && !format->loadModel)
         return cannotRead("Glint cannot read " + std::string(format->name) + " files" +
-                              (format->planned ? " (yet)" : ""),
+                              (format->planned ? " (yet)" : "") +
+                              (format->hint ? std::string(" (") + format->hint + ")" : ""),
                           use);
     if (!readsFor(*format, use))
         return cannotRead(std::string("a ") + format->name + " is not a mesh", use);
