@@ -1,21 +1,22 @@
 #!/usr/bin/env bash
-# Loading and rendering a 1M-triangle model with no scene file (`glint model.obj`, or
-# `glint model.glb`): medians over RUNS runs of parse (file to MeshData to scene), BVH build,
+# Loading and rendering a 1M-triangle model with no scene file (`glint model.obj`, .glb, .ply
+# or .stl): medians over RUNS runs of parse (file to MeshData to scene), BVH build,
 # render and peak memory.
-# Usage: bench/mesh_stats.sh BUILD_DIR [RUNS] [THREADS] [obj|glb]
+# Usage: bench/mesh_stats.sh BUILD_DIR [RUNS] [THREADS] [obj|glb|ply|stl]
 # The model (bench/gen_mesh.cpp: a rippled trefoil-knot tube, 1,048,576 triangles with vertex
-# normals; about 80 MB of OBJ text, or a 25 MB binary glTF) is written to $GLINT_BENCH_TMP
+# normals; about 80 MB of OBJ text, a 25 MB binary glTF, a 26 MB binary PLY or a 52 MB binary STL
+# without normals) is written to $GLINT_BENCH_TMP
 # (default /tmp/glint-bench) once and reused; it is never part of the repository.
 set -euo pipefail
 if [ $# -lt 1 ]; then
-    echo "usage: $0 BUILD_DIR [RUNS] [THREADS] [obj|glb]" >&2
+    echo "usage: $0 BUILD_DIR [RUNS] [THREADS] [obj|glb|ply|stl]" >&2
     exit 2
 fi
 build=$1
 runs=${2:-5}
 threads=${3:-2}
 format=${4:-obj}
-case $format in obj | glb) ;; *) echo "$0: format must be obj or glb" >&2 && exit 2 ;; esac
+case $format in obj | glb | ply | stl) ;; *) echo "$0: format must be obj, glb, ply or stl" >&2 && exit 2 ;; esac
 tmp=${GLINT_BENCH_TMP:-/tmp/glint-bench}
 mkdir -p "$tmp"
 model=$tmp/trefoil-1m.$format
