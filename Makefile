@@ -15,21 +15,24 @@ JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 
 # Debian packages: compiler and build tools, then libraries (see docs/dependencies in README).
 DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
-        libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libgtest-dev libgmock-dev
+        libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
+        libgtest-dev libgmock-dev
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
 # the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh,
 # Blender for the path tracer against Cycles, bench/cycles/: about 580 MB with its libraries;
+# draco and gltfpack, whose tools compress the 1M-triangle glTF for bench/mesh_stats.sh;
 # Assimp for the PLY and STL readers against it, bench/mesh_load_stats.sh).
 BENCH_DIR  ?= build-bench
 BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
-              libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libembree-dev povray bc \
-              blender libassimp-dev
+              libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
+              libmeshoptimizer-dev libembree-dev povray bc blender draco gltfpack libassimp-dev
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-dev libpng-dev \
-             libopenexr-dev libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev
+             libopenexr-dev libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
+             libmeshoptimizer-dev
 FUZZ_SECONDS ?= 60
 
 .PHONY: deps build demo test test-sanitize fuzz clean bench

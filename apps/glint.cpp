@@ -48,6 +48,7 @@ struct Options {
     bool stats = false;
     bool quiet = false;
     bool lenient = false;
+    std::string camera;  ///< --camera: empty for the model's first camera.
 };
 
 // Interrupts. The first SIGINT or SIGTERM asks the render to stop: workers finish their
@@ -214,6 +215,8 @@ int run(const Options& opt) {
         return usageError(
             "--kernels avx2: this CPU (or this build of glint) has no AVX2; use "
             "auto or portable");
+    if (demo && !opt.camera.empty())
+        return usageError("--camera chooses among a model file's cameras: name a model to render");
     if (!opt.output.empty() && !glint::imageFormatFor(opt.output))
         return usageError("cannot write '" + opt.output + "': unknown image format (use " +
                           glint::kImageExtensions + ")");
@@ -231,6 +234,7 @@ int run(const Options& opt) {
             options.width = width;
             options.height = height;
             options.lenient = opt.lenient;
+            options.camera = glint::CameraChoice::parse(opt.camera);
             glint::ModelScene m = glint::loadSceneFile(opt.scene, warnings, options);
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
@@ -361,6 +365,19 @@ int main(int argc, char** argv) {
                  "Skip unknown commands and ignore unmatched popTransforms in scene files, with "
                  "a warning, as the course's own parser did (default: they are errors)")
         ->group(input);
+    app.add_option("--camera", opt.camera,
+                   "Which of a model file's cameras to render through: its number N (from 0, in "
+                   "the order of the file's node tree), the name of the camera or of its node, "
+                   "or none to ignore the file's cameras and frame the model (default: its first "
+                   "perspective camera)")
+        ->group(input)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                if (text.empty()) return "expected a camera number, a name, or none";
+                return {};
+            },
+            "", ""))
+        ->type_name("N|NAME|none");
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,

@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <string>
 
 #include "cli/cli_support.h"
 #include "glint/io/image/image_io.h"
+#include "unit/io/gltf/gltf_asset_builder.h"
 
 namespace glint::test {
 namespace {
@@ -110,6 +112,83 @@ TEST(CliGltf, MeshCommandPlacesAGltfFileRelativeToTheScene) {
     EXPECT_GT(img.at(14, 26, 2), 200);
     EXPECT_LT(img.at(14, 26, 0), 50);
     EXPECT_EQ(img.at(0, 0, 0), 0);
+}
+
+/// Two quads, red around x = -3 and blue around x = 3, with camera 0 'Left' in front of the red
+/// one and camera 1 'Right' (node 'right') in front of the blue one.
+std::string twoCameras() {
+    GltfAsset a;
+    int red = a.floats({-4, -1, 0, -2, -1, 0, -2, 1, 0, -4, 1, 0}, "VEC3");
+    int blue = a.floats({2, -1, 0, 4, -1, 0, 4, 1, 0, 2, 1, 0}, "VEC3");
+    int indices = a.integers({0, 1, 2, 0, 2, 3}, GltfAsset::kUbyte, "SCALAR");
+    auto quad = [&](int positions, int material) {
+        return R"({"primitives": [{"attributes": {"POSITION": )" + std::to_string(positions) +
+               R"(}, "indices": )" + std::to_string(indices) + R"(, "material": )" +
+               std::to_string(material) + "}]}";
+    };
+    return a.text(R"("meshes": [)" + quad(red, 0) + ", " + quad(blue, 1) + R"(],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1], "metallicFactor": 0}},
+                      {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 1, 1], "metallicFactor": 0}}],
+        "cameras": [{"name": "Left", "type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}},
+                    {"name": "Right", "type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}],
+        "nodes": [{"mesh": 0}, {"mesh": 1}, {"camera": 0, "translation": [-3, 0, 5]},
+                  {"name": "right", "camera": 1, "translation": [3, 0, 5]}])");
+}
+
+TEST(CliGltf, CameraPicksOneOfTheFilesCameras) {
+    std::string dir = freshDir("gltf-cameras");
+    writeFile(dir + "/two.gltf", twoCameras());
+    auto centre = [&](const std::string& args) {
+        CommandResult r = runGlint("-q two.gltf --size 9x9 -o c.png " + args, dir);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        Image8 img = readImage8(dir + "/c.png", 3);
+        return std::array<int, 3>{img.at(4, 4, 0), img.at(4, 4, 1), img.at(4, 4, 2)};
+    };
+    auto left = centre("");  // the first camera
+    EXPECT_GT(left[0], left[2] + 50);
+    for (const char* choice : {"1", "Right", "right"}) {
+        auto right = centre(std::string("--camera ") + choice);
+        EXPECT_GT(right[2], right[0] + 50) << choice;
+    }
+}
+
+TEST(CliGltf, CameraNoneFramesTheModelAndSaysSo) {
+    std::string dir = dirWith("gltf-camera-none", {"scene.glb"});
+    CommandResult r = runGlint("scene.glb --camera none --size 40x30", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: scene.glb has no camera: framing it with a camera at ("))
+        << r.err;
+    EXPECT_TRUE(contains(r.err, "(and 2 lights of its own)")) << r.err;
+}
+
+TEST(CliGltf, AnUnknownCameraIsAnErrorListingTheCameras) {
+    std::string dir = dirWith("gltf-camera-bad", {"scene.glb"});
+    CommandResult r = runGlint("scene.glb --camera 3", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err,
+                         "scene.glb: error: there is no camera 3 (cameras are numbered from 0 in "
+                         "the order of the node tree): the file has 1 camera: 0 = camera 0 "
+                         "'view' (node 3 'camera')"))
+        << r.err;
+    r = runGlint("scene.glb --camera Front", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "scene.glb: error: no camera or camera node is named 'Front'"))
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/scene.png"));
+    // Scene files and the demo have their own camera; an empty choice is no choice.
+    writeFile(dir + "/s.test", "size 8 8\ncamera 0 0 5 0 0 0 0 1 0 45\nsphere 0 0 0 1\n");
+    r = runGlint("s.test --camera 0", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err,
+                         "s.test: error: a CSE167x scene has the camera its commands "
+                         "define: choosing a camera (--camera) is for model files"))
+        << r.err;
+    r = runGlint("--camera 0", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "--camera chooses among a model file's cameras")) << r.err;
+    r = runGlint("scene.glb --camera ''", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "expected a camera number, a name, or none")) << r.err;
 }
 
 }  // namespace

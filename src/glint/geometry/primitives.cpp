@@ -74,6 +74,20 @@ void Primitives::extrasAt(uint32_t id, double b1, double b2, SurfaceInteraction&
     }
 }
 
+SurfaceInteraction Primitives::triangleAttributes(uint32_t id, double b1, double b2) const {
+    SurfaceInteraction si;
+    si.material = triangleMaterial_[id];
+    if (uint32_t ti = triangleUvs_.empty() ? kFlat : triangleUvs_[id]; ti != kFlat) {
+        const auto& uv = cornerUvs_[ti];
+        const double b0 = 1 - b1 - b2;
+        si.u = uv[0][0] * b0 + uv[1][0] * b1 + uv[2][0] * b2;
+        si.v = uv[0][1] * b0 + uv[1][1] * b1 + uv[2][1] * b2;
+        si.hasUv = true;
+    }
+    if (!triangleExtras_.empty()) extrasAt(id, b1, b2, si);
+    return si;
+}
+
 void Primitives::addSphere(const Sphere& sphere, uint32_t material) {
     spheres_.push_back(sphere);
     sphereSearch_.push_back(sphereSearch(sphere));

@@ -190,6 +190,10 @@ class Primitives {
     /// The float search record of plane `id` (boundedCount() <= id < size()).
     const PlaneSearch& planeSearch(uint32_t id) const { return planeSearch_[id - boundedCount()]; }
 
+    /// The texture coordinates and extras (not the position or normals) of triangle `id`
+    /// (< triangleCount()) at barycentrics (b1, b2) of its second and third vertices: what a
+    /// light sampler needs to evaluate a textured emitter at a point it chose.
+    SurfaceInteraction triangleAttributes(uint32_t id, double b1, double b2) const;
     /// Shading data for a hit that traversal returned for `ray`, refined in double.
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 

@@ -65,17 +65,39 @@ std::unique_ptr<Scene> loadCourse(const std::string& path, std::vector<Diagnosti
 }
 
 Model loadObjModel(const std::string& path, std::vector<Diagnostic>& warnings,
-                   const LoadLimits& limits) {
-    ObjOptions options;
-    options.limits = limits;
-    return singleMeshModel(loadObj(path, warnings, options));
+                   const LoadOptions& options) {
+    ObjOptions obj;
+    obj.limits = options.limits;
+    return singleMeshModel(loadObj(path, warnings, obj));
 }
 
 Model loadGltfModel(const std::string& path, std::vector<Diagnostic>& warnings,
-                    const LoadLimits& limits) {
-    GltfOptions options;
-    options.limits = limits;
-    return loadGltf(path, warnings, options);
+                    const LoadOptions& options) {
+    GltfOptions gltf;
+    gltf.limits = options.limits;
+    gltf.camera = options.camera;
+    return loadGltf(path, warnings, gltf);
+}
+
+/// Loads a model with `format`, and applies the camera choice where its loader has not (a
+/// format without cameras).
+Model loadModelAs(const FileFormat& format, const std::string& path,
+                  std::vector<Diagnostic>& warnings, const LoadOptions& options) {
+    Model model = format.loadModel(path, warnings, options);
+    switch (options.camera.kind) {
+        case CameraChoice::Kind::None:
+            model.camera.reset();
+            break;
+        case CameraChoice::Kind::Index:
+        case CameraChoice::Kind::Name:
+            if (!model.camera)
+                throw SceneError({path, 0, 0}, "there is no " + options.camera.describe() + ": " +
+                                                   format.name + " files have no cameras");
+            break;
+        default:
+            break;
+    }
+    return model;
 }
 
 Model loadPlyModel(const std::string& path, std::vector<Diagnostic>& warnings,
@@ -146,24 +168,17 @@ const std::vector<FileFormat>& fileFormats() {
         {"PLY", "PLY", {".ply"}, plyMagic, false, nullptr, loadPlyModel},
         {"STL", "STL", {".stl"}, stlMagic, false, nullptr, loadStlModel},
         // FBX stays unread: docs/performance.md, "PLY and STL: Glint's readers or Assimp".
-        {"FBX",
-         "FBX",
-         {".fbx"},
-         fbxMagic,
-         false,
-         nullptr,
-         nullptr,
-         false,
-         "export it as glTF, e.g. from Blender: File > Import > FBX, File > Export > glTF 2.0"},
-        {"Blender",
-         "Blender",
-         {".blend"},
-         blenderMagic,
-         false,
-         nullptr,
-         nullptr,
-         false,
-         "export it as glTF from Blender: File > Export > glTF 2.0"},
+        {.name = "FBX",
+         .listed = "FBX",
+         .extensions = {".fbx"},
+         .magic = fbxMagic,
+         .hint = "export it as glTF, e.g. from Blender: File > Import > FBX, File > Export > "
+                 "glTF 2.0"},
+        {.name = "Blender",
+         .listed = "Blender",
+         .extensions = {".blend"},
+         .magic = blenderMagic,
+         .hint = "export it as glTF from Blender: File > Export > glTF 2.0"},
     };
     return formats;
 }
@@ -221,7 +236,9 @@ Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
                 const LoadLimits& limits) {
     FormatChoice choice = chooseFormat(path, FileUse::Model, warnings);
     if (!choice.format) throw SceneError({path, 0, 0}, choice.problem);
-    return choice.format->loadModel(path, warnings, limits);
+    LoadOptions options;
+    options.limits = limits;
+    return loadModelAs(*choice.format, path, warnings, options);
 }
 
 ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
@@ -235,11 +252,16 @@ ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warni
     FormatChoice choice = chooseFormat(path, FileUse::Scene, warnings);
     if (!choice.format) throw SceneError({path, 0, 0}, choice.problem);
     if (choice.format->loadScene) {
+        if (options.camera.kind != CameraChoice::Kind::First)
+            throw SceneError({path, 0, 0},
+                             std::string("a ") + choice.format->name +
+                                 " has the camera its commands define: choosing a camera "
+                                 "(--camera) is for model files");
         ModelScene out;
         out.scene = choice.format->loadScene(path, warnings, options);
         return out;
     }
-    return frameModelScene(choice.format->loadModel(path, warnings, options.limits), options.width,
+    return frameModelScene(loadModelAs(*choice.format, path, warnings, options), options.width,
                            options.height);
 }
 

@@ -36,6 +36,9 @@ struct LoadOptions {
     bool lenient = false;
     /// The image a model is framed for (frameModelScene): 0 x 0 for its camera's or 640 x 480.
     int width = 0, height = 0;
+    /// Which of a model file's cameras to use (`--camera`). A choice other than the default is
+    /// an error for a scene file, and naming a camera is one for a model without cameras.
+    CameraChoice camera;
 };
 
 /// A file format Glint knows, whether it reads it or not.
@@ -51,7 +54,7 @@ struct FileFormat {
     std::unique_ptr<Scene> (*loadScene)(const std::string& path, std::vector<Diagnostic>& warnings,
                                         const LoadOptions& options) = nullptr;
     Model (*loadModel)(const std::string& path, std::vector<Diagnostic>& warnings,
-                       const LoadLimits& limits) = nullptr;
+                       const LoadOptions& options) = nullptr;
     bool planned = false;  ///< Glint means to read it: its message says "(yet)".
     /// For a format Glint cannot read: how to make a file it reads of one, said in parentheses
     /// after "Glint cannot read FBX files"; null for none.

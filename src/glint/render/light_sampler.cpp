@@ -51,6 +51,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         const Material& m = scene.materials[prims.materialOf(id)];
         Entry e{Kind::Triangle, id, m.frontEmissionOnly};
         e.emission = m.emission;
+        if (m.pbr != 0 && scene.pbr(m.pbr).emissiveTexture && id < prims.triangleCount())
+            e.texturedPbr = m.pbr;
         double area;
         if (id < prims.triangleCount()) {
             auto v = prims.triangleVertices(id);
@@ -121,9 +123,13 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
             break;
     }
     SurfaceSample ss;
+    Vec3 emission = e.emission;
     if (e.kind == Kind::Triangle) {
         auto [b0, b1] = sampleUniformTriangle(u);  // as sampleTriangle, from stored edges
         ss = {e.c + e.ca * b0 + e.cb * b1, e.n, e.pdfArea};
+        if (e.texturedPbr != 0)  // the point is a b0 + b b1 + c (1 - b0 - b1)
+            emission = emissionAt(scene_.pbr(e.texturedPbr),
+                                  prims.triangleAttributes(e.index, b1, 1 - b0 - b1));
     } else if (e.kind == Kind::Sphere) {
         ss = sampleSphere(prims.sphere(e.index - prims.triangleCount()), u);
     } else {
@@ -138,7 +144,7 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     if (e.frontOnly ? !(cosLight < 0) : cosLight == 0) return std::nullopt;
     double pdf = ss.pdfArea * d2 / std::abs(cosLight);
     if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
-    return LightSample{wi, e.emission, pdf, dist, false};
+    return LightSample{wi, emission, pdf, dist, false};
 }
 
 double LightSampler::pdfHit(const Vec3& from, const Hit& hit, const SurfaceInteraction& si) const {

@@ -62,7 +62,9 @@ class LightSampler {
         uint32_t index;          ///< Into scene.lights, or a primitive id.
         bool frontOnly = false;  ///< Triangles of quad lights emit from their front face only.
         double pdfArea = 0;      ///< Triangles: 1 / area.
-        Vec3 emission{};         ///< Emissive surfaces: their radiance.
+        Vec3 emission{};         ///< Emissive surfaces: their radiance (textured: the mean).
+        /// Triangles with an emissive texture: their physically based material's id.
+        uint32_t texturedPbr = 0;
         /// Triangles: the corner c, the edges a - c and b - c, and the unit normal of
         /// cross(b - a, c - a): a point is c + (a - c) b0 + (b - c) b1.
         Vec3 c{}, ca{}, cb{}, n{};

@@ -5,6 +5,7 @@
 #include "glint/core/spawn.h"
 #include "glint/math/sobol.h"
 #include "glint/render/bsdf.h"
+#include "glint/scene/pbr_material.h"
 
 namespace glint {
 namespace {
@@ -25,6 +26,7 @@ bool specularOnly(const Bsdf& bsdf) {
         bool operator()(const DiffuseSpecular& d) const {
             return d.alpha == 0 && d.diffuse == Vec3(0);
         }
+        bool operator()(const MetallicRoughness&) const { return false; }
     };
     return std::visit(Visitor{}, bsdf.lobe);
 }
@@ -71,29 +73,60 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
         const Material& m = scene_.materials[si.material];
+        const PbrMaterial* pm = m.pbr != 0 ? &scene_.pbr(m.pbr) : nullptr;
 
-        // Light the surface emits towards the path.
-        if (!(m.emission == Vec3(0)) && (!m.frontEmissionOnly || dot(ray.dir, si.ng) < 0)) {
-            if (depth == 0 || specularBounce)
-                L += beta * m.emission;
-            else
-                L += beta * m.emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, hit, si));
+        // Absorption inside a volume, paid on leaving it (Beer-Lambert over the segment).
+        if (pm && std::isfinite(pm->attenuationDistance) && pm->thickness > 0 &&
+            dot(ray.dir, si.ng) > 0) {
+            const double travelled = length(si.p - ray.origin);
+            const Vec3& c = pm->attenuationColor;
+            auto keep = [&](double x) {
+                return x > 0 ? std::exp(std::log(std::min(x, 1.0)) * travelled /
+                                        pm->attenuationDistance)
+                             : 0.0;
+            };
+            beta = beta * Vec3(keep(c.x), keep(c.y), keep(c.z));
         }
-        if (depth >= scene_.maxDepth) break;
 
         Bsdf bsdf;
-        if (m.texture != 0) {
+        Vec3 emission = m.emission, shadingNormal = si.n;
+        if (pm) {
+            const PbrSurface ps = evalSurface(*pm, si);
+            emission = ps.emission;
+            shadingNormal = ps.normal;
+            const double alpha = ps.roughness * ps.roughness;
+            bsdf.lobe = MetallicRoughness{
+                ps.baseColor,    ps.metallic, std::max(alpha, MetallicRoughness::kMinAlpha),
+                ps.transmission, pm->ior,     pm->thickness == 0};
+        } else if (m.texture != 0) {
             Material textured = m;
             textured.diffuse =
                 scene_.texture(m.texture).eval(si.hasUv, si.u, si.v, si.p, m.diffuse);
             bsdf = bsdfFromMaterial(textured);
         } else {
-            bsdf = bsdfFromMaterial(m);
+            bsdf = bsdfs_[si.material];
         }
+
+        // Light the surface emits towards the path.
+        if (!(emission == Vec3(0)) && (!m.frontEmissionOnly || dot(ray.dir, si.ng) < 0)) {
+            if (depth == 0 || specularBounce)
+                L += beta * emission;
+            else
+                L += beta * emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, hit, si));
+        }
+        if (depth >= scene_.maxDepth) break;
+
         // The shading frame's normal on the geometric normal's side, so that the side a
         // direction lies on (inside or outside a dielectric) is the geometry's.
-        const Frame frame(dot(si.n, si.ng) < 0 ? -si.n : si.n);
+        const bool flip = dot(shadingNormal, si.ng) < 0;
+        const Frame frame(flip ? -shadingNormal : shadingNormal);
         const Vec3 wo = frame.toLocal(-ray.dir);
+        // A direction whose side of the shading surface differs from its side of the
+        // geometric one would leak light through the surface (shading normals, normal maps):
+        // such directions carry nothing.
+        auto consistent = [&](const Vec3& wWorld, const Vec3& wLocal) {
+            return dot(wWorld, si.ng) * wLocal.z > 0;
+        };
 
         // Next-event estimation: one light sample, weighted against the BSDF's density.
         // Three pairs of dimensions per bounce: (light, lobe), the point on the light, the
@@ -106,13 +139,14 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             // BSDF sampling alone cannot reach delta lights: they are sampled in every mode.
             if (ls && !(ls->L == Vec3(0)) && (ls->delta || strategy_ != Strategy::BsdfOnly)) {
                 Vec3 wi = frame.toLocal(ls->wi);
+                if (!consistent(ls->wi, wi)) wi = Vec3(0);
                 Vec3 f = bsdf.eval(wo, wi) * std::abs(wi.z);
                 if (!(f == Vec3(0))) {
                     double end = ls->distance;
                     if (std::isfinite(end))  // back off at the light's end: its surface lies there
                         end -= spawnOffset(si.p + ls->wi * end, offset);
                     ctx.counts.shadow++;
-                    if (!scene_.bvh().occluded(spawnRay(si.p, ls->wi, offset, end))) {
+                    if (!scene_.occluded(spawnRay(si.p, ls->wi, offset, end))) {
                         double w = ls->delta || strategy_ == Strategy::LightsOnly
                                        ? 1
                                        : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
@@ -127,6 +161,8 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const Point2 uDir = sampler.get2D();
         std::optional<BsdfSample> bs = bsdf.sample(wo, uLobe, uDir);
         if (!bs || !(bs->pdf > 0)) break;
+        const Vec3 next = normalize(frame.toWorld(bs->wi));
+        if (!consistent(next, bs->wi)) break;
         beta = beta * bs->weight();
         if (beta == Vec3(0)) break;
         specularBounce = bs->isSpecular();
@@ -141,10 +177,10 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             beta = beta / survive;
         }
 
-        ray = spawnRay(si.p, normalize(frame.toWorld(bs->wi)), offset);
+        ray = spawnRay(si.p, next, offset);
         ctx.counts.reflection++;
         hit = Hit{};
-        found = scene_.bvh().intersect(ray, hit);
+        found = scene_.intersect(ray, hit);
     }
     return finiteRadiance(L, ctx.counts);
 }

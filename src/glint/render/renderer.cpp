@@ -85,6 +85,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             for (int k = 0; k < n; ++k) {
                 Hit hit = hits[k];
                 bool found = hit.t < std::numeric_limits<float>::infinity();
+                if (found && scene.filtersCameraHits()) [[unlikely]]
+                    found = scene.filterHit(rays[k], hit, true);
                 const Sample& s = samples[i + k];
                 PathContext ctx{s.rng, counts};
                 ctx.pixelSeed = s.pixelSeed;

@@ -85,7 +85,7 @@ WhittedIntegrator::WhittedIntegrator(const Scene& scene, int spp)
 Vec3 WhittedIntegrator::trace(const Ray& ray, int depth, double weight, PathContext& ctx) const {
     (depth == 0 ? ctx.counts.camera : ctx.counts.reflection)++;
     Hit hit;
-    bool found = scene_.bvh().intersect(ray, hit);
+    bool found = scene_.intersect(ray, hit, depth == 0);
     return shade(ray, found ? &hit : nullptr, depth, weight, ctx);
 }
 
@@ -93,13 +93,13 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
                                       RayCounts& counts) const {
     counts.shadow++;
     Ray ray = spawnRay(p, wi, scene_.spawnOffset(), distance);
-    if (!anyTransmissive_) return scene_.bvh().occluded(ray) ? Vec3(0) : Vec3(1);
+    if (!anyTransmissive_) return scene_.occluded(ray) ? Vec3(0) : Vec3(1);
     // Walk the surfaces along the segment, filtering through each transmissive one. The walk
     // ends: every step moves past a hit, and a segment crosses few surfaces in practice.
     Vec3 t(1);
     for (int crossings = 0; crossings < 256; ++crossings) {
         Hit hit;
-        if (!scene_.bvh().intersect(ray, hit)) return t;
+        if (!scene_.intersect(ray, hit)) return t;
         SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
         const Material& m = scene_.materials[si.material];
         if (!m.transmissive()) return Vec3(0);
@@ -135,7 +135,7 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
         if (!(nDotL > 0)) continue;
         if (!anyTransmissive_) {  // the course's case, kept lean
             ctx.counts.shadow++;
-            if (scene_.bvh().occluded(spawnRay(si.p, wi, scene_.spawnOffset(), distance))) continue;
+            if (scene_.occluded(spawnRay(si.p, wi, scene_.spawnOffset(), distance))) continue;
             color += lightTerm(si, wo, m, wi, radiance, nDotL);
             continue;
         }
@@ -221,7 +221,7 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, c
     Ray next = spawnRay(si.p, wi, offset);
     ctx.counts.reflection++;
     Hit hit;
-    bool found = scene_.bvh().intersect(next, hit);
+    bool found = scene_.intersect(next, hit);
     if (found && anyAreaLights_) {
         // An area light's surface: its emission weighed against the light's own samples
         // (areaLight()), on their scale (pi times the physical one, like the course's terms).

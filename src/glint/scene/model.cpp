@@ -1,8 +1,42 @@
 #include "glint/scene/model.h"
 
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
 #include <utility>
 
 namespace glint {
+
+CameraChoice CameraChoice::parse(const std::string& text) {
+    CameraChoice c;
+    if (text.empty()) return c;
+    if (text == "none") {
+        c.kind = Kind::None;
+        return c;
+    }
+    if (std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
+        c.kind = Kind::Index;
+        auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), c.index);
+        if (ec != std::errc()) c.index = SIZE_MAX;  // beyond any file's cameras
+        return c;
+    }
+    c.kind = Kind::Name;
+    c.name = text;
+    return c;
+}
+
+std::string CameraChoice::describe() const {
+    switch (kind) {
+        case Kind::Index:
+            return "camera " + std::to_string(index);
+        case Kind::Name:
+            return "camera '" + name + "'";
+        case Kind::None:
+            return "no camera";
+        default:
+            return "the first camera";
+    }
+}
 
 size_t Model::triangles() const {
     size_t n = 0;

@@ -33,10 +33,31 @@ struct ModelCamera {
     std::string description;  ///< "camera 0 'Main' (node 3)", for messages.
 };
 
+/// Which of a model file's cameras to use (`glint --camera`). The loaders number a file's
+/// cameras in the order they meet them (a glTF file: its camera nodes, depth first through the
+/// default scene, children in order; numbered from 0).
+struct CameraChoice {
+    enum class Kind {
+        First,  ///< The first camera Glint can use (a glTF file's first perspective camera).
+        Index,  ///< Camera number `index`.
+        Name,   ///< The first camera (or camera node) named `name`.
+        None,   ///< None: the model is framed as if it had no camera.
+    };
+    Kind kind = Kind::First;
+    size_t index = 0;
+    std::string name;
+
+    /// "none" is None, a decimal number an Index, anything else a Name; empty is First.
+    static CameraChoice parse(const std::string& text);
+    /// "camera 2", "camera 'Side'": for messages.
+    std::string describe() const;
+};
+
 /// A model in its own space (Glint's conventions: right-handed, +y up).
 struct Model {
     std::string name;  ///< The file it came from.
-    /// Indexed like the file's meshes. A mesh no placement uses may be left empty.
+    /// Indexed like the file's meshes (then, for glTF, the copies of meshes posed by skins).
+    /// A mesh no placement uses may be left empty.
     std::vector<MeshData> meshes;
     std::vector<ModelPlacement> placements;
     std::optional<ModelCamera> camera;

@@ -80,6 +80,8 @@ PbrSurface evalSurface(const PbrMaterial& m, const SurfaceInteraction& si) {
         roughness *= mr.y;
         metallic *= mr.z;
     }
+    if (m.roughnessTexture) roughness *= m.roughnessTexture.sample(si).rgb.x;
+    if (m.metallicTexture) metallic *= m.metallicTexture.sample(si).rgb.x;
     s.metallic = unit(metallic);
     s.roughness = unit(roughness);
     double transmission = m.transmission;

@@ -31,6 +31,8 @@ struct TextureSlot {
     std::array<double, 6> transform{1, 0, 0, 0, 1, 0};
 
     explicit operator bool() const { return image != nullptr; }
+    bool operator==(const TextureSlot&) const =
+        default;  ///< The same image (pointer) and settings.
     /// The transform from glTF's offset, rotation (radians) and scale, as KHR_texture_transform
     /// composes them: translation * rotation * scale.
     void setTransform(double offsetU, double offsetV, double rotation, double scaleU,
@@ -53,6 +55,9 @@ struct PbrMaterial {
     double metallic = 1, roughness = 1;  ///< Perceptual roughness: GGX alpha = roughness^2.
     /// Roughness in green, metalness in blue, both linear (multiplying the factors).
     TextureSlot metallicRoughnessTexture;
+    /// Separate maps (MTL's map_Pr and map_Pm, the scene file's): the red channel, linear,
+    /// multiplies the roughness and the metalness.
+    TextureSlot roughnessTexture, metallicTexture;
     /// Tangent-space normals (x right along the tangent, y along the bitangent), linear.
     TextureSlot normalTexture;
     double normalScale = 1;  ///< Scales the map's x and y.

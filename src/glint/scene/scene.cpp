@@ -1,9 +1,11 @@
 #include "glint/scene/scene.h"
 
+#include <bit>
 #include <optional>
 
 #include "glint/core/parallel.h"
 #include "glint/core/spawn.h"
+#include "glint/math/rng.h"
 
 namespace glint {
 
@@ -62,7 +64,45 @@ void Scene::prepare(const PrepareOptions& options) {
     Bounds3f b = bvh_.bounds();
     spawnOffset_ =
         sceneSpawnOffset(b.empty() ? 1.0 : static_cast<double>(maxComponent(b.diagonal())));
+    cutouts_ = cullsBackFaces_ = false;
+    for (const PbrMaterial& m : pbrMaterials) {
+        cutouts_ = cutouts_ || m.cutsOut();
+        cullsBackFaces_ = cullsBackFaces_ || !m.doubleSided;
+    }
     prepared_ = true;
+}
+
+bool Scene::cutOut(const Ray& ray, const Hit& hit, bool cameraRay) const {
+    const SurfaceInteraction si = primitives.interaction(ray, hit);
+    const Material& m = materials[si.material];
+    if (m.pbr == 0) return false;
+    const PbrMaterial& pm = pbr(m.pbr);
+    if (cameraRay && !pm.doubleSided && dot(ray.dir, si.ng) > 0) return true;
+    if (pm.alphaMode == AlphaMode::Opaque) return false;
+    const double alpha = opacityAt(pm, si);
+    if (pm.alphaMode == AlphaMode::Mask) return alpha < pm.alphaCutoff;
+    // Blend: the hit counts with probability alpha, decided by a hash of the ray and the
+    // primitive, so that the same ray always sees the same surfaces.
+    uint64_t h = mixBits(std::bit_cast<uint64_t>(ray.origin.x) ^ hit.primId);
+    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.origin.y) ^ (uint64_t(hit.subId) << 32));
+    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.origin.z));
+    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.dir.x));
+    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.dir.y) ^ std::bit_cast<uint64_t>(ray.dir.z));
+    const double u = static_cast<double>(h >> 11) * 0x1p-53;
+    return alpha <= u;
+}
+
+bool Scene::filterHit(const Ray& ray, Hit& hit, bool cameraRay) const {
+    Ray r = ray;
+    // Each step moves past a hit; a pathological stack of cut-out layers ends the walk (the
+    // last hit then counts).
+    for (int layer = 0; layer < kMaxCutoutLayers; ++layer) {
+        if (!cutOut(r, hit, cameraRay)) return true;
+        r.tMin = static_cast<double>(hit.t);
+        hit = Hit{};
+        if (!bvh_.intersect(r, hit)) return false;
+    }
+    return true;
 }
 
 }  // namespace glint

@@ -127,6 +127,29 @@ class Scene {
     bool prepared() const { return prepared_; }
 
     const Bvh& bvh() const { return bvh_; }
+
+    /// The closest hit along `ray` that is not cut out: texels of alpha-masked materials below
+    /// their cutoff and, with probability 1 - alpha, texels of alpha-blended ones are passed
+    /// through, and so are back faces of single-sided materials for `camera` rays (glTF's
+    /// back-face culling). Integrators search the scene through this and occluded().
+    bool intersect(const Ray& ray, Hit& hit, bool cameraRay = false) const {
+        if (!bvh_.intersect(ray, hit)) return false;
+        if (!cutouts_ && !(cameraRay && cullsBackFaces_)) [[likely]]
+            return true;
+        return filterHit(ray, hit, cameraRay);
+    }
+    /// Whether anything that is not cut out lies along `ray` (within its range).
+    bool occluded(const Ray& ray) const {
+        if (!cutouts_) [[likely]]
+            return bvh_.occluded(ray);
+        Hit hit;
+        return intersect(ray, hit);
+    }
+    /// Whether camera hits must go through filterHit(): some material cuts out or culls.
+    bool filtersCameraHits() const { return cutouts_ || cullsBackFaces_; }
+    /// Given `hit`, the closest hit along `ray`, moves it to the closest one not cut out;
+    /// false if none is left.
+    bool filterHit(const Ray& ray, Hit& hit, bool cameraRay) const;
     /// Absolute part of the secondary-ray offset for this scene (see core/spawn.h).
     double spawnOffset() const { return spawnOffset_; }
 
@@ -139,8 +162,14 @@ class Scene {
         Bvh bvh;
     };
     std::vector<std::unique_ptr<SharedMesh>> sharedMeshes_;
+    /// Whether the hit of `ray` is cut out (see intersect()).
+    bool cutOut(const Ray& ray, const Hit& hit, bool cameraRay) const;
+    static constexpr int kMaxCutoutLayers = 1024;
+
     Bvh bvh_;
     double spawnOffset_ = 0;
+    bool cutouts_ = false;         ///< Some material is alpha-masked or blended.
+    bool cullsBackFaces_ = false;  ///< Some physically based material is single-sided.
     bool prepared_ = false;
 };
 

@@ -1,5 +1,7 @@
 #include "glint/scene/scene_builder.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "glint/geometry/shape_search.h"
@@ -96,6 +98,30 @@ std::unique_ptr<Scene> SceneBuilder::finish(std::vector<Diagnostic>* warnings) {
         scene_->camera->focusDistance = focusDistance_;
     }
     return std::move(scene_);
+}
+
+void SceneBuilder::attachPbr() {
+    PbrMaterial p = *pbr_;
+    const Material& m = material_;
+    p.baseColor = m.diffuse;
+    p.roughness = std::sqrt(std::clamp(m.roughness, 0.0, 1.0));  // GGX alpha = roughness^2
+    p.emissive = m.emission;
+    p.transmission =
+        std::clamp((m.transmission.x + m.transmission.y + m.transmission.z) / 3, 0.0, 1.0);
+    p.ior = m.ior;
+    p.doubleSided = true;  // the scene format's surfaces have two sides
+    // A course `texture` image replaces the diffuse colour: it is the base colour then.
+    if (!p.baseColorTexture && m.texture != 0) {
+        const Texture& t = scene_->texture(m.texture);
+        if (t.kind == Texture::Kind::Image && t.image) {
+            p.baseColorTexture.image = t.image;
+            p.baseColorTexture.wrapS = p.baseColorTexture.wrapT = t.wrap;
+            p.baseColor = Vec3(1);
+        }
+    }
+    auto& all = scene_->pbrMaterials;
+    material_.pbr = !all.empty() && all.back() == p ? static_cast<uint32_t>(all.size())
+                                                    : scene_->addPbrMaterial(std::move(p));
 }
 
 }  // namespace glint

@@ -78,9 +78,26 @@ class SceneBuilder {
     /// The id of the current material, added to the scene when it changed since last asked
     /// (Scene::addMaterial reuses the last material when it is equal).
     uint32_t materialId() {
-        if (materialChanged_)
+        if (materialChanged_) {
+            if (pbr_) attachPbr();
             materialId_ = scene_->addMaterial(material_), materialChanged_ = false;
+        }
         return materialId_;
+    }
+    /// The physically based maps and metalness of what follows (the scene file's `metallic`
+    /// and `texture SLOT file`), to change; made on first use. While there are any, the
+    /// current material gets a PbrMaterial of them whose factors come from the flat material
+    /// (attachPbr()).
+    PbrMaterial& editPbr() {
+        materialChanged_ = true;
+        if (!pbr_) pbr_.emplace();
+        return *pbr_;
+    }
+    /// Drops the physically based maps and metalness: the current material is flat again.
+    void clearPbr() {
+        materialChanged_ = true;
+        pbr_.reset();
+        material_.pbr = 0;
     }
     /// Adds `m`, a material other than the current one (a light's surface, a model's default),
     /// and returns its id. The current material is added again the next time it is asked for.
@@ -152,7 +169,12 @@ class SceneBuilder {
     std::vector<Mat4> stack_{Mat4::identity()};
     std::optional<Transform> transform_;  ///< stack_.back() baked; empty if singular.
     bool transformValid_ = false;
+    /// Sets material_.pbr to a PbrMaterial of pbr_'s maps and metalness with the flat
+    /// material's colour, roughness, emission, transmission and index.
+    void attachPbr();
+
     Material material_;
+    std::optional<PbrMaterial> pbr_;
     bool materialChanged_ = true;
     uint32_t materialId_ = 0;
     Vec3 attenuation_{1, 0, 0};

@@ -83,6 +83,22 @@ TEST(Model, ASingularCompositionNamesTheNode) {
     }
 }
 
+TEST(CameraChoice, NoneANumberOrAName) {
+    using Kind = CameraChoice::Kind;
+    EXPECT_EQ(CameraChoice::parse("").kind, Kind::First);
+    EXPECT_EQ(CameraChoice::parse("none").kind, Kind::None);
+    CameraChoice n = CameraChoice::parse("12");
+    EXPECT_EQ(n.kind, Kind::Index);
+    EXPECT_EQ(n.index, 12u);
+    EXPECT_EQ(n.describe(), "camera 12");
+    EXPECT_EQ(CameraChoice::parse("99999999999999999999999").index, SIZE_MAX);
+    CameraChoice s = CameraChoice::parse("Side 2");
+    EXPECT_EQ(s.kind, Kind::Name);
+    EXPECT_EQ(s.name, "Side 2");
+    EXPECT_EQ(s.describe(), "camera 'Side 2'");
+    EXPECT_EQ(CameraChoice::parse("-1").kind, Kind::Name);  // not a number of a camera
+}
+
 TEST(ModelFraming, AModelWithoutCameraOrLightsGetsGlintsAndSaysSo) {
     ModelScene m = frameModelScene(singleMeshModel(triangle()));
     EXPECT_EQ(m.scene->width, 640);

@@ -74,6 +74,34 @@ TEST(Texture, RepeatTilesAndWrapsBetweenOppositeEdges) {
     EXPECT_TRUE(isFinite(sampleBilinear(img, nan, -kInfinity, TextureWrap::Clamp)));
 }
 
+TEST(Texture, MirroredRepeatReflectsEveryOtherTile) {
+    TextureImage img = quadImage();
+    // u in [1, 2) mirrors [0, 1): u = 1.25 reads like 0.75 (green column at the top).
+    for (double u : {0.25, 0.75})
+        for (double k : {0.0, 2.0, -2.0})
+            expectNear(sampleBilinear(img, u + k, 0.75, TextureWrap::MirroredRepeat),
+                       sampleBilinear(img, u, 0.75, TextureWrap::Clamp));
+    expectNear(sampleBilinear(img, 1.25, 0.75, TextureWrap::MirroredRepeat), {0, 1, 0});
+    expectNear(sampleBilinear(img, -0.25, 0.75, TextureWrap::MirroredRepeat), {1, 0, 0});
+    // At the mirror line the two texels either side are the same texel: no blend with the far
+    // edge, unlike repeat.
+    expectNear(sampleBilinear(img, 1.0, 0.75, TextureWrap::MirroredRepeat), {0, 1, 0});
+    expectNear(sampleBilinear(img, 1.0, 0.75, TextureWrap::Repeat), {0.5, 0.5, 0});
+}
+
+TEST(Texture, EachAxisWrapsItsOwnWayAndAlphaIsFiltered) {
+    TextureImage img = quadImage();
+    img.alpha = {255, 0, 255, 0};  // the left column opaque, the right transparent
+    // u repeats, v clamps: u = 1.25 is the left column, v = 1.5 the top row.
+    Rgba r = sampleBilinearRgba(img, 1.25, 1.5, TextureWrap::Repeat, TextureWrap::Clamp);
+    expectNear(r.rgb, {1, 0, 0});
+    EXPECT_NEAR(r.a, 1, 1e-12);
+    Rgba mid = sampleBilinearRgba(img, 0.5, 0.75, TextureWrap::Clamp, TextureWrap::Clamp);
+    EXPECT_NEAR(mid.a, 0.5, 1e-12);
+    EXPECT_NEAR(sampleBilinearRgba(img, 0.75, 0.25, TextureWrap::Clamp, TextureWrap::Clamp).a, 0,
+                1e-12);
+}
+
 TEST(Texture, SrgbImagesAreDecodedBeforeFiltering) {
     TextureImage img;
     img.width = 2;

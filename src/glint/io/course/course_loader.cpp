@@ -66,7 +66,8 @@ const std::vector<Command>& Parser::commands() {
         {"disk", 7, 7, "cx cy cz nx ny nz radius", &Parser::cmdDisk},
         {"polygon", 3, kMaxPolygonVertices, "v1 v2 v3 ...", &Parser::cmdPolygon},
         {"mesh", 1, 1, "file.obj", &Parser::cmdMesh},
-        {"texture", 1, 2, "file [repeat|clamp], or none", &Parser::cmdTexture},
+        {"texture", 1, 3, "[slot] file [repeat|clamp|mirror], or [slot] none", &Parser::cmdTexture},
+        {"metallic", 1, 1, "m", &Parser::cmdMetallic},
         {"checker", 7, 7, "r1 g1 b1 r2 g2 b2 scale", &Parser::cmdChecker},
     };
     return table;

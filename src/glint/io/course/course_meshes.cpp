@@ -28,7 +28,9 @@ void Parser::cmdMesh() {
         FormatChoice format = chooseFormat(path, FileUse::Model, warnings_);
         if (!format.format) fail(0, "mesh " + quoted(1) + ": " + format.problem);
         // Errors inside the mesh file name that file (and its line and column for OBJ).
-        it = models_.emplace(path, format.format->loadModel(path, warnings_, limits_)).first;
+        LoadOptions options;
+        options.limits = limits_;
+        it = models_.emplace(path, format.format->loadModel(path, warnings_, options)).first;
     }
     // Placed when the file ends (SceneBuilder::finish), so that a mesh placed several times is
     // stored once. A glTF asset's meshes are placed by its nodes, under the current transform;
@@ -41,7 +43,80 @@ void Parser::cmdMesh() {
     }
 }
 
+namespace {
+
+/// The physically based map a `texture` slot name stands for, and whether it holds colours
+/// (sRGB-encoded bytes) rather than data.
+struct MapSlot {
+    const char* name;
+    TextureSlot PbrMaterial::*slot;
+    bool srgb;
+};
+constexpr MapSlot kMapSlots[] = {
+    {"basecolormap", &PbrMaterial::baseColorTexture, true},
+    {"metallicroughnessmap", &PbrMaterial::metallicRoughnessTexture, false},
+    {"roughnessmap", &PbrMaterial::roughnessTexture, false},
+    {"metallicmap", &PbrMaterial::metallicTexture, false},
+    {"normalmap", &PbrMaterial::normalTexture, false},
+    {"emissivemap", &PbrMaterial::emissiveTexture, true},
+    {"transmissionmap", &PbrMaterial::transmissionTexture, false},
+};
+
+}  // namespace
+
+void Parser::cmdMetallic() {
+    double m = real(1);
+    if (!(m >= 0 && m <= 1)) fail(1, "metallic must be between 0 and 1, got " + quoted(1));
+    builder_.editPbr().metallic = m;
+}
+
+std::shared_ptr<const TextureImage> Parser::sceneImage(int token, bool srgb) {
+    if (!limits_.readFiles)
+        fail(token, "texture " + quoted(token) + " is not read: reading files is off");
+    std::string path = scenePath(tok_[token].text);
+    const std::string key = srgb ? path : path + "\n(linear)";
+    auto it = images_.find(key);
+    if (it == images_.end()) {
+        try {
+            it = images_.emplace(key, loadTextureImage(path, srgb, limits_)).first;
+        } catch (const RenderError& e) {
+            fail(token, e.what());
+        }
+    }
+    return it->second;
+}
+
+void Parser::cmdTextureMap() {
+    const MapSlot* slot = nullptr;
+    for (const MapSlot& s : kMapSlots)
+        if (tok_[1].text == s.name) slot = &s;
+    if (tok_[2].text == "none") {
+        if (ntok_ > 3)
+            fail(3, "'texture " + std::string(tok_[1].text) + " none' takes no other argument");
+        builder_.editPbr().*(slot->slot) = TextureSlot{};
+        return;
+    }
+    TextureSlot t;
+    if (ntok_ == 4) {
+        if (tok_[3].text == "clamp")
+            t.wrapS = t.wrapT = TextureWrap::Clamp;
+        else if (tok_[3].text == "mirror")
+            t.wrapS = t.wrapT = TextureWrap::MirroredRepeat;
+        else if (tok_[3].text != "repeat")
+            fail(3, "unknown texture wrap " + quoted(3) + " (repeat, clamp or mirror)");
+    }
+    t.image = sceneImage(2, slot->srgb);
+    builder_.editPbr().*(slot->slot) = std::move(t);
+}
+
 void Parser::cmdTexture() {
+    for (const MapSlot& s : kMapSlots)
+        if (tok_[1].text == s.name) {
+            if (ntok_ < 3)
+                fail(1, "'texture " + std::string(tok_[1].text) + "' needs a file or none");
+            return cmdTextureMap();
+        }
+    if (ntok_ > 3) fail(3, "'texture file [repeat|clamp|mirror]' takes two arguments at most");
     if (tok_[1].text == "none") {
         if (ntok_ > 2) fail(2, "'texture none' takes no other argument");
         builder_.editMaterial().texture = 0;
@@ -52,20 +127,12 @@ void Parser::cmdTexture() {
     if (ntok_ == 3) {
         if (tok_[2].text == "clamp")
             texture.wrap = TextureWrap::Clamp;
+        else if (tok_[2].text == "mirror")
+            texture.wrap = TextureWrap::MirroredRepeat;
         else if (tok_[2].text != "repeat")
-            fail(2, "unknown texture wrap " + quoted(2) + " (repeat or clamp)");
+            fail(2, "unknown texture wrap " + quoted(2) + " (repeat, clamp or mirror)");
     }
-    if (!limits_.readFiles) fail(1, "texture " + quoted(1) + " is not read: reading files is off");
-    std::string path = scenePath(tok_[1].text);
-    auto it = images_.find(path);
-    if (it == images_.end()) {
-        try {
-            it = images_.emplace(path, loadTextureImage(path, true, limits_)).first;
-        } catch (const RenderError& e) {
-            fail(1, e.what());
-        }
-    }
-    texture.image = it->second;
+    texture.image = sceneImage(1, true);
     uint32_t id = scene().addTexture(std::move(texture));
     builder_.editMaterial().texture = id;
     imageTextures_[id] = loc(tok_[1].column);

@@ -151,6 +151,11 @@ class Parser {
     // Meshes and textures (docs/scene-format.md, "Meshes" and "Textures").
     void cmdMesh();
     void cmdTexture();
+    void cmdMetallic();
+    /// `texture SLOT file [wrap]` and `texture SLOT none`: a physically based map.
+    void cmdTextureMap();
+    /// The image at scene-relative `name` (token 1 or 2), read once per scene.
+    std::shared_ptr<const TextureImage> sceneImage(int token, bool srgb);
     void cmdChecker();
     /// `name`, a file named in the scene, relative to the scene file's directory.
     std::string scenePath(std::string_view name) const;

@@ -9,9 +9,9 @@
 #include <optional>
 #include <system_error>
 
+#include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/io/gltf/gltf_internal.h"
-#include "glint/core/mapped_file.h"
 
 namespace glint::gltf {
 namespace {
@@ -66,14 +66,19 @@ JsonShape scanJson(std::string_view text) {
 /// so that range is checked here (buffers hold exactly their byteLength once tinygltf has
 /// read them). Returns how many buffers have no URI: in a .glb, tinygltf copies the binary
 /// chunk into each. Values are read as tinygltf reads them; what tinygltf rejects is left to
-/// it. The JSON is parsed only when it may hold images (the key, or a \u escape that might
-/// spell it) or when `countBinaryCopies`.
-size_t lookBeforeTinygltf(const Context& ctx, std::string_view json, bool countBinaryCopies) {
+/// it. The JSON is parsed only when it may hold images or use a compression extension (their
+/// names, or a \u escape that might spell them) or when `countBinaryCopies`. When the
+/// compression extensions need tinygltf to read other JSON (prepareCompression), `rewritten`
+/// receives it.
+size_t lookBeforeTinygltf(Context& ctx, std::string_view json, bool glb, bool countBinaryCopies,
+                          std::string& rewritten) {
     if (!countBinaryCopies && json.find("\"images\"") == std::string_view::npos &&
-        json.find("\\u") == std::string_view::npos)
+        json.find("\\u") == std::string_view::npos && !mayUseCompression(json))
         return 0;
-    const nlohmann::json j = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+    nlohmann::json j = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
     if (!j.is_object()) return 0;
+    if (prepareCompression(ctx, j, glb))
+        rewritten = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     auto array = [&](const char* key) -> const nlohmann::json* {
         auto it = j.find(key);
         return it != j.end() && it->is_array() ? &*it : nullptr;
@@ -206,6 +211,50 @@ bool keepImageBytes(tinygltf::Image* image, const int, std::string*, std::string
     return true;
 }
 
+/// A .glb like `glb` (checked) with JSON chunk `json` in place of its own of `jsonLength` bytes,
+/// made in `out`.
+std::string_view rebuildGlb(std::string_view glb, size_t jsonLength, std::string json,
+                            std::string& out) {
+    json.append((4 - json.size() % 4) % 4, ' ');
+    const std::string_view rest = glb.substr(20 + jsonLength);  // the binary chunk, if any
+    auto u32 = [&](size_t x) {
+        const uint32_t v = static_cast<uint32_t>(x);
+        out.append(reinterpret_cast<const char*>(&v), 4);
+    };
+    out.reserve(20 + json.size() + rest.size());
+    out = glb.substr(0, 8);  // magic and version
+    u32(20 + json.size() + rest.size());
+    u32(json.size());
+    u32(kGlbJson);
+    out += json;
+    out += rest;
+    return out;
+}
+
+/// The extensions the JSON text `json` lists in extensionsRequired (none if it does not parse).
+std::vector<std::string> requiredExtensions(std::string_view json) {
+    std::vector<std::string> out;
+    const nlohmann::json j = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+    if (!j.is_object()) return out;
+    auto it = j.find("extensionsRequired");
+    if (it == j.end() || !it->is_array()) return out;
+    for (const nlohmann::json& e : *it)
+        if (e.is_string()) out.push_back(e.get<std::string>());
+    return out;
+}
+
+/// Fails if `required` names an extension Glint does not support.
+void checkRequiredExtensions(const Context& ctx, const std::vector<std::string>& required) {
+    static const char* const kSupported[] = {
+        "EXT_meshopt_compression", "KHR_draco_mesh_compression",
+        "KHR_lights_punctual",     "KHR_materials_emissive_strength",
+        "KHR_materials_ior",       "KHR_materials_transmission",
+        "KHR_mesh_quantization",   "KHR_meshopt_compression"};
+    for (const std::string& e : required)
+        if (std::find(std::begin(kSupported), std::end(kSupported), e) == std::end(kSupported))
+            ctx.fail("the file requires extension " + e + ", which Glint does not support");
+}
+
 /// tinygltf's error text, one line.
 std::string oneLine(std::string s) {
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
@@ -238,10 +287,16 @@ void parseContainer(Context& ctx, std::string_view bytes) {
                      " of memory, more than the " + formatBytes(double(available)) + " available");
     };
     checkMemory();
-    size_t binaryCopies = lookBeforeTinygltf(ctx, json, binBytes > 0);
+    std::string rewritten, glb;
+    size_t binaryCopies = lookBeforeTinygltf(ctx, json, binary, binBytes > 0, rewritten);
     if (binaryCopies > 1) {
         needed += double(binaryCopies - 1) * double(binBytes);
         checkMemory();
+    }
+    if (!rewritten.empty()) {  // tinygltf reads the JSON prepared for the compression extensions
+        needed += double(rewritten.size()) + (binary ? double(bytes.size()) : 0);
+        checkMemory();
+        bytes = binary ? rebuildGlb(bytes, json.size(), rewritten, glb) : rewritten;
     }
 
     tinygltf::TinyGLTF loader;
@@ -264,8 +319,13 @@ void parseContainer(Context& ctx, std::string_view bytes) {
     } catch (const std::exception& e) {
         ctx.fail(std::string("tinygltf: ") + e.what());
     }
-    if (!ok) ctx.fail("tinygltf: " + oneLine(err));
+    if (!ok) {
+        // What tinygltf fails on may be what an extension the file requires changes.
+        checkRequiredExtensions(ctx, requiredExtensions(json));
+        ctx.fail("tinygltf: " + oneLine(err));
+    }
     if (!warn.empty()) ctx.warn("tinygltf: " + oneLine(warn));
+    restoreCompression(ctx);
 }
 
 /// Checks the asset's version and the extensions it requires.
@@ -273,18 +333,9 @@ void checkAsset(Context& ctx) {
     const std::string& version = ctx.model.asset.version;
     if (!version.starts_with("2."))
         ctx.fail("glTF version '" + version + "' is not supported (Glint reads 2.0)");
-    static const char* const kSupported[] = {"KHR_lights_punctual",
-                                             "KHR_materials_emissive_strength", "KHR_materials_ior",
-                                             "KHR_materials_transmission", "KHR_mesh_quantization"};
-    for (const std::string& e : ctx.model.extensionsRequired)
-        if (std::find(std::begin(kSupported), std::end(kSupported), e) == std::end(kSupported))
-            ctx.fail("the file requires extension " + e + ", which Glint does not support");
+    checkRequiredExtensions(ctx, ctx.model.extensionsRequired);
     if (!ctx.model.animations.empty())
         ctx.warnOnce("animations", "animations are not supported: nodes keep their own transforms");
-    if (!ctx.model.skins.empty())
-        ctx.warnOnce("skins",
-                     "skins are not supported: skinned meshes are shown in their bind "
-                     "pose, placed by their nodes");
 }
 
 }  // namespace glint::gltf

@@ -1,11 +1,16 @@
 #pragma once
 // Shared by gltf_loader.cpp (the file, node trees, cameras, lights), gltf_meshes.cpp
-// (accessors and meshes) and gltf_materials.cpp (materials and their images). Internal to
+// (accessors and meshes), gltf_skins.cpp (skinned meshes posed), gltf_materials.cpp
+// (materials and their images) and gltf_compression.cpp (compressed meshes). Internal to
 // glint/io: use gltf_loader.h.
 
+#include <array>
 #include <bit>
+#include <cstdint>
 #include <map>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -15,12 +20,16 @@
 #include "glint/core/error.h"
 #include "glint/io/gltf/gltf_loader.h"
 #include "glint/io/gltf/tinygltf.h"
+#include "glint/math/mat4.h"
 #include "glint/scene/mesh.h"
+#include "glint/scene/model.h"
 
 namespace glint::gltf {
 
 static_assert(std::endian::native == std::endian::little,
               "glTF's binary data is little-endian, and Glint reads it as it lies");
+
+struct Compression;  // gltf_compression.cpp
 
 /// What loading one asset shares: the file, tinygltf's model of it, and the warnings.
 struct Context {
@@ -32,6 +41,9 @@ struct Context {
     const GltfOptions& options;
     tinygltf::Model model;
     size_t externalBytes = 0;  ///< Read from external buffer files so far.
+    /// What the compression extensions need (gltf_compression.cpp): null when the file uses
+    /// none. Its decoded data is made when first asked for, through a const Context too.
+    std::shared_ptr<Compression> compression;
 
     /// Throws SceneError naming the file.
     [[noreturn]] void fail(const std::string& message) const;
@@ -60,10 +72,42 @@ std::string describe(const char* kind, size_t index, const std::string& name);
 /// it, for messages.
 std::string_view bufferViewBytes(const Context& ctx, int index, const std::string& user);
 
+// Compressed meshes (gltf_compression.cpp): KHR_draco_mesh_compression through libdraco,
+// EXT_meshopt_compression and KHR_meshopt_compression through libmeshoptimizer.
+
+/// Whether JSON text may use a compression extension (a look at its text: false means it does
+/// not; true that prepareCompression() must see the parsed JSON).
+bool mayUseCompression(std::string_view json);
+/// Prepares the parsed JSON `j` for tinygltf, which (as Debian builds it, without Draco) cannot
+/// read compressed files: takes the `indices` of Draco primitives out (their accessors have no
+/// bufferView, which tinygltf rejects) and replaces meshopt fallback buffers (which may have
+/// no data) by a byte, after checking the extensions' objects. What it takes and what the
+/// decoders need go to ctx.compression. Returns whether `j` changed. `glb`: the JSON of a .glb.
+bool prepareCompression(Context& ctx, nlohmann::json& j, bool glb);
+/// After tinygltf's parse: puts the Draco primitives' indices back, and finds which accessors
+/// Draco primitives decode.
+void restoreCompression(Context& ctx);
+/// The elements of accessor `index` decoded from its KHR_draco_mesh_compression primitive, laid
+/// out tightly as the accessor declares them (type, component type, count); null if no Draco
+/// primitive holds the accessor. The primitive is decoded when first asked for.
+const std::vector<unsigned char>* dracoAccessor(const Context& ctx, int index);
+/// The decoded bytes of bufferView `index` (in range) if it is meshopt-compressed (its
+/// byteLength), decoded when first asked for; nullopt if it is not compressed.
+std::optional<std::string_view> meshoptBufferView(const Context& ctx, int index);
+/// Bytes the decoders hold (for memory estimates).
+size_t decompressedBytes(const Context& ctx);
+
 /// Counts of a mesh, for the memory estimate: an upper bound of what readMesh() stores.
 struct MeshCounts {
     size_t positions = 0, normals = 0, uvs = 0, triangles = 0;
     size_t normalTriangles = 0, uvTriangles = 0;  ///< Triangles with normals, with uvs.
+    size_t uv1s = 0, colors = 0, tangents = 0;    ///< Read from the file.
+    size_t generatedTangents = 0;  ///< At most, for primitives with a normal map and no TANGENT.
+    size_t largestGeneration = 0;  ///< Triangles of the largest such primitive.
+    size_t extraTriangles = 0;     ///< Triangles with TEXCOORD_1, COLOR_0 or tangents.
+
+    /// Bytes of the MeshData.
+    double bytes() const;
 };
 
 /// Checks every primitive of glTF mesh `mesh` (modes, attribute and index accessors and their
@@ -79,12 +123,10 @@ class Materials {
 
   private:
     MeshMaterial map(int index);
-    /// The image of a texture slot of a material, or null (with a warning) if it has none Glint
-    /// can use; `wrap` receives the sampler's wrapping.
-    std::shared_ptr<const TextureImage> slotImage(const tinygltf::TextureInfo& info,
-                                                  const std::string& material, const char* slot,
-                                                  bool srgb, const char* instead,
-                                                  TextureWrap* wrap = nullptr);
+    /// A texture slot of a material (image, sampler, coordinate set, KHR_texture_transform);
+    /// empty (with a warning) if it has no image Glint can use.
+    TextureSlot slot(int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
+                     const std::string& material, const char* slot, bool srgb, const char* instead);
     std::shared_ptr<const TextureImage> image(int index, bool srgb, std::string& problem);
 
     Context& ctx_;
@@ -96,9 +138,49 @@ class Materials {
     std::map<std::pair<int, bool>, Decoded> images_;  ///< By (image, sRGB).
 };
 
+/// The joints and weights of a mesh's vertices (JOINTS_0/WEIGHTS_0, and _1), by MeshData
+/// position: up to kInfluences per vertex, weights as the file has them (0 where it has none).
+struct VertexWeights {
+    static constexpr size_t kInfluences = 8;
+    struct Vertex {
+        std::array<uint16_t, kInfluences> joints{};
+        std::array<float, kInfluences> weights{};
+        bool operator==(const Vertex&) const = default;
+    };
+    std::vector<Vertex> vertices;
+};
+
 /// Reads glTF mesh `mesh` (checked by countMesh) into a MeshData: its primitives' triangles,
-/// with positions, normals and texture coordinates, and their materials through `materials`.
-/// `counts` (from countMesh) reserves the storage.
-MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials);
+/// with positions, normals, texture coordinates (both sets), colours and tangents (generated,
+/// MikkTSpace-compatibly, for primitives whose material has a normal map and that have no
+/// TANGENT), and their materials through `materials`. `counts` (from countMesh) reserves the
+/// storage. With `weights`, also reads the joints and weights of its vertices for skinning.
+MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials,
+                  VertexWeights* weights = nullptr);
+
+/// The matrices (MAT4, column-major in the file) of accessor `index`, at least `count` of them;
+/// `user` names who refers to it, for messages.
+std::vector<Mat4> readMatrices(const Context& ctx, int index, size_t count,
+                               const std::string& user);
+
+/// A node's transform relative to its parent: its matrix, or translation x rotation x scale.
+/// `label` names the node in messages.
+Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label);
+
+/// A node placing a mesh with a skin: its placement is posed by the skin (gltf_skins.cpp).
+struct SkinnedPlacement {
+    size_t placement = 0;  ///< Index in Model::placements.
+    int skin = -1, node = -1;
+    Mat4 nodeWorld;  ///< The node's world transform: for vertices without weights.
+};
+
+/// Poses every skinned placement: each vertex v' = sum_i w_i (world(joint_i) x
+/// inverseBind_i) v (the glTF specification's skinning, in the pose the nodes' own transforms
+/// give), normals by the inverse transpose of that matrix and tangents by the matrix. A mesh
+/// posed by one skin and placed by no other node is posed where it is; otherwise each (mesh,
+/// skin) is a copy appended to `out.meshes`. `weights` holds, by mesh, the weights readMesh()
+/// read (for each mesh a skinned placement uses). The placements then have the identity.
+void poseSkins(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& skinned,
+               std::vector<VertexWeights>& weights);
 
 }  // namespace glint::gltf

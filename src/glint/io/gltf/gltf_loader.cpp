@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <system_error>
@@ -17,6 +18,7 @@
 #include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
 #include "glint/io/gltf/gltf_internal.h"
+#include "glint/scene/tangents.h"
 
 namespace glint {
 namespace gltf {
@@ -59,6 +61,7 @@ std::string_view bufferViewBytes(const Context& ctx, int index, const std::strin
     const auto& views = ctx.model.bufferViews;
     if (index < 0 || static_cast<size_t>(index) >= views.size())
         missing(ctx, "bufferView", index, views.size(), user);
+    if (std::optional<std::string_view> decoded = meshoptBufferView(ctx, index)) return *decoded;
     const tinygltf::BufferView& bv = views[static_cast<size_t>(index)];
     const std::string label = "bufferView " + std::to_string(index);
     const auto& buffers = ctx.model.buffers;
@@ -86,7 +89,8 @@ Vec3 applyVector(const Mat4& m, const Vec3& v) {
             m.m[2][0] * v.x + m.m[2][1] * v.y + m.m[2][2] * v.z};
 }
 
-/// A node's transform relative to its parent: its matrix, or translation x rotation x scale.
+}  // namespace
+
 Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label) {
     auto numbers = [&](const std::vector<double>& v, size_t count, const char* what) {
         if (v.empty()) return false;
@@ -126,15 +130,25 @@ Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string&
     return m;
 }
 
-/// The camera of node `node`, if it is one Glint can use.
-std::optional<ModelCamera> nodeCamera(Context& ctx, int index, const Mat4& world,
-                                      const std::string& node) {
-    const tinygltf::Camera& c = ctx.model.cameras[static_cast<size_t>(index)];
+namespace {
+
+/// A node with a camera, as the walk meets it.
+struct CameraNode {
+    int camera;               ///< Index into the file's cameras.
+    size_t node;              ///< Index into its nodes.
+    Mat4 world;               ///< The node's world transform.
+    std::string description;  ///< "camera 0 'Main' (node 3)"
+};
+
+/// The camera of a camera node, if it is one Glint can use; else `problem` says why not.
+std::optional<ModelCamera> nodeCamera(const Context& ctx, const CameraNode& node,
+                                      std::string& problem) {
+    const tinygltf::Camera& c = ctx.model.cameras[static_cast<size_t>(node.camera)];
+    const Mat4& world = node.world;
     ModelCamera out;
-    out.description = describe("camera", static_cast<size_t>(index), c.name) + " (" + node + ")";
+    out.description = node.description;
     if (c.type != "perspective") {
-        ctx.warn(out.description + " is " + c.type +
-                 ", and Glint has perspective cameras only: it is ignored");
+        problem = out.description + " is " + c.type + ", and Glint has perspective cameras only";
         return std::nullopt;
     }
     const double yfov = c.perspective.yfov;
@@ -145,9 +159,7 @@ std::optional<ModelCamera> nodeCamera(Context& ctx, int index, const Mat4& world
     double fl = length(forward), ul = length(up);
     if (!isFinite(eye) || !withinCoordinateRange(eye) || !(fl > 0) || !std::isfinite(fl) ||
         !(ul > 0) || !std::isfinite(ul) || !(length(cross(forward / fl, up / ul)) > 1e-6)) {
-        ctx.warn(out.description +
-                 ": its node's transform gives it no position or view "
-                 "direction: it is ignored");
+        problem = out.description + ": its node's transform gives it no position or view direction";
         return std::nullopt;
     }
     out.spec.eye = eye;
@@ -210,9 +222,53 @@ std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
     return std::nullopt;
 }
 
+/// "0 = camera 0 'Main' (node 3), 1 = camera 1 (node 5)": the cameras a choice may name.
+std::string cameraList(const std::vector<CameraNode>& cameras) {
+    if (cameras.empty()) return "the file has no cameras";
+    std::string s = "the file has " + std::to_string(cameras.size()) +
+                    (cameras.size() == 1 ? " camera: " : " cameras: ");
+    constexpr size_t kListed = 20;
+    for (size_t i = 0; i < cameras.size() && i < kListed; ++i)
+        s += (i ? ", " : "") + std::to_string(i) + " = " + cameras[i].description;
+    if (cameras.size() > kListed) s += ", ...";
+    return s;
+}
+
+/// The camera `choice` (an Index or a Name) picks among the camera nodes met, in the order
+/// met. (The first usable camera, the default, is chosen during the walk.)
+std::optional<ModelCamera> chooseCamera(Context& ctx, const std::vector<CameraNode>& cameras,
+                                        const CameraChoice& choice) {
+    using Kind = CameraChoice::Kind;
+    std::string problem;
+    switch (choice.kind) {
+        case Kind::None:
+        case Kind::First:
+            return std::nullopt;
+        case Kind::Index:
+            if (choice.index >= cameras.size())
+                ctx.fail("there is no camera " + std::to_string(choice.index) +
+                         " (cameras are numbered from 0 in the order of the node tree): " +
+                         cameraList(cameras));
+            if (auto camera = nodeCamera(ctx, cameras[choice.index], problem)) return camera;
+            ctx.fail("camera " + std::to_string(choice.index) + ": " + problem);
+        case Kind::Name:
+            for (const CameraNode& c : cameras) {
+                const tinygltf::Camera& camera = ctx.model.cameras[static_cast<size_t>(c.camera)];
+                if (camera.name != choice.name && ctx.model.nodes[c.node].name != choice.name)
+                    continue;
+                if (auto chosen = nodeCamera(ctx, c, problem)) return chosen;
+                ctx.fail("camera '" + choice.name + "': " + problem);
+            }
+            ctx.fail("no camera or camera node is named '" + choice.name +
+                     "': " + cameraList(cameras));
+    }
+    return std::nullopt;
+}
+
 /// Walks the default scene's node trees (or every root node when the file has no scene):
-/// placements, the first perspective camera and the lights.
-void walkNodes(Context& ctx, Model& out) {
+/// placements (those of skinned meshes into `skinned` as well), the camera
+/// ctx.options.camera chooses and the lights.
+void walkNodes(Context& ctx, Model& out, std::vector<SkinnedPlacement>& skinned) {
     const auto& nodes = ctx.model.nodes;
     const auto& scenes = ctx.model.scenes;
     std::vector<int> roots;
@@ -242,6 +298,8 @@ void walkNodes(Context& ctx, Model& out) {
     std::vector<Pending> stack;
     for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, Mat4(), -1});
     std::vector<bool> visited(nodes.size());
+    std::vector<CameraNode> cameras;
+    const bool firstCamera = ctx.options.camera.kind == CameraChoice::Kind::First;
     while (!stack.empty()) {
         Pending p = stack.back();
         stack.pop_back();
@@ -261,7 +319,15 @@ void walkNodes(Context& ctx, Model& out) {
         if (n.mesh != -1) {
             if (n.mesh < 0 || static_cast<size_t>(n.mesh) >= ctx.model.meshes.size())
                 missing(ctx, "mesh", n.mesh, ctx.model.meshes.size(), label);
-            if (std::optional<Transform> t = Transform::fromMatrix(world))
+            if (n.skin != -1) {
+                // The skin places the mesh: the node's own transform is ignored (glTF 2.0,
+                // "Skins"), and the placement is the identity.
+                if (n.skin < 0 || static_cast<size_t>(n.skin) >= ctx.model.skins.size())
+                    missing(ctx, "skin", n.skin, ctx.model.skins.size(), label);
+                skinned.push_back({out.placements.size(), n.skin, p.node, world});
+                out.placements.push_back(
+                    {static_cast<uint32_t>(n.mesh), Transform(), static_cast<uint32_t>(index)});
+            } else if (std::optional<Transform> t = Transform::fromMatrix(world))
                 out.placements.push_back(
                     {static_cast<uint32_t>(n.mesh), *t, static_cast<uint32_t>(index)});
             else
@@ -272,7 +338,17 @@ void walkNodes(Context& ctx, Model& out) {
         if (n.camera != -1) {
             if (n.camera < 0 || static_cast<size_t>(n.camera) >= ctx.model.cameras.size())
                 missing(ctx, "camera", n.camera, ctx.model.cameras.size(), label);
-            if (!out.camera) out.camera = nodeCamera(ctx, n.camera, world, label);
+            cameras.push_back({n.camera, index, world,
+                               describe("camera", static_cast<size_t>(n.camera),
+                                        ctx.model.cameras[static_cast<size_t>(n.camera)].name) +
+                                   " (" + label + ")"});
+            // By default, the first camera Glint can use; those met before it are ignored with
+            // a warning.
+            if (firstCamera && !out.camera) {
+                std::string problem;
+                out.camera = nodeCamera(ctx, cameras.back(), problem);
+                if (!out.camera) ctx.warn(problem + ": it is ignored");
+            }
         }
         if (auto ext = n.extensions.find("KHR_lights_punctual");
             ext != n.extensions.end() && ext->second.IsObject() && ext->second.Has("light")) {
@@ -287,46 +363,61 @@ void walkNodes(Context& ctx, Model& out) {
         for (auto it = n.children.rbegin(); it != n.children.rend(); ++it)
             stack.push_back({*it, world, p.node});
     }
+    if (!firstCamera) out.camera = chooseCamera(ctx, cameras, ctx.options.camera);
 }
 
 /// Reads every mesh a placement uses, once, after checking what they and their placements
-/// need of memory.
-void readMeshes(Context& ctx, Model& out) {
+/// need of memory; the meshes that skinned placements use with the joints and weights of
+/// their vertices, into `weights` (by mesh).
+void readMeshes(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& skinned,
+                std::vector<VertexWeights>& weights) {
     const size_t meshes = ctx.model.meshes.size();
     out.meshes.resize(meshes);
     std::vector<std::optional<MeshCounts>> counts(meshes);
     for (const ModelPlacement& p : out.placements)
         if (!counts[p.mesh]) counts[p.mesh] = countMesh(ctx, static_cast<int>(p.mesh));
-    double meshBytes = 0, placed = 0, placedNormals = 0, placedUvs = 0;
-    size_t maxPositions = 0, maxNormals = 0;
-    for (const auto& c : counts)
-        if (c) {
-            meshBytes += double(c->positions) * sizeof(Vec3f) + double(c->normals) * sizeof(Vec3f) +
-                         double(c->uvs) * sizeof(TexCoord) +
-                         double(c->triangles) * sizeof(MeshData::Triangle);
-            maxPositions = std::max(maxPositions, c->positions);
-            maxNormals = std::max(maxNormals, c->normals);
-        }
-    // A mesh placed once becomes the scene's triangles; a mesh placed several times is stored
-    // once and placed by instances (MeshPlacer), each the size of a shape.
-    std::vector<size_t> uses(meshes);
-    for (const ModelPlacement& p : out.placements) ++uses[p.mesh];
+    // What is stored: each mesh, by the skin that poses it (-1: none). A mesh posed by a skin
+    // and used otherwise too is copied (poseSkins).
+    std::vector<int> skinOf(out.placements.size(), -1);
+    for (const SkinnedPlacement& s : skinned) skinOf[s.placement] = s.skin;
+    std::map<std::pair<uint32_t, int>, size_t> uses;  // placements of each stored mesh
+    for (size_t i = 0; i < out.placements.size(); ++i) ++uses[{out.placements[i].mesh, skinOf[i]}];
+    std::vector<bool> skinnedMesh(meshes);
+    for (const SkinnedPlacement& s : skinned) skinnedMesh[out.placements[s.placement].mesh] = true;
+
+    double meshBytes = 0, placed = 0, placedNormals = 0, placedUvs = 0, placedExtras = 0;
     double instances = 0;
+    size_t maxPositions = 0, maxNormals = 0, maxGeneration = 0;
     for (size_t m = 0; m < meshes; ++m)
-        if (uses[m] > 0) {
-            placed += double(counts[m]->triangles);
-            placedNormals += double(counts[m]->normalTriangles);
-            placedUvs += double(counts[m]->uvTriangles);
-            if (uses[m] > 1) instances += double(uses[m]);
+        if (counts[m]) {
+            maxPositions = std::max(maxPositions, counts[m]->positions);
+            maxNormals = std::max(maxNormals, counts[m]->normals);
+            maxGeneration = std::max(maxGeneration, counts[m]->largestGeneration);
+            if (skinnedMesh[m])
+                meshBytes += double(counts[m]->positions) * sizeof(VertexWeights::Vertex);
         }
+    for (const auto& [key, n] : uses) {
+        const MeshCounts& c = *counts[key.first];
+        meshBytes += c.bytes();
+        // A mesh placed once becomes the scene's triangles; a mesh placed several times is
+        // stored once and placed by instances (MeshPlacer), each the size of a shape.
+        placed += double(c.triangles);
+        placedNormals += double(c.normalTriangles);
+        placedUvs += double(c.uvTriangles);
+        placedExtras += double(c.extraTriangles);
+        if (n > 1) instances += double(n);
+    }
     // The scene's estimate per triangle, scaled: the counts may exceed size_t's range.
     const double perTriangle = double(Scene::estimateBytes(1000, 0, 0, 0, 0)) / 1000;
     const double perNormal = double(Scene::estimateBytes(1000, 0, 0, 1000, 0)) / 1000 - perTriangle;
     const double perUv = double(Scene::estimateBytes(1000, 0, 0, 0, 1000)) / 1000 - perTriangle;
     const double perInstance = double(Scene::estimateBytes(0, 0, 1000, 0, 0)) / 1000;
-    double needed = meshBytes + placed * perTriangle + placedNormals * perNormal +
-                    placedUvs * perUv + instances * perInstance +
-                    double(meshPlacementBytes(maxPositions, maxNormals));
+    const double perExtras = sizeof(TriangleExtras) + 2 * sizeof(uint32_t);
+    double needed = double(decompressedBytes(ctx)) + meshBytes + placed * perTriangle +
+                    placedNormals * perNormal + placedUvs * perUv + placedExtras * perExtras +
+                    instances * perInstance +
+                    double(std::max(meshPlacementBytes(maxPositions, maxNormals),
+                                    tangentGenerationBytes(maxGeneration)));
     size_t available = memoryAvailable(ctx.options.limits);
     if (available > 0 && needed > double(available))
         ctx.fail("the model needs about " + formatBytes(needed) + " of memory (" +
@@ -334,8 +425,11 @@ void readMeshes(Context& ctx, Model& out) {
                  " triangles stored), more than the " + formatBytes(double(available)) +
                  " available");
     Materials materials(ctx);
+    weights.resize(meshes);
     for (size_t i = 0; i < meshes; ++i)
-        if (counts[i]) out.meshes[i] = readMesh(ctx, static_cast<int>(i), *counts[i], materials);
+        if (counts[i])
+            out.meshes[i] = readMesh(ctx, static_cast<int>(i), *counts[i], materials,
+                                     skinnedMesh[i] ? &weights[i] : nullptr);
 }
 
 }  // namespace
@@ -348,8 +442,11 @@ Model parseGltf(std::string_view bytes, const std::string& fileName,
     gltf::checkAsset(ctx);
     Model out;
     out.name = fileName;
-    gltf::walkNodes(ctx, out);
-    gltf::readMeshes(ctx, out);
+    std::vector<gltf::SkinnedPlacement> skinned;
+    gltf::walkNodes(ctx, out, skinned);
+    std::vector<gltf::VertexWeights> weights;
+    gltf::readMeshes(ctx, out, skinned, weights);
+    if (!skinned.empty()) gltf::poseSkins(ctx, out, skinned, weights);
     return out;
 }
 

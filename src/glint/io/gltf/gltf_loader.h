@@ -1,10 +1,12 @@
 #pragma once
 /// glTF 2.0 assets (.gltf with external or embedded buffers and images, and binary .glb), read
 /// with tinygltf and checked by Glint: the meshes of the default scene's node trees, each placed
-/// by its node's world transform, their metallic-roughness materials mapped to Glint's model,
-/// the first perspective camera and the KHR_lights_punctual lights (docs/scene-format.md,
-/// "glTF"). The result is a Model (scene/model.h): one glTF mesh is one MeshData, however many
-/// nodes place it.
+/// by its node's world transform (skinned meshes posed by their skins instead), their
+/// metallic-roughness materials mapped to Glint's model, a camera (the first perspective one,
+/// or the one asked for) and the KHR_lights_punctual lights (docs/scene-format.md, "glTF").
+/// The result is a Model (scene/model.h): one glTF mesh is one MeshData, however many nodes
+/// place it (Model::meshes is indexed like the file's meshes; a mesh posed by a skin and used
+/// otherwise too is posed in a copy appended after them).
 
 #include <optional>
 #include <string>
@@ -22,6 +24,10 @@ struct GltfOptions {
     /// readFiles off only the input's own bytes are used: embedded (data: URI) buffers and
     /// images, and a .glb's binary chunk.
     LoadLimits limits;
+    /// Which of the file's cameras becomes the model's (Model::camera): by default the first
+    /// perspective camera. The cameras are numbered in the order the node walk meets their
+    /// nodes: depth first through the default scene's trees, children in order.
+    CameraChoice camera;
 };
 
 /// Glint's light colour for a glTF light of `intensity` (candela for point lights, lux for

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "glint/io/gltf/gltf_internal.h"
-#include "glint/io/obj/obj_loader.h"
 #include "glint/io/image/texture_io.h"
+#include "glint/io/obj/obj_loader.h"
 
 namespace glint::gltf {
 namespace {
@@ -80,71 +80,132 @@ MeshMaterial Materials::map(int index) {
                                       ? std::vector<double>{0, 0, 0}
                                       : numbers(m.emissiveFactor, 3, "emissiveFactor");
     if (!std::isfinite(pbr.metallicFactor) || !std::isfinite(pbr.roughnessFactor) ||
-        !std::isfinite(m.alphaCutoff))
-        ctx_.fail(label + ": metallicFactor, roughnessFactor and alphaCutoff must be finite");
+        !std::isfinite(m.alphaCutoff) || !std::isfinite(m.normalTexture.scale))
+        ctx_.fail(label +
+                  ": metallicFactor, roughnessFactor, alphaCutoff and the normal texture's scale "
+                  "must be finite");
     // glTF's factors lie in [0, 1]; values outside are clamped.
     const Vec3 base(unit(b[0]), unit(b[1]), unit(b[2]));
     const double alpha = unit(b[3]);
-    double metallic = unit(pbr.metallicFactor), roughness = unit(pbr.roughnessFactor);
+    const double metallic = unit(pbr.metallicFactor), roughness = unit(pbr.roughnessFactor);
 
     MeshMaterial out;
     out.name = m.name.empty() ? label : m.name;
-    TextureWrap wrap = TextureWrap::Repeat;
-    std::shared_ptr<const TextureImage> baseImage =
-        slotImage(pbr.baseColorTexture, label, "baseColorTexture", true,
-                  "its faces show its base colour factor instead", &wrap);
-    // Textures Glint cannot vary over the surface count with their mean value.
-    if (auto mr = slotImage(pbr.metallicRoughnessTexture, label, "metallicRoughnessTexture", false,
-                            "its metallic and roughness factors are used alone")) {
-        Vec3 mean = mr->average();
-        roughness *= mean.y;  // glTF: roughness in green, metalness in blue
-        metallic *= mean.z;
-    }
+    PbrMaterial& p = out.pbr.emplace();
+    p.baseColor = base;
+    p.alpha = alpha;
+    p.metallic = metallic;
+    p.roughness = roughness;
+    p.baseColorTexture = slot(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                              pbr.baseColorTexture.extensions, label, "baseColorTexture", true,
+                              "its faces show its base colour factor instead");
+    p.metallicRoughnessTexture =
+        slot(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+             pbr.metallicRoughnessTexture.extensions, label, "metallicRoughnessTexture", false,
+             "its metallic and roughness factors are used alone");
+    p.normalTexture =
+        slot(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions, label,
+             "normalTexture", false, "its faces are shaded without it");
+    p.normalScale = m.normalTexture.scale;
     double strength = extensionNumber(ctx_, m.extensions, "KHR_materials_emissive_strength",
                                       "emissiveStrength", 1, label);
     if (strength < 0) ctx_.fail(label + ": emissiveStrength must not be negative");
-    Vec3 emission = Vec3(unit(e[0]), unit(e[1]), unit(e[2])) * strength;
-    if (!(emission == Vec3(0)))
-        if (auto em = slotImage(m.emissiveTexture, label, "emissiveTexture", true,
-                                "its emissive factor is used alone"))
-            emission = emission * em->average();
-
-    // How much light passes through: alpha blending (straight through), and the specular
-    // transmission of KHR_materials_transmission (refracted), for the dielectric part.
-    double opacity = 1;
+    p.emissive = Vec3(unit(e[0]), unit(e[1]), unit(e[2])) * strength;
+    if (!(p.emissive == Vec3(0)))
+        p.emissiveTexture =
+            slot(m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
+                 label, "emissiveTexture", true, "its emissive factor is used alone");
     if (m.alphaMode == "BLEND") {
-        opacity = alpha;
+        p.alphaMode = AlphaMode::Blend;
     } else if (m.alphaMode == "MASK") {
-        opacity = alpha >= m.alphaCutoff ? 1 : 0;
+        p.alphaMode = AlphaMode::Mask;
+        p.alphaCutoff = m.alphaCutoff;
     } else if (m.alphaMode != "OPAQUE") {
         ctx_.warn(label + ": alphaMode '" + m.alphaMode + "' is not one glTF defines: opaque");
     }
-    if (baseImage && m.alphaMode != "OPAQUE")
-        ctx_.warnOnce("texture-alpha",
-                      "the alpha channel of base colour textures is not read: alphaMode BLEND and "
-                      "MASK use the alpha of baseColorFactor only");
+    p.doubleSided = m.doubleSided;
+    if (m.occlusionTexture.index != -1)
+        ctx_.warnOnce("occlusion",
+                      "occlusion textures are not read: a path tracer computes the occlusion "
+                      "they approximate");
+
+    // KHR_materials_transmission, _ior and _volume.
     const bool transmissive = m.extensions.count("KHR_materials_transmission") > 0;
-    const double transmission = unit(extensionNumber(
-        ctx_, m.extensions, "KHR_materials_transmission", "transmissionFactor", 0, label));
+    p.transmission = unit(extensionNumber(ctx_, m.extensions, "KHR_materials_transmission",
+                                          "transmissionFactor", 0, label));
+    if (transmissive) {
+        const tinygltf::Value& x = m.extensions.at("KHR_materials_transmission");
+        if (x.IsObject() && x.Has("transmissionTexture")) {
+            const tinygltf::Value& t = x.Get("transmissionTexture");
+            auto integer = [&](const char* key, int fallback) {
+                return t.IsObject() && t.Has(key) && t.Get(key).IsInt() ? t.Get(key).Get<int>()
+                                                                        : fallback;
+            };
+            tinygltf::ExtensionMap ext;
+            if (t.IsObject() && t.Has("extensions") && t.Get("extensions").IsObject())
+                for (const std::string& key : t.Get("extensions").Keys())
+                    ext[key] = t.Get("extensions").Get(key);
+            p.transmissionTexture =
+                slot(integer("index", -1), integer("texCoord", 0), ext, label,
+                     "transmissionTexture", false, "its transmission factor is used alone");
+        }
+    }
     double ior = extensionNumber(ctx_, m.extensions, "KHR_materials_ior", "ior", 1.5, label);
     if (!(ior >= 1)) ior = 1.5;  // glTF allows 0 (and nothing else below 1) for "unknown"
+    p.ior = ior;
+    p.thickness = std::max(0.0, extensionNumber(ctx_, m.extensions, "KHR_materials_volume",
+                                                "thicknessFactor", 0, label));
+    p.attenuationDistance = extensionNumber(ctx_, m.extensions, "KHR_materials_volume",
+                                            "attenuationDistance", INFINITY, label);
+    if (!(p.attenuationDistance > 0)) p.attenuationDistance = INFINITY;
+    if (auto it = m.extensions.find("KHR_materials_volume");
+        it != m.extensions.end() && it->second.IsObject() && it->second.Has("attenuationColor")) {
+        const tinygltf::Value& c = it->second.Get("attenuationColor");
+        if (c.IsArray() && c.ArrayLen() == 3) {
+            double rgb[3];
+            for (int k = 0; k < 3; ++k) {
+                const tinygltf::Value& x = c.Get(k);
+                rgb[k] = x.IsNumber() ? unit(x.GetNumberAsDouble()) : 1;
+            }
+            p.attenuationColor = {rgb[0], rgb[1], rgb[2]};
+        }
+    }
+
+    // The flat material the Whitted integrator renders: textures other than the base colour
+    // count with their mean value, alpha blends by the factor's alpha.
+    const std::shared_ptr<const TextureImage>& baseImage = p.baseColorTexture.image;
+    double flatMetallic = metallic, flatRoughness = roughness;
+    if (p.metallicRoughnessTexture) {
+        Vec3 mean = p.metallicRoughnessTexture.image->average();
+        flatRoughness *= mean.y;  // glTF: roughness in green, metalness in blue
+        flatMetallic *= mean.z;
+    }
+    Vec3 emission = p.emissive;
+    if (p.emissiveTexture) emission = emission * p.emissiveTexture.image->average();
+    double opacity = 1;
+    if (p.alphaMode == AlphaMode::Blend)
+        opacity = alpha;
+    else if (p.alphaMode == AlphaMode::Mask)
+        opacity = alpha >= m.alphaCutoff ? 1 : 0;
+    const double transmission = p.transmission;
+    const double flatIor = transmissive ? ior : 1;
 
     Material& g = out.material;
     const Vec3 baseMean = baseImage ? base * baseImage->average() : base;
-    g.diffuse = base * ((1 - metallic) * (1 - transmission) * opacity);
+    g.diffuse = base * ((1 - flatMetallic) * (1 - transmission) * opacity);
     // Alpha blending weighs the whole surface (its reflection and emission too) by opacity.
-    g.specular = (Vec3(kDielectricF0 * (1 - metallic)) + baseMean * metallic) * opacity;
-    g.roughness = roughness * roughness;  // glTF's perceptual roughness squared is GGX's alpha
-    g.shininess = kSmoothShininess;       // used only where the roughness is 0
+    g.specular = (Vec3(kDielectricF0 * (1 - flatMetallic)) + baseMean * flatMetallic) * opacity;
+    g.roughness = flatRoughness * flatRoughness;  // perceptual roughness squared is GGX's alpha
+    g.shininess = kSmoothShininess;               // used only where the roughness is 0
     g.emission = emission * opacity;
-    g.transmission = base * (transmission * (1 - metallic) * opacity) + Vec3(1 - opacity);
-    g.ior = transmissive ? ior : 1;
+    g.transmission = base * (transmission * (1 - flatMetallic) * opacity) + Vec3(1 - opacity);
+    g.ior = flatIor;
     // Ambient light as for MTL materials without Ka: a dim version of the surface's colour.
     g.ambient = (baseImage ? g.diffuse * baseImage->average() : g.diffuse) * kMtlAmbientLight;
     if (baseImage) {
         Texture t;
         t.kind = Texture::Kind::Image;
-        t.wrap = wrap;
+        t.wrap = p.baseColorTexture.wrapS;
         t.image = baseImage;
         t.a = g.diffuse;  // the texel times the factor, where Glint's diffuse colour goes
         out.texture = t;
@@ -152,55 +213,73 @@ MeshMaterial Materials::map(int index) {
     return out;
 }
 
-std::shared_ptr<const TextureImage> Materials::slotImage(const tinygltf::TextureInfo& info,
-                                                         const std::string& material,
-                                                         const char* slot, bool srgb,
-                                                         const char* instead, TextureWrap* wrap) {
-    if (info.index == -1) return nullptr;
-    const std::string user = material + " " + slot;
+TextureSlot Materials::slot(int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+                            const std::string& material, const char* slotName, bool srgb,
+                            const char* instead) {
+    TextureSlot out;
+    if (index == -1) return out;
+    const std::string user = material + " " + slotName;
     const auto& textures = ctx_.model.textures;
-    if (info.index < 0 || static_cast<size_t>(info.index) >= textures.size())
-        missing(ctx_, "texture", info.index, textures.size(), user);
-    const tinygltf::Texture& texture = textures[static_cast<size_t>(info.index)];
-    if (info.texCoord != 0) {
-        ctx_.warn(material + ": its " + slot + " uses TEXCOORD_" + std::to_string(info.texCoord) +
-                  ", and Glint reads TEXCOORD_0 only: " + instead);
-        return nullptr;
+    if (index < 0 || static_cast<size_t>(index) >= textures.size())
+        missing(ctx_, "texture", index, textures.size(), user);
+    const tinygltf::Texture& texture = textures[static_cast<size_t>(index)];
+    // KHR_texture_transform: offset, rotation, scale, and perhaps another coordinate set.
+    if (auto it = extensions.find("KHR_texture_transform");
+        it != extensions.end() && it->second.IsObject()) {
+        const tinygltf::Value& x = it->second;
+        auto pair = [&](const char* key, double fallback, double& a, double& b) {
+            a = b = fallback;
+            if (!x.Has(key)) return;
+            const tinygltf::Value& v = x.Get(key);
+            if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+                ctx_.fail(user + ": KHR_texture_transform " + key + " must be two numbers");
+            a = v.Get(0).GetNumberAsDouble();
+            b = v.Get(1).GetNumberAsDouble();
+        };
+        double ou, ov, su, sv;
+        pair("offset", 0, ou, ov);
+        pair("scale", 1, su, sv);
+        double rotation = x.Has("rotation") && x.Get("rotation").IsNumber()
+                              ? x.Get("rotation").GetNumberAsDouble()
+                              : 0;
+        if (!std::isfinite(ou) || !std::isfinite(ov) || !std::isfinite(su) || !std::isfinite(sv) ||
+            !std::isfinite(rotation))
+            ctx_.fail(user + ": KHR_texture_transform must have finite numbers");
+        out.setTransform(ou, ov, rotation, su, sv);
+        if (x.Has("texCoord") && x.Get("texCoord").IsInt()) texCoord = x.Get("texCoord").Get<int>();
     }
-    if (info.extensions.count("KHR_texture_transform"))
-        ctx_.warnOnce("texture-transform",
-                      "KHR_texture_transform is not supported: textures are applied as if "
-                      "untransformed");
+    if (texCoord < 0 || texCoord > 1) {
+        ctx_.warn(material + ": its " + slotName + " uses TEXCOORD_" + std::to_string(texCoord) +
+                  ", and Glint reads TEXCOORD_0 and TEXCOORD_1 only: " + instead);
+        return {};
+    }
+    out.texCoord = static_cast<uint8_t>(texCoord);
     if (texture.source == -1) {
-        ctx_.warn(material + ": " + describe("texture", static_cast<size_t>(info.index), "") +
+        ctx_.warn(material + ": " + describe("texture", static_cast<size_t>(index), "") +
                   " has no image Glint reads (no 'source'): " + instead);
-        return nullptr;
+        return {};
     }
     const auto& images = ctx_.model.images;
     if (texture.source < 0 || static_cast<size_t>(texture.source) >= images.size())
-        missing(ctx_, "image", texture.source, images.size(),
-                "texture " + std::to_string(info.index));
-    if (wrap && texture.sampler != -1) {
+        missing(ctx_, "image", texture.source, images.size(), "texture " + std::to_string(index));
+    if (texture.sampler != -1) {
         const auto& samplers = ctx_.model.samplers;
         if (texture.sampler < 0 || static_cast<size_t>(texture.sampler) >= samplers.size())
             missing(ctx_, "sampler", texture.sampler, samplers.size(),
-                    "texture " + std::to_string(info.index));
+                    "texture " + std::to_string(index));
         const tinygltf::Sampler& s = samplers[static_cast<size_t>(texture.sampler)];
-        const bool clampS = s.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-        const bool clampT = s.wrapT == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-        *wrap = clampS && clampT ? TextureWrap::Clamp : TextureWrap::Repeat;
-        if (s.wrapS == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ||
-            s.wrapT == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
-            ctx_.warnOnce("mirrored", "MIRRORED_REPEAT wrapping is approximated by REPEAT");
-        if (clampS != clampT)
-            ctx_.warnOnce("wrap",
-                          "textures that clamp along one axis and repeat along the other "
-                          "repeat along both");
+        auto wrap = [](int mode) {
+            return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? TextureWrap::Clamp
+                   : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TextureWrap::MirroredRepeat
+                                                                   : TextureWrap::Repeat;
+        };
+        out.wrapS = wrap(s.wrapS);
+        out.wrapT = wrap(s.wrapT);
     }
     std::string problem;
-    std::shared_ptr<const TextureImage> img = image(texture.source, srgb, problem);
-    if (!img) ctx_.warn(material + ": " + problem + "; " + instead);
-    return img;
+    out.image = image(texture.source, srgb, problem);
+    if (!out.image) ctx_.warn(material + ": " + problem + "; " + instead);
+    return out;
 }
 
 std::shared_ptr<const TextureImage> Materials::image(int index, bool srgb, std::string& problem) {

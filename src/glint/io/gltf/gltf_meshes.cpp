@@ -1,13 +1,18 @@
 // glTF meshes as MeshData: accessors checked against their buffer views and buffers before a
 // byte is read, converted to float (normalised integers included), sparse accessors applied,
-// and each mesh's primitives gathered into one MeshData.
+// and each mesh's primitives gathered into one MeshData, with tangents generated where a normal
+// map needs them. Also the joints and weights of skinned vertices and the skins' matrices.
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 
 #include "glint/io/gltf/gltf_internal.h"
+#include "glint/scene/tangents.h"
 
 namespace glint::gltf {
 namespace {
@@ -89,6 +94,10 @@ AccessorView viewAccessor(const Context& ctx, int index, const std::string& user
     v.normalized = a.normalized;
     const size_t element = static_cast<size_t>(v.bytes) * static_cast<size_t>(v.components);
     v.stride = element;
+    if (const std::vector<unsigned char>* decoded = dracoAccessor(ctx, index)) {
+        v.data = decoded->data();  // decoded from Draco, tightly, as the accessor declares
+        return v;
+    }
     if (a.bufferView < -1)
         missing(ctx, "bufferView", a.bufferView, ctx.model.bufferViews.size(), v.label);
     if (a.bufferView == -1) return v;  // zeros, perhaps with sparse values
@@ -307,15 +316,37 @@ int attribute(const tinygltf::Primitive& p, const char* name) {
     return it == p.attributes.end() ? -1 : it->second;
 }
 
+/// Checks that accessor `v`'s components are floats, or normalised integers of `normalised`
+/// types (`what` says which, for the message).
+void expectFloats(const Context& ctx, const AccessorView& v, std::initializer_list<int> normalised,
+                  const char* what) {
+    if (v.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) return;
+    if (v.normalized)
+        for (int type : normalised)
+            if (v.componentType == type) return;
+    ctx.fail(v.label + ": its components must be " + what);
+}
+
 /// The checked accessors of a primitive.
 struct PrimitiveViews {
-    AccessorView position, normal, uv, indices;
-    bool hasNormal = false, hasUv = false, hasIndices = false;
+    AccessorView position, normal, uv, uv1, color, tangent, indices;
+    std::array<AccessorView, 2> joints, weights;  ///< JOINTS_n and WEIGHTS_n (skins only).
+    bool hasNormal = false, hasUv = false, hasUv1 = false, hasColor = false, hasTangent = false;
+    bool hasIndices = false;
+    int jointSets = 0;  ///< JOINTS_0/WEIGHTS_0 (1), and _1 (2): read for skins only.
+    /// Whether tangents are generated (its material has a normal map, it has no TANGENT and
+    /// has the normal map's texture coordinates), and from which set (0 or 1).
+    bool generateTangents = false;
+    int tangentUvs = 0;
     size_t triangles = 0;
+
+    bool hasExtras() const { return hasUv1 || hasColor || hasTangent || generateTangents; }
 };
 
 /// Checks primitive `k` of mesh `mesh`; false if it is skipped (with a warning when `report`).
-bool viewPrimitive(Context& ctx, int mesh, size_t k, bool report, PrimitiveViews& out) {
+/// With `skin`, also checks its joints and weights.
+bool viewPrimitive(Context& ctx, int mesh, size_t k, bool report, PrimitiveViews& out,
+                   bool skin = false) {
     const tinygltf::Primitive& p = ctx.model.meshes[static_cast<size_t>(mesh)].primitives[k];
     const std::string label = primitiveLabel(ctx, mesh, k);
     int pos = attribute(p, "POSITION");
@@ -326,18 +357,57 @@ bool viewPrimitive(Context& ctx, int mesh, size_t k, bool report, PrimitiveViews
     out.position = viewAccessor(ctx, pos, "POSITION of " + label);
     expectComponents(ctx, out.position, 3, TINYGLTF_TYPE_VEC3);
     const size_t vertices = out.position.count;
-    auto optional = [&](const char* name, int components, int type, AccessorView& view) {
-        int index = attribute(p, name);
+    // An attribute's accessor, checked by `check`, with one element per vertex.
+    auto optional = [&](const std::string& name, AccessorView& view, auto check) {
+        int index = attribute(p, name.c_str());
         if (index < 0) return false;
-        view = viewAccessor(ctx, index, std::string(name) + " of " + label);
-        expectComponents(ctx, view, components, type);
+        view = viewAccessor(ctx, index, name + " of " + label);
+        check(view);
         if (view.count != vertices)
             ctx.fail(view.label + ": it has " + std::to_string(view.count) +
                      " elements, but POSITION has " + std::to_string(vertices));
         return true;
     };
-    out.hasNormal = optional("NORMAL", 3, TINYGLTF_TYPE_VEC3, out.normal);
-    out.hasUv = optional("TEXCOORD_0", 2, TINYGLTF_TYPE_VEC2, out.uv);
+    auto elements = [&](int components, int type) {
+        return [&ctx, components, type](const AccessorView& v) {
+            expectComponents(ctx, v, components, type);
+        };
+    };
+    constexpr int kUbyte = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    constexpr int kUshort = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    out.hasNormal = optional("NORMAL", out.normal, elements(3, TINYGLTF_TYPE_VEC3));
+    out.hasUv = optional("TEXCOORD_0", out.uv, elements(2, TINYGLTF_TYPE_VEC2));
+    out.hasUv1 = optional("TEXCOORD_1", out.uv1, elements(2, TINYGLTF_TYPE_VEC2));
+    out.hasColor = optional("COLOR_0", out.color, [&](const AccessorView& v) {
+        const int type = ctx.model.accessors[static_cast<size_t>(v.index)].type;
+        if (type != TINYGLTF_TYPE_VEC3 && type != TINYGLTF_TYPE_VEC4)
+            ctx.fail(v.label + ": its elements are " + typeName(type) + ", not VEC3 or VEC4");
+        expectFloats(ctx, v, {kUbyte, kUshort}, "floats, or normalised unsigned bytes or shorts");
+    });
+    out.hasTangent = optional("TANGENT", out.tangent, [&](const AccessorView& v) {
+        expectComponents(ctx, v, 4, TINYGLTF_TYPE_VEC4);
+        expectFloats(ctx, v, {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT},
+                     "floats, or normalised bytes or shorts");
+    });
+    for (int set = 0; skin && set < 2; ++set) {
+        const std::string suffix = set == 0 ? "_0" : "_1";
+        const size_t s = static_cast<size_t>(set);
+        bool joints = optional("JOINTS" + suffix, out.joints[s], [&](const AccessorView& v) {
+            expectComponents(ctx, v, 4, TINYGLTF_TYPE_VEC4);
+            if (v.componentType != kUbyte && v.componentType != kUshort)
+                ctx.fail(v.label + ": its components must be unsigned bytes or shorts");
+        });
+        bool weights = optional("WEIGHTS" + suffix, out.weights[s], [&](const AccessorView& v) {
+            expectComponents(ctx, v, 4, TINYGLTF_TYPE_VEC4);
+            expectFloats(ctx, v, {kUbyte, kUshort},
+                         "floats, or normalised unsigned bytes or shorts");
+        });
+        if (joints != weights)
+            ctx.fail(label + ": it has " + (joints ? "JOINTS" : "WEIGHTS") + suffix + " but no " +
+                     (joints ? "WEIGHTS" : "JOINTS") + suffix);
+        if (!joints) break;
+        out.jointSets = set + 1;
+    }
     size_t n = vertices;
     if (p.indices != -1) {
         out.indices = viewAccessor(ctx, p.indices, "indices of " + label);
@@ -347,6 +417,12 @@ bool viewPrimitive(Context& ctx, int mesh, size_t k, bool report, PrimitiveViews
     }
     if (p.material < -1 || p.material >= static_cast<int>(ctx.model.materials.size()))
         missing(ctx, "material", p.material, ctx.model.materials.size(), label);
+    if (p.material >= 0 && !out.hasTangent) {
+        const auto& normalMap = ctx.model.materials[static_cast<size_t>(p.material)].normalTexture;
+        out.tangentUvs = normalMap.texCoord;
+        out.generateTangents = normalMap.index >= 0 && ((normalMap.texCoord == 0 && out.hasUv) ||
+                                                        (normalMap.texCoord == 1 && out.hasUv1));
+    }
     out.triangles = trianglesOf(ctx, p.mode, n, label, report);
     return out.triangles > 0;
 }
@@ -381,11 +457,12 @@ uint32_t appendNormals(const Context& ctx, const AccessorView& v, MeshData& out)
     return static_cast<uint32_t>(first);
 }
 
-/// The same for texture coordinates, turned to Glint's v (up the image; glTF's runs down).
-uint32_t appendUvs(const Context& ctx, const AccessorView& v, MeshData& out) {
-    const size_t first = out.uvs.size();
-    out.uvs.resize(first + v.count);
-    TexCoord* p = out.uvs.data() + first;
+/// The same for texture coordinates into `uvs` (MeshData::uvs or uv1s), turned to Glint's v
+/// (up the image; glTF's runs down).
+uint32_t appendUvs(const Context& ctx, const AccessorView& v, LargeVector<TexCoord>& uvs) {
+    const size_t first = uvs.size();
+    uvs.resize(first + v.count);
+    TexCoord* p = uvs.data() + first;
     forEachElement(ctx, v, [&](size_t i, const float* c) { p[i] = {c[0], 1 - c[1]}; });
     for (size_t i = 0; i < v.count; ++i)
         if (!std::isfinite(p[i][0]) || !std::isfinite(p[i][1]))
@@ -394,49 +471,144 @@ uint32_t appendUvs(const Context& ctx, const AccessorView& v, MeshData& out) {
     return static_cast<uint32_t>(first);
 }
 
+/// The same for vertex colours: linear RGBA (glTF's are linear already), alpha 1 for VEC3,
+/// clamped to [0, 1] as the base colour they multiply.
+uint32_t appendColors(const Context& ctx, const AccessorView& v, MeshData& out) {
+    const size_t first = out.colors.size();
+    out.colors.resize(first + v.count);
+    std::array<float, 4>* p = out.colors.data() + first;
+    const bool rgba = v.components == 4;
+    forEachElement(ctx, v, [&](size_t i, const float* c) {
+        p[i] = {c[0], c[1], c[2], rgba ? c[3] : 1.0f};
+    });
+    for (size_t i = 0; i < v.count; ++i)
+        for (float& x : p[i]) {
+            if (!std::isfinite(x))
+                ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite colour");
+            x = std::clamp(x, 0.0f, 1.0f);
+        }
+    return static_cast<uint32_t>(first);
+}
+
+/// The same for tangents: xyz normalised (zero stays zero), w the sign of the file's w.
+uint32_t appendTangents(const Context& ctx, const AccessorView& v, MeshData& out) {
+    const size_t first = out.tangents.size();
+    out.tangents.resize(first + v.count);
+    std::array<float, 4>* p = out.tangents.data() + first;
+    forEachElement(ctx, v, [&](size_t i, const float* c) { p[i] = {c[0], c[1], c[2], c[3]}; });
+    for (size_t i = 0; i < v.count; ++i) {
+        Vec3 t(p[i][0], p[i][1], p[i][2]);
+        if (!isFinite(t) || !std::isfinite(p[i][3]))
+            ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite tangent");
+        double len = length(t);
+        t = len > 0 ? t / len : Vec3(0);
+        p[i] = {float(t.x), float(t.y), float(t.z), p[i][3] < 0 ? -1.0f : 1.0f};
+    }
+    return static_cast<uint32_t>(first);
+}
+
+/// Reads the joints and weights of a primitive's vertices into `out` from `first` on (where
+/// its positions start); weights must be finite and not negative.
+void readWeights(const Context& ctx, const PrimitiveViews& v, size_t first, VertexWeights& out) {
+    if (out.vertices.size() < first + v.position.count)
+        out.vertices.resize(first + v.position.count);
+    VertexWeights::Vertex* w = out.vertices.data() + first;
+    for (size_t set = 0; set < static_cast<size_t>(v.jointSets); ++set) {
+        forEachElement(ctx, v.joints[set], [&](size_t i, const float* c) {
+            for (size_t k = 0; k < 4; ++k) w[i].joints[4 * set + k] = static_cast<uint16_t>(c[k]);
+        });
+        forEachElement(ctx, v.weights[set], [&](size_t i, const float* c) {
+            for (size_t k = 0; k < 4; ++k) {
+                if (!std::isfinite(c[k]) || c[k] < 0)
+                    ctx.fail(v.weights[set].label + ": element " + std::to_string(i) +
+                             " has a weight that is negative or not finite");
+                w[i].weights[4 * set + k] = c[k];
+            }
+        });
+    }
+}
+
 }  // namespace
+
+double MeshCounts::bytes() const {
+    using Attribute = std::array<float, 4>;
+    return double(positions) * sizeof(Vec3f) + double(normals) * sizeof(Vec3f) +
+           double(uvs + uv1s) * sizeof(TexCoord) + double(colors) * sizeof(Attribute) +
+           double(tangents + generatedTangents) * sizeof(Attribute) +
+           double(triangles) * sizeof(MeshData::Triangle);
+}
 
 MeshCounts countMesh(Context& ctx, int mesh) {
     const tinygltf::Mesh& m = ctx.model.meshes[static_cast<size_t>(mesh)];
     MeshCounts c;
-    std::set<int> positions, normals, uvs;  // accessors shared by primitives are read once
+    // Accessors shared by primitives are read once.
+    std::set<int> positions, normals, uvs, uv1s, colors, tangents;
+    auto count = [](std::set<int>& seen, const AccessorView& view, size_t& n) {
+        if (seen.insert(view.index).second) n += view.count;
+    };
     for (size_t k = 0; k < m.primitives.size(); ++k) {
         PrimitiveViews v;
         if (!m.primitives[k].targets.empty())
             ctx.warnOnce("morph", "morph targets are not supported: meshes keep their base shape");
         if (!viewPrimitive(ctx, mesh, k, true, v)) continue;
-        if (positions.insert(v.position.index).second) c.positions += v.position.count;
-        if (v.hasNormal && normals.insert(v.normal.index).second) c.normals += v.normal.count;
-        if (v.hasUv && uvs.insert(v.uv.index).second) c.uvs += v.uv.count;
+        count(positions, v.position, c.positions);
+        if (v.hasNormal) count(normals, v.normal, c.normals);
+        if (v.hasUv) count(uvs, v.uv, c.uvs);
+        if (v.hasUv1) count(uv1s, v.uv1, c.uv1s);
+        if (v.hasColor) count(colors, v.color, c.colors);
+        if (v.hasTangent) count(tangents, v.tangent, c.tangents);
+        // Generated tangents: one per corner at most (a vertex per corner, each of its own).
+        if (v.generateTangents) {
+            c.generatedTangents += 3 * v.triangles;
+            c.largestGeneration = std::max(c.largestGeneration, v.triangles);
+        }
         c.triangles += v.triangles;
         if (v.hasNormal) c.normalTriangles += v.triangles;
         if (v.hasUv) c.uvTriangles += v.triangles;
+        if (v.hasExtras()) c.extraTriangles += v.triangles;
     }
     return c;
 }
 
-MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials) {
+MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials,
+                  VertexWeights* weights) {
     const tinygltf::Mesh& m = ctx.model.meshes[static_cast<size_t>(mesh)];
     MeshData out;
     out.name = ctx.file;
     out.positions.reserve(counts.positions);
     out.normals.reserve(counts.normals);
     out.uvs.reserve(counts.uvs);
+    out.uv1s.reserve(counts.uv1s);
+    out.colors.reserve(counts.colors);
+    out.tangents.reserve(counts.tangents);
     out.triangles.reserve(counts.triangles);
     // Where each accessor's elements start in `out`, and each glTF material's index there.
-    std::map<int, uint32_t> positionBase, normalBase, uvBase, materialIds;
+    std::map<int, uint32_t> positionBase, normalBase, uvBase, uv1Base, colorBase, tangentBase;
+    std::map<int, uint32_t> materialIds;
     auto base = [&](std::map<int, uint32_t>& bases, const AccessorView& v, auto append) {
         auto [it, added] = bases.emplace(v.index, 0);
         if (added) it->second = append(ctx, v, out);
         return it->second;
     };
+    auto appendUv0 = [](const Context& c, const AccessorView& v, MeshData& o) {
+        return appendUvs(c, v, o.uvs);
+    };
+    auto appendUv1 = [](const Context& c, const AccessorView& v, MeshData& o) {
+        return appendUvs(c, v, o.uv1s);
+    };
     for (size_t k = 0; k < m.primitives.size(); ++k) {
         const tinygltf::Primitive& p = m.primitives[k];
         PrimitiveViews v;
-        if (!viewPrimitive(ctx, mesh, k, false, v)) continue;  // countMesh has warned
+        if (!viewPrimitive(ctx, mesh, k, false, v, weights != nullptr))
+            continue;  // countMesh has warned
+        const bool newPositions = !positionBase.contains(v.position.index);
         const uint32_t pBase = base(positionBase, v.position, appendPositions);
+        if (weights && newPositions) readWeights(ctx, v, pBase, *weights);
         const uint32_t nBase = v.hasNormal ? base(normalBase, v.normal, appendNormals) : 0;
-        const uint32_t uBase = v.hasUv ? base(uvBase, v.uv, appendUvs) : 0;
+        const uint32_t uBase = v.hasUv ? base(uvBase, v.uv, appendUv0) : 0;
+        const uint32_t u1Base = v.hasUv1 ? base(uv1Base, v.uv1, appendUv1) : 0;
+        const uint32_t cBase = v.hasColor ? base(colorBase, v.color, appendColors) : 0;
+        const uint32_t tBase = v.hasTangent ? base(tangentBase, v.tangent, appendTangents) : 0;
         uint32_t material = MeshData::kNone;
         if (p.material >= 0) {
             auto [it, added] = materialIds.emplace(p.material, 0);
@@ -460,11 +632,15 @@ MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& m
             c.position = pBase + i;
             if (v.hasNormal) c.normal = nBase + i;
             if (v.hasUv) c.uv = uBase + i;
+            if (v.hasUv1) c.uv1 = u1Base + i;
+            if (v.hasColor) c.color = cBase + i;
+            if (v.hasTangent) c.tangent = tBase + i;
             return c;
         };
         auto add = [&](size_t a, size_t b, size_t c) {
             out.triangles.push_back({{corner(a), corner(b), corner(c)}, material});
         };
+        const size_t firstTriangle = out.triangles.size();
         for (size_t t = 0; t < v.triangles; ++t) {
             if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP)
                 add(t, t + 1 + t % 2, t + 2 - t % 2);  // every other one turned, as glTF orders
@@ -475,6 +651,46 @@ MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& m
         }
         if (v.hasNormal) out.normalTriangles += v.triangles;
         if (v.hasUv) out.uvTriangles += v.triangles;
+        // The glTF specification: without TANGENT, a normal-mapped primitive's tangents are
+        // MikkTSpace's, from its positions, normals and the normal map's coordinates.
+        if (v.generateTangents) {
+            TangentRequest request;
+            request.first = firstTriangle;
+            request.last = out.triangles.size();
+            request.secondUvs = v.tangentUvs == 1;
+            generateTangents(out, request);
+        }
+    }
+    return out;
+}
+
+std::vector<Mat4> readMatrices(const Context& ctx, int index, size_t count,
+                               const std::string& user) {
+    AccessorView v = viewAccessor(ctx, index, user);
+    expectComponents(ctx, v, 16, TINYGLTF_TYPE_MAT4);
+    if (v.count < count)
+        ctx.fail(v.label + ": it has " + std::to_string(v.count) +
+                 (v.count == 1 ? " matrix" : " matrices") + ", fewer than the " +
+                 std::to_string(count) + " its joints need");
+    std::vector<Mat4> out(count);  // the first `count`: any more are not used
+    forEachElement(ctx, v, [&](size_t i, const float* c) {
+        if (i >= count) return;
+        for (int col = 0; col < 4; ++col)  // column by column, as glTF stores them
+            for (int row = 0; row < 4; ++row) out[i].m[row][col] = c[col * 4 + row];
+    });
+    for (size_t i = 0; i < count; ++i) {
+        Mat4& m = out[i];
+        for (const auto& row : m.m)
+            for (double x : row)
+                if (!std::isfinite(x))
+                    ctx.fail(v.label + ": matrix " + std::to_string(i) + " is not finite");
+        // Stored as floats: the last row is 0 0 0 1 to within their precision.
+        if (std::abs(m.m[3][0]) > 1e-5 || std::abs(m.m[3][1]) > 1e-5 ||
+            std::abs(m.m[3][2]) > 1e-5 || std::abs(m.m[3][3] - 1) > 1e-5)
+            ctx.fail(v.label + ": matrix " + std::to_string(i) +
+                     " is not affine (its last row must be 0 0 0 1)");
+        m.m[3][0] = m.m[3][1] = m.m[3][2] = 0;
+        m.m[3][3] = 1;
     }
     return out;
 }

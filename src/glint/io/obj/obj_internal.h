@@ -45,6 +45,9 @@ using TextureCache = std::map<std::string, std::shared_ptr<const TextureImage>>;
 struct MtlEntry {
     int line = 0;  ///< Of its `newmtl`.
     bool hasKa = false, hasKd = false, hasIllum = false;
+    /// Whether it uses the PBR extensions (Pr, Pm, Ps, map_Pr, map_Pm, norm, ...): then it
+    /// becomes a physically based material (MeshMaterial::pbr).
+    bool pbr = false;
 };
 
 /// The materials of an MTL text in the order tinyobjloader's LoadMtl adds them.

@@ -44,6 +44,67 @@ bool statement(std::string_view line, std::string_view key) {
 
 Vec3 colour(const tinyobj::real_t (&c)[3]) { return {c[0], c[1], c[2]}; }
 
+/// A slot for an MTL texture: its image, clamping, and -o / -s as a transform.
+TextureSlot mtlSlot(std::shared_ptr<const TextureImage> image,
+                    const tinyobj::texture_option_t& opt) {
+    TextureSlot slot;
+    if (!image) return slot;
+    slot.image = std::move(image);
+    slot.wrapS = slot.wrapT = opt.clamp ? TextureWrap::Clamp : TextureWrap::Repeat;
+    // MTL: (u, v) -> (u su + ou, v sv + ov) with v up; the slot's matrix works on t = 1 - v.
+    const double su = opt.scale[0], sv = opt.scale[1], ou = opt.origin_offset[0],
+                 ov = opt.origin_offset[1];
+    if (std::isfinite(su) && std::isfinite(sv) && std::isfinite(ou) && std::isfinite(ov))
+        slot.transform = {su, 0, ou, 0, sv, 1 - sv - ov};
+    return slot;
+}
+
+/// The physically based material of an MTL entry that uses the PBR extensions: Kd (and
+/// map_Kd) the base colour, Pm / map_Pm the metalness, Pr / map_Pr the roughness, Ke / map_Ke
+/// the emission, norm (or map_Bump, as Blender's exporter writes normal maps) a tangent-space
+/// normal map scaled by -bm, d the alpha (blended), Ni the index of refraction.
+template <typename Load>
+PbrMaterial mapMtlPbr(const tinyobj::material_t& m, const Vec3& tint,
+                      const std::optional<Texture>& diffuse, Load& load,
+                      std::vector<Diagnostic>& warnings, const FileLoc& at,
+                      const std::string& quotedName) {
+    auto unit = [](double x) { return std::isfinite(x) ? std::clamp(x, 0.0, 1.0) : 0.0; };
+    PbrMaterial p;
+    p.baseColor = {unit(tint.x), unit(tint.y), unit(tint.z)};
+    if (diffuse) p.baseColorTexture = mtlSlot(diffuse->image, m.diffuse_texopt);
+    p.metallic = unit(m.metallic);
+    p.roughness = unit(m.roughness);
+    p.metallicTexture =
+        mtlSlot(load(m.metallic_texname, m.metallic_texopt, false, "its Pm is used alone"),
+                m.metallic_texopt);
+    p.roughnessTexture =
+        mtlSlot(load(m.roughness_texname, m.roughness_texopt, false, "its Pr is used alone"),
+                m.roughness_texopt);
+    const bool norm = !m.normal_texname.empty();
+    const std::string& normalName = norm ? m.normal_texname : m.bump_texname;
+    const tinyobj::texture_option_t& normalOpt = norm ? m.normal_texopt : m.bump_texopt;
+    p.normalTexture =
+        mtlSlot(load(normalName, normalOpt, false, "its faces are shaded without it"), normalOpt);
+    p.normalScale = std::isfinite(normalOpt.bump_multiplier) ? normalOpt.bump_multiplier : 1;
+    const Vec3 ke(m.emission[0], m.emission[1], m.emission[2]);
+    p.emissive = Vec3(std::max(0.0, ke.x), std::max(0.0, ke.y), std::max(0.0, ke.z));
+    p.emissiveTexture =
+        mtlSlot(load(m.emissive_texname, m.emissive_texopt, true, "its Ke is used alone"),
+                m.emissive_texopt);
+    if (!m.emissive_texname.empty() && p.emissive == Vec3(0)) p.emissive = Vec3(1);
+    if (m.dissolve < 1) {
+        p.alphaMode = AlphaMode::Blend;
+        p.alpha = unit(m.dissolve);
+    }
+    if (m.ior >= 1) p.ior = m.ior;
+    p.doubleSided = true;  // OBJ has no notion of sidedness: both faces are surfaces
+    if (m.sheen > 0 || !m.sheen_texname.empty() || m.clearcoat_thickness > 0 || m.anisotropy > 0)
+        warnings.push_back({at, "material " + quotedName +
+                                    ": sheen (Ps), clearcoat (Pc) and anisotropy are not "
+                                    "rendered; the rest of its PBR parameters are"});
+    return p;
+}
+
 }  // namespace
 
 std::vector<MtlEntry> scanMtl(std::string_view text) {
@@ -59,6 +120,11 @@ std::vector<MtlEntry> scanMtl(std::string_view text) {
             current.hasKd = true;
         } else if (statement(line, "illum")) {
             current.hasIllum = true;
+        } else if (statement(line, "Pr") || statement(line, "Pm") || statement(line, "Ps") ||
+                   statement(line, "map_Pr") || statement(line, "map_Pm") ||
+                   statement(line, "map_Ps") || statement(line, "norm") ||
+                   statement(line, "aniso") || statement(line, "Pc") || statement(line, "Pcr")) {
+            current.pbr = true;
         }
     });
     entries.push_back(current);
@@ -84,34 +150,39 @@ MeshMaterial mapMtlMaterial(const tinyobj::material_t& m, const MtlEntry& entry,
     // where there is no texture: Kd, or tinyobjloader's grey when only map_Kd is given.
     Vec3 tint = entry.hasKd ? kd : Vec3(1);
     g.diffuse = kd;
-    if (!m.diffuse_texname.empty()) {
-        std::string name = m.diffuse_texname;
+    // A texture of the material by its MTL name and options, through the cache; null (with a
+    // warning) if it cannot be read.
+    auto load = [&](const std::string& texname, const tinyobj::texture_option_t& opt, bool srgb,
+                    const char* instead) -> std::shared_ptr<const TextureImage> {
+        if (texname.empty()) return nullptr;
+        std::string name = texname;
         std::replace(name.begin(), name.end(), '\\', '/');  // paths from Windows exporters
         std::string path = name.front() == '/' || source.textureDir.empty()
                                ? name
                                : source.textureDir + "/" + name;
-        bool srgb = m.diffuse_texopt.colorspace != "linear";
+        srgb = srgb && opt.colorspace != "linear";
         std::string key = path + (srgb ? "" : "\n(linear)");
+        if (auto it = cache.find(key); it != cache.end()) return it->second;
         std::shared_ptr<const TextureImage> image;
-        if (auto it = cache.find(key); it != cache.end()) {
-            image = it->second;
-        } else if (source.readTextures) {
+        if (source.readTextures) {
             try {
                 image = loadTextureImage(path, srgb, limits);
             } catch (const RenderError& e) {
-                warnings.push_back({at, "material " + quotedName + ": " + e.what() +
-                                            "; its faces show its diffuse colour instead"});
+                warnings.push_back(
+                    {at, "material " + quotedName + ": " + e.what() + "; " + instead});
             }
             cache[key] = image;
         }
-        if (image) {
-            Texture t;
-            t.kind = Texture::Kind::Image;
-            t.wrap = m.diffuse_texopt.clamp ? TextureWrap::Clamp : TextureWrap::Repeat;
-            t.image = image;
-            t.a = tint;
-            out.texture = t;
-        }
+        return image;
+    };
+    if (auto image = load(m.diffuse_texname, m.diffuse_texopt, true,
+                          "its faces show its diffuse colour instead")) {
+        Texture t;
+        t.kind = Texture::Kind::Image;
+        t.wrap = m.diffuse_texopt.clamp ? TextureWrap::Clamp : TextureWrap::Repeat;
+        t.image = image;
+        t.a = tint;
+        out.texture = t;
     }
     // Ambient: Ka under OpenGL's default ambient light, or the diffuse colour (the texture's
     // mean for textured materials) when there is no Ka: never the course's flat 0.2 grey.
@@ -145,6 +216,7 @@ MeshMaterial mapMtlMaterial(const tinyobj::material_t& m, const MtlEntry& entry,
             g.ior = 1;
         }
     }
+    if (entry.pbr) out.pbr = mapMtlPbr(m, tint, out.texture, load, warnings, at, quotedName);
     return out;
 }
 

@@ -15,6 +15,7 @@
 namespace glint {
 namespace {
 
+using test::expectError;
 using test::expectNear;
 using test::kCamera;
 using test::shoot;
@@ -144,6 +145,34 @@ TEST(CourseMeshes, TextureNoneAndWrapModes) {
     EXPECT_EQ(s->materials[down(*s, 5, 0)->material].texture, 0u);
 }
 
+TEST(CourseMeshes, PhysicallyBasedMapsAndMetalnessMakeAPbrMaterial) {
+    auto s = parseIn(
+        "diffuse 0.8 0.5 0.2\nroughness 0.25\nmetallic 1\n"
+        "texture roughnessmap quadrants.png mirror\ntexture normalmap quadrants.png\n"
+        "mesh uvquad.obj\ntexture roughnessmap none\ntranslate 5 0 0\nmesh uvquad.obj\n");
+    const Material& m = s->materials[down(*s, 0, 0)->material];
+    ASSERT_NE(m.pbr, 0u);
+    const PbrMaterial& p = s->pbr(m.pbr);
+    expectNear(p.baseColor, {0.8, 0.5, 0.2});
+    EXPECT_EQ(p.metallic, 1);
+    EXPECT_NEAR(p.roughness, 0.5, 1e-12);  // roughness gives GGX alpha: sqrt(0.25)
+    ASSERT_TRUE(p.roughnessTexture);
+    EXPECT_FALSE(p.roughnessTexture.image->srgb);  // maps of data are linear
+    EXPECT_EQ(p.roughnessTexture.wrapS, TextureWrap::MirroredRepeat);
+    ASSERT_TRUE(p.normalTexture);
+    EXPECT_TRUE(p.doubleSided);
+    const Material& second = s->materials[down(*s, 5, 0)->material];
+    ASSERT_NE(second.pbr, 0u);
+    EXPECT_FALSE(s->pbr(second.pbr).roughnessTexture);
+    EXPECT_TRUE(s->pbr(second.pbr).normalTexture);
+}
+
+TEST(CourseMeshes, PhysicallyBasedMapErrorsPointAtTheirToken) {
+    expectError("texture normalmap\n", 1, 9, "needs a file or none");
+    expectError("texture roughnessmap a.png sideways\n", 1, 28, "unknown texture wrap");
+    expectError("metallic 2\n", 1, 10, "metallic must be between 0 and 1");
+}
+
 TEST(CourseMeshes, ImageTexturesOnSurfacesWithoutCoordinatesWarnAtTheTextureLine) {
     std::vector<Diagnostic> warnings;
     auto s = parseIn("texture quadrants.png\nsphere 0 0 0 1\nsphere 3 0 0 1\nmesh uvquad.obj\n",
@@ -202,12 +231,14 @@ TEST(CourseMeshes, Errors) {
     EXPECT_EQ(tex.loc.column, 9);
     EXPECT_THAT(tex.message, HasSubstr("cannot read texture"));
     EXPECT_THAT(errorIn("texture quad.obj\n").message, HasSubstr("cannot read texture"));
-    Diagnostic wrap = errorIn("texture quadrants.png mirror\n");
+    Diagnostic wrap = errorIn("texture quadrants.png sideways\n");
     EXPECT_EQ(wrap.loc.column, 23);
-    EXPECT_THAT(wrap.message, HasSubstr("unknown texture wrap 'mirror' (repeat or clamp)"));
+    EXPECT_THAT(wrap.message,
+                HasSubstr("unknown texture wrap 'sideways' (repeat, clamp or mirror)"));
     EXPECT_THAT(errorIn("texture none clamp\n").message, HasSubstr("takes no other argument"));
     EXPECT_THAT(errorIn("texture\n").message,
-                HasSubstr("texture expects 1 or 2 arguments (file [repeat|clamp], or none)"));
+                HasSubstr("texture expects 1 to 3 arguments ([slot] file [repeat|clamp|mirror], "
+                          "or [slot] none)"));
     EXPECT_THAT(errorIn("checker 1 1 1 0 0 0\n").message,
                 HasSubstr("checker expects 7 arguments (r1 g1 b1 r2 g2 b2 scale), got 6"));
     Diagnostic scale = errorIn("checker 1 1 1 0 0 0 0\n");

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 
@@ -36,11 +38,11 @@ MeshData load(const std::string& name, std::vector<Diagnostic>* warningsOut = nu
 }
 
 MeshData parse(const std::string& text, std::vector<Diagnostic>* warningsOut = nullptr,
-               const std::string* mtl = nullptr) {
+               const std::string* mtl = nullptr, const std::string& dir = "") {
     std::vector<Diagnostic> warnings;
     ObjOptions options;
     options.mtlText = mtl;
-    MeshData mesh = parseObj(text, "m.obj", warnings, options);
+    MeshData mesh = parseObj(text, dir.empty() ? "m.obj" : dir + "/m.obj", warnings, options);
     if (warningsOut)
         *warningsOut = warnings;
     else
@@ -305,6 +307,53 @@ TEST(ObjLoader, MtlMappingOfIllumDissolveAndIor) {
     EXPECT_EQ(warnings[0].loc.line, 14);
     EXPECT_THAT(warnings[0].message, HasSubstr("negative Ns"));
     EXPECT_THAT(warnings[1].message, HasSubstr("Ni"));
+}
+
+TEST(ObjLoader, MtlPbrExtensionsMakeAPhysicallyBasedMaterial) {
+    const std::string mtl =
+        "newmtl brushed\nKd 0.8 0.6 0.2\nPm 0.9\nPr 0.4\nKe 0 0 0\nNi 1.7\nd 0.5\n"
+        "newmtl classic\nKd 0.5 0.5 0.5\nKs 0.2 0.2 0.2\n"
+        "newmtl sheeny\nKd 1 1 1\nPs 0.5\n";
+    std::vector<Diagnostic> warnings;
+    MeshData mesh = parse("mtllib any.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &warnings, &mtl);
+    ASSERT_EQ(mesh.materials.size(), 3u);
+    ASSERT_TRUE(mesh.materials[0].pbr);
+    const PbrMaterial& p = *mesh.materials[0].pbr;
+    expectNear(p.baseColor, {0.8, 0.6, 0.2}, 1e-6);
+    EXPECT_NEAR(p.metallic, 0.9, 1e-6);
+    EXPECT_NEAR(p.roughness, 0.4, 1e-6);
+    EXPECT_NEAR(p.ior, 1.7, 1e-6);
+    EXPECT_EQ(p.alphaMode, AlphaMode::Blend);
+    EXPECT_NEAR(p.alpha, 0.5, 1e-6);
+    EXPECT_TRUE(p.doubleSided);
+    EXPECT_FALSE(mesh.materials[1].pbr);  // no PBR statement: the classic mapping alone
+    ASSERT_TRUE(mesh.materials[2].pbr);
+    ASSERT_EQ(warnings.size(), 1u);  // sheen is read but not rendered
+    EXPECT_THAT(warnings[0].message, HasSubstr("sheen (Ps)"));
+}
+
+class ObjPbrMaps : public test::TempDirTest {};
+
+TEST_F(ObjPbrMaps, MapsAndNormalMapsAreRead) {
+    // map_Bump stands for a normal map, as Blender's exporter writes it.
+    std::filesystem::copy_file(meshPath("quadrants.png"), path("q.png"));
+    std::ofstream(path("m.mtl")) << "newmtl a\nKd 1 1 1\nPr 1\nmap_Pr q.png\nmap_Pm q.png\n"
+                                    "map_Bump -bm 0.5 q.png\nmap_Ke -s 2 2 1 q.png\n";
+    std::ofstream(path("m.obj")) << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+    std::vector<Diagnostic> warnings;
+    MeshData mesh = loadObj(path("m.obj"), warnings);
+    ASSERT_EQ(mesh.materials.size(), 1u);
+    ASSERT_TRUE(mesh.materials[0].pbr);
+    const PbrMaterial& p = *mesh.materials[0].pbr;
+    EXPECT_TRUE(p.roughnessTexture);
+    EXPECT_TRUE(p.metallicTexture);
+    ASSERT_TRUE(p.normalTexture);
+    EXPECT_FALSE(p.normalTexture.image->srgb);
+    EXPECT_NEAR(p.normalScale, 0.5, 1e-6);
+    ASSERT_TRUE(p.emissiveTexture);
+    EXPECT_EQ(p.emissive, Vec3(1));                        // map_Ke without Ke: the texture alone
+    EXPECT_NEAR(p.emissiveTexture.transform[0], 2, 1e-6);  // -s 2 2
+    EXPECT_TRUE(warnings.empty());
 }
 
 TEST(ObjLoader, TexturedMaterialsCarryTheirImage) {
