@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
-# Loading and rendering a 1M-triangle model with no scene file (`glint model.obj`, or
-# `glint model.glb`): medians over RUNS runs of parse (file to MeshData to scene), BVH build,
+# Loading and rendering a 1M-triangle model with no scene file (`glint model.obj`, .glb, .ply
+# or .stl): medians over RUNS runs of parse (file to MeshData to scene), BVH build,
 # render and peak memory.
-# Usage: bench/mesh_stats.sh BUILD_DIR [RUNS] [THREADS] [obj|glb|draco|meshopt]
+# Usage: bench/mesh_stats.sh BUILD_DIR [RUNS] [THREADS] [obj|glb|draco|meshopt|ply|stl]
 # The model (bench/gen_mesh.cpp: a rippled trefoil-knot tube, 1,048,576 triangles with vertex
-# normals; about 80 MB of OBJ text, or a 25 MB binary glTF) is written to $GLINT_BENCH_TMP
-# (default /tmp/glint-bench) once and reused; it is never part of the repository. `draco` and
-# `meshopt` compress the .glb with Debian's tools, as a user would: draco_transcoder (package
-# draco; its defaults: 11-bit positions, 8-bit normals, compression level 7) and gltfpack -c
-# (package gltfpack; its defaults: 14-bit positions, 8-bit normals, EXT_meshopt_compression).
+# normals; about 80 MB of OBJ text, a 25 MB binary glTF, a 26 MB binary PLY or a 52 MB binary STL
+# without normals) is written to $GLINT_BENCH_TMP (default /tmp/glint-bench) once and reused; it
+# is never part of the repository. `draco` and `meshopt` compress the .glb with Debian's tools,
+# as a user would: draco_transcoder (package draco; its defaults: 11-bit positions, 8-bit
+# normals, compression level 7) and gltfpack -c (package gltfpack; its defaults: 14-bit
+# positions, 8-bit normals, EXT_meshopt_compression).
 set -euo pipefail
 if [ $# -lt 1 ]; then
-    echo "usage: $0 BUILD_DIR [RUNS] [THREADS] [obj|glb|draco|meshopt]" >&2
+    echo "usage: $0 BUILD_DIR [RUNS] [THREADS] [obj|glb|draco|meshopt|ply|stl]" >&2
     exit 2
 fi
 build=$1
@@ -19,8 +20,8 @@ runs=${2:-5}
 threads=${3:-2}
 format=${4:-obj}
 case $format in
-    obj | glb | draco | meshopt) ;;
-    *) echo "$0: format must be obj, glb, draco or meshopt" >&2 && exit 2 ;;
+    obj | glb | draco | meshopt | ply | stl) ;;
+    *) echo "$0: format must be obj, glb, draco, meshopt, ply or stl" >&2 && exit 2 ;;
 esac
 tmp=${GLINT_BENCH_TMP:-/tmp/glint-bench}
 mkdir -p "$tmp"

@@ -7,7 +7,9 @@
 #   4. loading and rendering a generated 1M-triangle OBJ model (bench/mesh_stats.sh);
 #   5. 100 copies of a model, instanced and stored (bench/instancing_stats.sh);
 #   6. the path tracer against Blender Cycles on the Cornell box (bench/cycles/run.sh; its long
-#      Cycles reference is rendered once and kept in ../cycles-out beside the repository).
+#      Cycles reference is rendered once and kept in ../cycles-out beside the repository);
+#   7. reading 1M-triangle PLY and STL files with Glint's readers and with Assimp
+#      (bench/mesh_load_stats.sh).
 # Usage: bench/run.sh BUILD_DIR
 set -euo pipefail
 
@@ -52,3 +54,6 @@ if command -v blender >/dev/null; then
 else
     echo "(skipped: blender is not installed; make bench installs it)"
 fi
+
+header "7. PLY and STL: Glint's readers vs Assimp, 1M triangles"
+"$here/mesh_load_stats.sh" "$build" 5

@@ -167,8 +167,18 @@ const std::vector<FileFormat>& fileFormats() {
         {"glTF", "glTF", {".gltf", ".glb"}, gltfMagic, false, nullptr, loadGltfModel},
         {"PLY", "PLY", {".ply"}, plyMagic, false, nullptr, loadPlyModel},
         {"STL", "STL", {".stl"}, stlMagic, false, nullptr, loadStlModel},
-        {"FBX", "FBX", {".fbx"}, fbxMagic, false, nullptr, nullptr},
-        {"Blender", "Blender", {".blend"}, blenderMagic, false, nullptr, nullptr},
+        // FBX stays unread: docs/performance.md, "PLY and STL: Glint's readers or Assimp".
+        {.name = "FBX",
+         .listed = "FBX",
+         .extensions = {".fbx"},
+         .magic = fbxMagic,
+         .hint = "export it as glTF, e.g. from Blender: File > Import > FBX, File > Export > "
+                 "glTF 2.0"},
+        {.name = "Blender",
+         .listed = "Blender",
+         .extensions = {".blend"},
+         .magic = blenderMagic,
+         .hint = "export it as glTF from Blender: File > Export > glTF 2.0"},
     };
     return formats;
 }
@@ -197,7 +207,8 @@ FormatChoice chooseFormat(const std::string& path, std::string_view head, uint64
     }
     if (!format->loadScene && !format->loadModel)
         return cannotRead("Glint cannot read " + std::string(format->name) + " files" +
-                              (format->planned ? " (yet)" : ""),
+                              (format->planned ? " (yet)" : "") +
+                              (format->hint ? std::string(" (") + format->hint + ")" : ""),
                           use);
     if (!readsFor(*format, use))
         return cannotRead(std::string("a ") + format->name + " is not a mesh", use);

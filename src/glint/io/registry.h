@@ -56,6 +56,9 @@ struct FileFormat {
     Model (*loadModel)(const std::string& path, std::vector<Diagnostic>& warnings,
                        const LoadOptions& options) = nullptr;
     bool planned = false;  ///< Glint means to read it: its message says "(yet)".
+    /// For a format Glint cannot read: how to make a file it reads of one, said in parentheses
+    /// after "Glint cannot read FBX files"; null for none.
+    const char* hint = nullptr;
 };
 
 /// Every format Glint knows, those it reads first.

@@ -85,6 +85,48 @@ struct Header {
     int dataLine = 0;       ///< The line they start on (ASCII files).
 };
 
+/// What a property of the vertex or face element is to Glint: skipped; a position, normal,
+/// colour or texture coordinate component (colours also per face); a face's `vertex_indices`
+/// list; a face's per-corner texture coordinates (`texcoord`: u0 v0 u1 v1 ...).
+enum Role : uint8_t {
+    kSkip,
+    kX,
+    kY,
+    kZ,
+    kNx,
+    kNy,
+    kNz,
+    kRed,
+    kGreen,
+    kBlue,
+    kAlpha,
+    kU,
+    kV,
+    kIndices,
+    kTexcoord,
+    kRoles  ///< How many there are.
+};
+
+/// The roles of one element's properties, and which groups of them are complete.
+struct Layout {
+    std::vector<Role> roles;  ///< Per property.
+    bool normals = false, colors = false, alpha = false, uvs = false;
+    int indices = -1, texcoord = -1;  ///< Face lists (property numbers), -1: none.
+};
+
+/// The roles of the vertex element's properties. Throws SceneError at the element's line if it
+/// lacks x, y or z.
+Layout vertexLayout(const Element& e, const std::string& file);
+/// The roles of a face (or tristrips) element's properties: its index list, per-corner texture
+/// coordinates and face colours. Throws SceneError at the element's line if it has no
+/// `vertex_indices` list of integers.
+Layout faceLayout(const Element& e, const std::string& file);
+
+/// `v` as a float: beyond float's range, infinite (as IEEE rounding would give, stated).
+float toFloat(double v);
+/// A colour channel of type `t` as a fraction in [0, 1] (NaN as 0), sRGB-decoded unless alpha.
+float colourChannel(double v, Type t, bool alpha);
+
 /// Reads the header of the PLY file `bytes`. Throws SceneError at `file`:line:column for what it
 /// does not understand (a missing `ply` or `format` line, an unknown type or keyword, a count
 /// that is not a number, no `end_header`).

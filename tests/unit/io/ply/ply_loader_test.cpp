@@ -484,7 +484,10 @@ TEST_F(PlyFiles, APlyModelRendersWhereItIs) {
     // framing without the mesh's faces would be (they are light grey under two lights).
     std::ofstream(path("quad.ply"), std::ios::binary) << binaryPly(false);
     std::vector<Diagnostic> warnings;
-    ModelScene m = loadSceneFile(path("quad.ply"), warnings, {{}, false, 48, 36, {}});
+    LoadOptions options;
+    options.width = 48;
+    options.height = 36;
+    ModelScene m = loadSceneFile(path("quad.ply"), warnings, options);
     ASSERT_TRUE(m.scene);
     EXPECT_THAT(m.note, HasSubstr("quad.ply has no camera or lights"));
     EXPECT_EQ(m.scene->primitives.triangleCount(), 3u);
