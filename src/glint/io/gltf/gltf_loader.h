@@ -22,6 +22,9 @@ struct GltfOptions {
     /// readFiles off only the input's own bytes are used: embedded (data: URI) buffers and
     /// images, and a .glb's binary chunk.
     LoadLimits limits;
+    /// CPU seconds libdraco may take for the file's Draco meshes together, beyond 20 us per
+    /// index decoded: corrupt Draco data can make it spin (docs/robustness.md).
+    double dracoSeconds = 2;
 };
 
 /// Glint's light colour for a glTF light of `intensity` (candela for point lights, lux for
