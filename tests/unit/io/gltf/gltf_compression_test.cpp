@@ -248,7 +248,7 @@ TEST(GltfMeshopt, RoundTripsExactlyOrWithinTheFilters) {
             ASSERT_EQ(model.meshes[0].triangles.size(), mesh.indices.size() / 3);
             const Vec3f first =
                 model.meshes[0].positions[model.meshes[0].triangles[5].corners[0].position];
-            const auto& want = trianglesOf(mesh)[5];
+            const std::array<Vertex, 3> want = trianglesOf(mesh)[5];
             const bool found = std::any_of(want.begin(), want.end(), [&](const Vertex& v) {
                 return std::abs(v.p[0] - first.x) + std::abs(v.p[1] - first.y) +
                            std::abs(v.p[2] - first.z) <=
