@@ -36,6 +36,8 @@ struct LoadOptions {
     bool lenient = false;
     /// The image a model is framed for (frameModelScene): 0 x 0 for its camera's or 640 x 480.
     int width = 0, height = 0;
+    /// How a model is shown (frameModelScene): the studio look unless asked otherwise.
+    ModelLook look;
 };
 
 /// A file format Glint knows, whether it reads it or not.
@@ -83,9 +85,11 @@ FormatChoice chooseFormat(const std::string& path, FileUse use, std::vector<Diag
 Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
                 const LoadLimits& limits = {});
 
-/// Reads the model at `path` and frames it for a `width` x `height` image (frameModelScene).
+/// Reads the model at `path` and frames it for a `width` x `height` image in `look`
+/// (frameModelScene).
 ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width = 0,
-                          int height = 0, const LoadLimits& limits = {});
+                          int height = 0, const LoadLimits& limits = {},
+                          const ModelLook& look = {});
 
 /// What `glint FILE` renders: the scene of a scene file, or a model framed as one (its note
 /// says what was assumed; empty for a scene file). Not yet prepared (Scene::prepare). Throws

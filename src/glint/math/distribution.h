@@ -80,9 +80,16 @@ class Distribution1D {
     static constexpr double kOneMinus = 0x1.fffffffffffffp-1;
     /// The cell i with cdf_[i] <= u < cdf_[i + 1] and a positive weight.
     size_t find(double u) const {
-        auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-        size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0));
-        i = std::min(i, size() - 1);
+        // The last i with !(u < cdf_[i]), as std::upper_bound's result less one, found without
+        // branches: the samples' u are random, and mispredicted branches cost more than the
+        // search itself.
+        const double* base = cdf_.data();
+        for (size_t len = cdf_.size(); len > 1;) {
+            size_t half = len / 2;
+            base = u < base[half] ? base : base + half;
+            len -= half;
+        }
+        size_t i = std::min(static_cast<size_t>(base - cdf_.data()), size() - 1);
         // Cells of zero weight have zero width; u == cdf_[i] may land on one: step forward.
         while (i + 1 < size() && !(weights_[i] > 0)) ++i;
         while (i > 0 && !(weights_[i] > 0)) --i;

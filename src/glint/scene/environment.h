@@ -105,6 +105,10 @@ class EnvironmentMap {
     }
 
   private:
+    /// eval() and pdf() at the image coordinates a direction looks at.
+    Vec3 evalAt(Point2 st) const;
+    double pdfAt(Point2 st) const;
+
     int width_, height_;
     std::vector<float> rgb_;
     double scale_, rotationDegrees_;

@@ -1,0 +1,54 @@
+#pragma once
+/// How the path tracer shows a shadow catcher (Scene::shadowCatcher): where a camera ray (or a
+/// mirror's or glass's continuation of one) meets the plane, it sees the radiance behind the
+/// plane times the fraction of the light that reaches the plane there:
+///
+///     L = Lb(dir) * (1 - O(p) / E)
+///
+/// Lb is the environment (or background) radiance along the ray, E the irradiance an upward
+/// plane receives from the environment and the scene's lights with nothing in the way, O(p) the
+/// part of it that the scene blocks at p (all per channel). E's environment part is computed
+/// once, by quadrature over the map; O(p) is estimated with one environment direction drawn by
+/// the map's importance sampling and one shadow ray per light (or one light chosen at random
+/// among many), so where nothing blocks the light the estimate is exactly 0 and the plane shows
+/// the environment exactly, without noise. Lights of emissive surfaces cast no shadow on it.
+
+#include <optional>
+
+#include "glint/core/ray.h"
+#include "glint/math/sampling.h"
+#include "glint/render/integrator.h"
+#include "glint/scene/scene.h"
+
+namespace glint {
+
+class ShadowCatcherShading {
+  public:
+    /// For the prepared `scene`, which must have a shadow catcher and outlive this.
+    explicit ShadowCatcherShading(const Scene& scene);
+
+    /// The distance along `ray` (in units of its direction) to the plane, when the ray comes
+    /// down onto it from above within its extent; none otherwise.
+    std::optional<double> intersect(const Ray& ray) const;
+
+    /// The radiance seen at the plane's point `p` by a ray of unit direction `dir`, drawing
+    /// the environment direction with `uEnvironment` and, among many lights, the light with
+    /// `uLight`. Counts its shadow rays.
+    Vec3 radiance(const Vec3& p, const Vec3& dir, Point2 uEnvironment, double uLight,
+                  RayCounts& counts) const;
+
+    /// E: the irradiance of an upward plane from the environment (or background) alone.
+    Vec3 environmentIrradiance() const { return environmentIrradiance_; }
+
+  private:
+    const Scene& scene_;
+    double height_;
+    Vec3 environmentIrradiance_;
+};
+
+/// The irradiance an upward-facing plane receives from `scene`'s environment map, or from its
+/// background where it has none: the integral of the radiance times cos(theta) over the upper
+/// hemisphere (by quadrature over the map's texels, or exactly for the gradient).
+Vec3 upwardIrradiance(const Scene& scene);
+
+}  // namespace glint
