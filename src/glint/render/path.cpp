@@ -74,11 +74,12 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
         if (!found) {
-            Vec3 le = lights_.environment(ray.dir);
+            double lightPdf = 0;
+            Vec3 le = lights_.environment(ray.dir, &lightPdf);
             if (depth == 0 || specularBounce)
                 L += beta * le;
             else if (!(le == Vec3(0)))
-                L += beta * le * bsdfWeight(bsdfPdf, lights_.pdfEnvironment(ray.dir));
+                L += beta * le * bsdfWeight(bsdfPdf, lightPdf);
             break;
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);

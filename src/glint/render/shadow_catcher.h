@@ -8,14 +8,18 @@
 /// Lb is the environment (or background) radiance along the ray, E the irradiance an upward
 /// plane receives from the environment and the scene's lights with nothing in the way, O(p) the
 /// part of it that the scene blocks at p (all per channel). E's environment part is computed
-/// once, by quadrature over the map; O(p) is estimated with one environment direction drawn by
-/// the map's importance sampling and one shadow ray per light (or one light chosen at random
-/// among many), so where nothing blocks the light the estimate is exactly 0 and the plane shows
-/// the environment exactly, without noise. Lights of emissive surfaces cast no shadow on it.
+/// once, by quadrature over the map; O(p) is estimated with one shadow ray towards the
+/// environment and one per light (or to one light chosen at random among many). Where nothing
+/// blocks the light the estimate is exactly 0, so the plane shows the environment exactly,
+/// without noise. The environment's direction is drawn over the upper hemisphere in proportion
+/// to the map's luminance times cos(theta), texel by texel (for a background colour: by
+/// cos(theta)), so that each blocked sample weighs about E itself: in full shadow the estimate
+/// is then nearly noiseless too. Lights of emissive surfaces cast no shadow on it.
 
 #include <optional>
 
 #include "glint/core/ray.h"
+#include "glint/math/distribution.h"
 #include "glint/math/sampling.h"
 #include "glint/render/integrator.h"
 #include "glint/scene/scene.h"
@@ -40,10 +44,23 @@ class ShadowCatcherShading {
     /// E: the irradiance of an upward plane from the environment (or background) alone.
     Vec3 environmentIrradiance() const { return environmentIrradiance_; }
 
+    /// A direction over the upper hemisphere towards the environment drawn with `u` (see the
+    /// file comment), the radiance arriving along it and its density over solid angle; none
+    /// where rounding gives a direction of density 0.
+    struct EnvironmentSample {
+        Vec3 wi, L;
+        double pdf = 0;
+    };
+    std::optional<EnvironmentSample> sampleEnvironment(Point2 u) const;
+
   private:
     const Scene& scene_;
     double height_;
     Vec3 environmentIrradiance_;
+    /// With a map: its upper rows' texels, each weighted by the mean luminance of the bilinear
+    /// lookup over its cell times the integral of cos(theta) over the cell.
+    Distribution2D upper_;
+    int upperRows_ = 0;  ///< Rows of the map at least partly above the horizon.
 };
 
 /// The irradiance an upward-facing plane receives from `scene`'s environment map, or from its

@@ -37,15 +37,15 @@ struct Softbox {
 
 /// The softboxes, as the header describes them (+z is towards a framed model's camera).
 const Softbox kSoftboxes[] = {
-    {normalize(Vec3(-1.0, 1.25, 1.0)), 0.42, 0.30, 0.06, 7.0},  // key: upper left, in front
-    {normalize(Vec3(1.3, 0.35, 0.8)), 0.30, 0.24, 0.06, 2.0},   // fill: low on the right
-    {normalize(Vec3(0.25, 1.1, -1.0)), 0.75, 0.10, 0.04, 5.0},  // rim: a strip above, behind
+    {normalize(Vec3(-1.0, 1.25, 1.0)), 0.42, 0.30, 0.06, 5.0},  // key: upper left, in front
+    {normalize(Vec3(1.3, 0.35, 0.8)), 0.30, 0.24, 0.06, 1.5},   // fill: low on the right
+    {normalize(Vec3(0.25, 1.1, -1.0)), 0.75, 0.10, 0.04, 3.5},  // rim: a strip above, behind
 };
 
 /// The dome: grey, brighter towards the zenith; the ground half lighter near the horizon.
 double dome(double y) {
-    double sky = 0.32 + 0.18 * std::max(y, 0.0);
-    double ground = 0.42 - 0.12 * std::min(-y, 1.0) * (y < 0);
+    double sky = 0.30 + 0.15 * std::max(y, 0.0);
+    double ground = 0.55 - 0.10 * std::min(std::max(-y, 0.0), 1.0);
     double t = smoothstep(-0.05, 0.05, y);  // about +-3 degrees around the horizon
     return ground + (sky - ground) * t;
 }

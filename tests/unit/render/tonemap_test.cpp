@@ -39,8 +39,8 @@ double hue(const Vec3& c) {
 /// A random colour whose channels lie in [lo, hi), scaled by a random power of ten from
 /// 10^minExp to 10^maxExp.
 Vec3 randomColour(Rng& rng, double lo = 0, double hi = 1, int minExp = 0, int maxExp = 0) {
-    double scale = std::pow(10.0, minExp + (maxExp - minExp) * rng.uniform());
-    auto channel = [&] { return (lo + (hi - lo) * rng.uniform()) * scale; };
+    double scale = std::pow(10.0, minExp + (maxExp - minExp) * static_cast<double>(rng.uniform()));
+    auto channel = [&] { return (lo + (hi - lo) * static_cast<double>(rng.uniform())) * scale; };
     double r = channel(), g = channel(), b = channel();
     return {r, g, b};
 }
@@ -133,7 +133,9 @@ TEST(PbrNeutral, IsMonotonicInBrightness) {
             EXPECT_GE(out.x, previous.x - 1e-15) << k;
             EXPECT_GE(out.y, previous.y - 1e-15) << k;
             EXPECT_GE(out.z, previous.z - 1e-15) << k;
-            if (maxOf(previous) < 0.999) EXPECT_GT(maxOf(out), maxOf(previous)) << k;
+            if (maxOf(previous) < 0.999) {
+                EXPECT_GT(maxOf(out), maxOf(previous)) << k;
+            }
             previous = out;
         }
     }
@@ -183,7 +185,7 @@ TEST(ToneMap, EightBitImagesGoThroughTheExposureTheToneMapperAndTheCurve) {
     EXPECT_FALSE(display.isIdentity());
     Image8 img = toImage8(film, display);
     for (int x = 0; x < 3; ++x) {
-        Vec3 expected = pbrNeutral(film.at(x, 0) * 2);
+        Vec3 expected = pbrNeutral(film.at(x, 0) * 2.0);
         EXPECT_EQ(img.at(x, 0, 0), toByteSrgb(expected.x));
         EXPECT_EQ(img.at(x, 0, 1), toByteSrgb(expected.y));
         EXPECT_EQ(img.at(x, 0, 2), toByteSrgb(expected.z));
@@ -191,7 +193,7 @@ TEST(ToneMap, EightBitImagesGoThroughTheExposureTheToneMapperAndTheCurve) {
     // Without the curve, the course's floor of the tone-mapped value.
     display.srgb = false;
     img = toImage8(film, display);
-    EXPECT_EQ(img.at(1, 0, 0), toByte(pbrNeutral(film.at(1, 0) * 2).x));
+    EXPECT_EQ(img.at(1, 0, 0), toByte(pbrNeutral(film.at(1, 0) * 2.0).x));
     EXPECT_LT(img.at(2, 0, 0), 255);  // compressed, not clipped
 }
 
