@@ -448,10 +448,14 @@ int main(int argc, char** argv) {
         ->group(out)
         ->check(numberIn(-64, 64))
         ->type_name("EV");
-    app.add_flag_function(
-           "--srgb,!--no-srgb", [&opt](int64_t n) { opt.srgb = n > 0 ? 1 : -1; },
-           "Encode 8-bit outputs (.png, .ppm) with the sRGB curve, rounded, or not (the course's "
-           "floor(255 c)); default: on for models, off for scenes; float outputs stay linear")
+    app.add_flag_callback(
+           "--srgb", [&opt] { opt.srgb = 1; },
+           "Encode 8-bit outputs (.png, .ppm) with the sRGB curve, rounded (default for models; "
+           "scenes: the course's clamp and floor(255 c)); float outputs stay linear")
+        ->group(out);
+    app.add_flag_callback(
+           "--no-srgb", [&opt] { opt.srgb = -1; },
+           "Encode 8-bit outputs with the course's floor(255 c), also for models")
         ->group(out);
     app.add_option("--tonemap", opt.toneMap,
                    "How radiance is brought into [0, 1] for 8-bit outputs: neutral (Khronos PBR "
@@ -479,7 +483,7 @@ int main(int argc, char** argv) {
         ->group(render)
         ->type_name("WxH");
     app.add_option("--maxdepth", opt.maxDepth,
-                   "Maximum reflection depth, 0 to 64, overriding the scene's")
+                   "Maximum reflection depth, 0 to 64, overriding the scene's (models: 8)")
         ->group(render)
         ->check(integerIn(0, glint::kMaxDepthLimit))
         ->type_name("N");
