@@ -48,6 +48,7 @@ for model in "$knot" "$big"; do
     echo
     glint_medians "$out/runs"
     echo
+    echo "CPU time (user + system), median: $(glint_cpu_median "$out/runs") s"
     rm "$out/runs"
 done
 echo "(medians of $runs runs, $threads threads; the last images: $tmp/*-render.png)"
