@@ -242,9 +242,9 @@ Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
 }
 
 ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
-                          int height, const LoadLimits& limits) {
+                          int height, const LoadLimits& limits, const ModelLook& look) {
     // The model is freed once placed, before the scene's BVH is built.
-    return frameModelScene(loadModel(path, warnings, limits), width, height);
+    return frameModelScene(loadModel(path, warnings, limits), width, height, look);
 }
 
 ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warnings,
@@ -262,7 +262,7 @@ ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warni
         return out;
     }
     return frameModelScene(loadModelAs(*choice.format, path, warnings, options), options.width,
-                           options.height);
+                           options.height, options.look);
 }
 
 }  // namespace glint
