@@ -297,8 +297,10 @@ TEST(GltfCompression, CompressedMeshesRenderAsTheUncompressedOnes) {
         meanDifference(plainSphere, renderModel(loadAsset(turned(dracoAsset(sphere)))));
     const double meshopt =
         meanDifference(plainSphere, renderModel(loadAsset(turned(meshoptAsset(sphere)))));
-    EXPECT_LT(draco, 5e-4);
-    EXPECT_LT(meshopt, 5e-4);
+    // (1e-3: shading normals that bend a direction across the surface now carry no light, which
+    // moves a few more pixels at the sphere's rim with the quantized normals.)
+    EXPECT_LT(draco, 1e-3);
+    EXPECT_LT(meshopt, 1e-3);
     // Another shape differs by far more: the measure sees geometry.
     EXPECT_GT(meanDifference(plainCube, plainSphere), 1e-2);
 }

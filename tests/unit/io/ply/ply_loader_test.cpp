@@ -487,6 +487,7 @@ TEST_F(PlyFiles, APlyModelRendersWhereItIs) {
     LoadOptions options;
     options.width = 48;
     options.height = 36;
+    options.look = ModelLook::classic();  // lights and a floor: what this checks
     ModelScene m = loadSceneFile(path("quad.ply"), warnings, options);
     ASSERT_TRUE(m.scene);
     EXPECT_THAT(m.note, HasSubstr("quad.ply has no camera or lights"));
