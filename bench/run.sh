@@ -7,7 +7,9 @@
 #   4. loading and rendering a generated 1M-triangle OBJ model (bench/mesh_stats.sh);
 #   5. 100 copies of a model, instanced and stored (bench/instancing_stats.sh);
 #   6. the path tracer against Blender Cycles on the Cornell box (bench/cycles/run.sh; its long
-#      Cycles reference is rendered once and kept in ../cycles-out beside the repository).
+#      Cycles reference is rendered once and kept in ../cycles-out beside the repository);
+#   7. the model mode at its default quality, a 15k-triangle textured model and a 1M-triangle
+#      one (bench/model_mode.sh).
 # Usage: bench/run.sh BUILD_DIR
 set -euo pipefail
 
@@ -52,3 +54,6 @@ if command -v blender >/dev/null; then
 else
     echo "(skipped: blender is not installed; make bench installs it)"
 fi
+
+header "7. The model mode at its default quality: glint knot-15k.obj, glint trefoil-1m.glb"
+"$here/model_mode.sh" "$build" 3 2
