@@ -19,11 +19,12 @@ DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
 # the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh,
-# Blender for the path tracer against Cycles, bench/cycles/: about 580 MB with its libraries).
+# Blender for the path tracer against Cycles, bench/cycles/: about 580 MB with its libraries;
+# python3-numpy for Blender's glTF importer, bench/cycles/gltf/).
 BENCH_DIR  ?= build-bench
 BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
               libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libembree-dev povray bc \
-              blender
+              blender python3-numpy
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
