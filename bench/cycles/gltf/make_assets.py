@@ -5,8 +5,8 @@ Radiance .hdr skies. Python's standard library only (json, struct, zlib, math).
 
     bench/cycles/gltf/make_assets.py OUT_DIR [NAME ...]
 
-writes into OUT_DIR (all of them, or the NAMEs: metal, dielectric, normalmap, emissive, sky,
-sky_low, night):
+writes into OUT_DIR (all of them, or the NAMEs: metal, dielectric, normalmap, normaltilt,
+emissive, sky, sky_low, sky_low_nosun, night):
 
   metal.gltf       a UV sphere (64 x 32 segments), metallic 1, roughness 0.3, base colour from
                    a texture of coloured metal stripes (gold, copper, silver, blue, green)
@@ -15,11 +15,14 @@ sky_low, night):
   normalmap.gltf   a 4 x 4 m plane (20 x 20 quads) with a tangent-space normal map of bumps and
                    grooves (at most 31 degrees steep), TANGENT given (+x, w = +1: the frame its UV mapping implies),
                    white-grey, roughness 0.5, metallic 0
+  normaltilt.gltf  four patches in a row: flat; a constant normal map tilting it 31 degrees
+                   towards the low sun; the same tilted away; a patch really tilted towards it
   emissive.gltf    a sphere emitting a striped texture (KHR_materials_emissive_strength 4) over
                    a diffuse grey floor
   sky.hdr          sky gradient, brown ground, a sun 2.5 degrees in radius 40 degrees up,
                    behind the cameras' left shoulder
   sky_low.hdr      the same with the sun 8 degrees above the horizon (grazing light)
+  sky_low_nosun.hdr  sky_low without its sun (to measure the sun's share on normaltilt)
   night.hdr        the sky without sun at 2% (so that the emissive sphere lights the floor)
 
 Every glTF file is +y up, metres, counter-clockwise front faces, as glTF defines; textures
@@ -414,12 +417,45 @@ def emissive(out):
     g.write(out)
 
 
+def normaltilt(out):
+    """(3b) Four 1 x 1 m patches in a row along x, grey 0.8, roughness 0.5, to take the normal
+    map apart: flat; flat with a constant normal map tilted 31 degrees towards -x (towards
+    sky_low's sun, whose direction is (-0.866, 0.139, -0.5)); the same tilted towards +x (away
+    from it); and a patch really tilted 31 degrees towards -x (turned about its z axis), without
+    a map: what the mapped patch imitates."""
+    g = Gltf("normaltilt")
+    a = math.radians(31)
+    c, s = math.cos(a), math.sin(a)
+    for k, (name, n) in enumerate((("flat", None), ("mapped_left", (-s, 0.0, c)),
+                                    ("mapped_right", (s, 0.0, c)), ("tilted_left", None))):
+        mat = {"name": name, "pbrMetallicRoughness": {
+            "baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0,
+            "roughnessFactor": 0.5}}
+        if n:
+            png = f"normaltilt_{name}.png"
+            texel = tuple(int(round((v * 0.5 + 0.5) * 255)) for v in n)
+            write_png(os.path.join(out, png), 4, 4, [[texel] * 4] * 4)
+            mat["normalTexture"] = {"index": g.texture(png)}
+        geom = plane(1.0, 1)
+        if name == "tilted_left":
+            def rot(v):  # about z: +y turns towards -x
+                return (v[0] * c - v[1] * s, v[0] * s + v[1] * c, v[2])
+            pos, nrm, uv, tan, idx = geom
+            geom = ([rot(p) for p in pos], [rot(v) for v in nrm], uv,
+                    [rot(t[:3]) + (t[3],) for t in tan], idx)
+        g.mesh(name, geom, g.material(mat), (k - 1.5, 0.0, 0.0))
+    g.write(out)
+
+
 # The cameras look along -z: sky's sun (azimuth 230 degrees) is behind the camera, to the left;
 # sky_low's (150 degrees) skims the plane from the back left.
 WRITERS = {
-    "metal": metal, "dielectric": dielectric, "normalmap": normalmap, "emissive": emissive,
+    "metal": metal, "dielectric": dielectric, "normalmap": normalmap,
+    "normaltilt": normaltilt, "emissive": emissive,
     "sky": lambda out: write_hdr(os.path.join(out, "sky.hdr"), *sky(40, 230)),
     "sky_low": lambda out: write_hdr(os.path.join(out, "sky_low.hdr"), *sky(8, 150)),
+    "sky_low_nosun": lambda out: write_hdr(os.path.join(out, "sky_low_nosun.hdr"),
+                                           *sky(8, 150, sun=False)),
     "night": lambda out: write_hdr(os.path.join(out, "night.hdr"),
                                    *sky(0, 0, sun=False, scale=0.02)),
 }

@@ -8,7 +8,9 @@
 # means; mean absolute luminance difference relative to the mean) and `imgdiff --blocks 16`.
 # Beside each, the noise floor: Glint against Glint with another seed at the same spp.
 # Side-by-side PNGs (Glint | Cycles | difference: red where Glint is brighter, blue where
-# darker, full at 25% of the mean luminance) go to OUT_DIR/side-ASSET.png.
+# darker, full at 25% of the mean luminance) go to OUT_DIR/side-ASSET.png. For normaltilt (four
+# patches, one 32x32 block each) it prints each patch's mean luminance in both (block_means.py),
+# and Glint's under the same sky without its sun.
 # Cycles renders are kept (OUT_DIR/cycles-ASSET-SPPspp-seed0.exr): delete them to render anew.
 #
 # Usage: bench/cycles/gltf/run.sh [OPTIONS] BUILD_DIR [OUT_DIR]
@@ -16,7 +18,7 @@
 #   OUT_DIR    default: cycles-gltf-out beside the repository
 # Options (defaults in brackets):
 #   --spp N [1024]  --cycles-spp N [SPP]  --threads N [2]
-#   --assets "LIST" [metal dielectric normalmap emissive]
+#   --assets "LIST" [metal dielectric normalmap normaltilt emissive]
 #   --docs DIR     also copy the side-by-side PNGs there as gltf-cycles-ASSET.png
 set -euo pipefail
 
@@ -27,7 +29,7 @@ usage() {
     sed -n '/^# Usage:/,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2
     exit 2
 }
-spp=1024 cycles_spp= threads=2 assets="metal dielectric normalmap emissive" docs=
+spp=1024 cycles_spp= threads=2 assets="metal dielectric normalmap normaltilt emissive" docs=
 positional=()
 while [ $# -gt 0 ]; do
     case $1 in
@@ -132,6 +134,18 @@ for a in $assets; do
         "mae_rel $(echo "$noise" | field lum mae_rel)"
     python3 "$here/side_by_side.py" "$out/side-$a.png" "$out/glint-$a.ppm" "$out/cycles-$a.ppm" \
         "$out/diff-$a.ppm"
+    if [ "$a" = normaltilt ]; then
+        sed 's/sky_low\.hdr/sky_low_nosun.hdr/' "$out/assets/normaltilt.test" \
+            >"$out/assets/normaltilt_nosun.test"
+        glint_render normaltilt_nosun 0 "$out/glint-normaltilt_nosun-${spp}spp-seed0.exr" >/dev/null
+        echo "  patches (flat; mapped towards the sun; mapped away; tilted towards it), mean"
+        echo "  luminance of each block's central 16x16, Glint (a) and Cycles (b):"
+        blender -b --factory-startup --python "$here/block_means.py" -- "$g" "$c" 32 2>&1 |
+            grep '^BLOCK' | sed 's/^/    /'
+        echo "  Glint with the sun (a) and without it (b):"
+        blender -b --factory-startup --python "$here/block_means.py" -- "$g" \
+            "$out/glint-normaltilt_nosun-${spp}spp-seed0.exr" 32 2>&1 | grep '^BLOCK' | sed 's/^/    /'
+    fi
     if [ -n "$docs" ]; then
         cp "$out/side-$a.png" "$docs/gltf-cycles-$a.png"
     fi
@@ -143,7 +157,7 @@ for a in $assets; do
 done
 
 echo
-echo "==== Summary: Glint $spp spp against Cycles $cycles_spp spp, 256x256, $threads threads ===="
+echo "==== Summary: Glint $spp spp against Cycles $cycles_spp spp, $threads threads (sizes: the scenes') ===="
 printf '%-11s %7s %7s %9s %8s %8s %9s %8s %8s %8s %8s\n' asset ssim ssim_gg mean_rel mae_rel \
     mae_gg block_rel glint_s glint_cpu cycles_s cyc_cpu
 cat "$summary"
