@@ -22,11 +22,13 @@ DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-
 # the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh,
 # Blender for the path tracer against Cycles, bench/cycles/: about 580 MB with its libraries;
 # draco and gltfpack, whose tools compress the 1M-triangle glTF for bench/mesh_stats.sh;
-# Assimp for the PLY and STL readers against it, bench/mesh_load_stats.sh).
+# Assimp for the PLY and STL readers against it, bench/mesh_load_stats.sh; python3-numpy for
+# Blender's glTF importer, bench/cycles/gltf/).
 BENCH_DIR  ?= build-bench
 BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
               libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
-              libmeshoptimizer-dev libembree-dev povray bc blender draco gltfpack libassimp-dev
+              libmeshoptimizer-dev libembree-dev povray bc blender draco gltfpack libassimp-dev \
+              python3-numpy
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 

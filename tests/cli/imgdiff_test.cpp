@@ -1,5 +1,6 @@
 // imgdiff as bench scripts use it: --blocks on float images (EXR, PFM) with known differences,
-// --max-rel verdicts and exit codes, --preview, the usage errors, and the grader's 8-bit mode.
+// --max-rel verdicts and exit codes, --ssim and --diff, --preview, the usage errors, and the
+// grader's 8-bit mode.
 
 #include <gtest/gtest.h>
 
@@ -123,6 +124,32 @@ TEST(Imgdiff, PreviewWritesAnSrgbPng) {
     EXPECT_EQ(readImage8(dir + "/dark.png", 3).at(10, 10, 0), 137);  // 0.25
 }
 
+TEST(Imgdiff, SsimOfEqualImagesIsOneAndOfDifferentOnesLess) {
+    std::string dir = imagesDir("ssim");
+    CommandResult same = runImgdiff("--ssim same.exr ref.exr --min-ssim 1", dir);
+    ASSERT_EQ(same.exitCode, 0) << same.out << same.err;
+    EXPECT_DOUBLE_EQ(valueOf(same.out, "ssim", "mean"), 1.0) << same.out;
+    EXPECT_EQ(valueOf(same.out, "ssim", "windows"), 54 * 38);
+    EXPECT_EQ(valueOf(same.out, "lum", "mae_rel"), 0.0);
+    EXPECT_TRUE(contains(same.out, "PASSED")) << same.out;
+    // One 16x16 block of the 64x48 image 2% brighter: 1/12 of the pixels.
+    CommandResult r = runImgdiff("--ssim a.exr ref.exr --min-ssim 0.999999 --diff d.png", dir);
+    EXPECT_EQ(r.exitCode, 1) << r.out << r.err;
+    EXPECT_TRUE(contains(r.out, "FAILED")) << r.out;
+    double mean = valueOf(r.out, "ssim", "mean");
+    EXPECT_LT(mean, 1.0);
+    EXPECT_GT(mean, 0.99);
+    EXPECT_NEAR(valueOf(r.out, "lum", "mean_rel"), 0.02 / 12, 1e-6) << r.out;
+    EXPECT_NEAR(valueOf(r.out, "lum", "mae_rel"), 0.02 / 12, 1e-6) << r.out;
+    // The difference picture: red (brighter) in that block, black elsewhere.
+    Image8 d = readImage8(dir + "/d.png", 3);
+    ASSERT_EQ(d.width, 64);
+    EXPECT_GT(d.at(20, 40, 0), 0);
+    EXPECT_EQ(d.at(20, 40, 2), 0);
+    EXPECT_EQ(d.at(5, 5, 0), 0);
+    EXPECT_EQ(d.at(5, 5, 2), 0);
+}
+
 TEST(Imgdiff, UsageErrorsExitTwo) {
     std::string dir = imagesDir("usage");
     for (const char* args :
@@ -130,7 +157,10 @@ TEST(Imgdiff, UsageErrorsExitTwo) {
           "--blocks 16 a.exr ref.exr --threshold 3", "--max-rel 0.1 a.exr ref.exr",
           "--blocks 16 --rgb a.exr ref.exr", "--blocks 16 --max-rel -1 a.exr ref.exr",
           "--blocks 16 --max-rel nan a.exr ref.exr", "--preview p.png a.exr ref.exr",
-          "--exposure 1 a.exr ref.exr", "--preview p.exr a.exr"}) {
+          "--exposure 1 a.exr ref.exr", "--preview p.exr a.exr", "--ssim a.exr",
+          "--ssim --blocks 16 a.exr ref.exr", "--diff d.png a.exr ref.exr",
+          "--ssim --diff-scale 2 a.exr ref.exr", "--ssim a.exr ref.exr --diff d.exr",
+          "--min-ssim 0.5 a.exr ref.exr", "--preview p.png --ssim a.exr"}) {
         CommandResult r = runImgdiff(args, dir);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.out << r.err;
         EXPECT_FALSE(r.err.empty()) << args;
@@ -150,6 +180,13 @@ TEST(Imgdiff, FloatImagesOnlyAndOfOneSize) {
     r = runImgdiff("--blocks 16 missing.exr ref.exr", dir);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_TRUE(contains(r.err, "missing.exr")) << r.err;
+    r = runImgdiff("--ssim small.exr ref.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "differ in size")) << r.err;
+    writeImage(dir + "/tiny.exr", filledFilm(10, 10, kGrey));
+    r = runImgdiff("--ssim tiny.exr tiny.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "at least 11x11")) << r.err;
 }
 
 TEST(Imgdiff, GraderModeCountsHotPixels) {

@@ -1,10 +1,13 @@
 #include "glint/io/image/image_diff.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+
+#include "glint/render/display.h"
 
 namespace glint {
 namespace {
@@ -135,6 +138,127 @@ FilmComparison compareFilms(const Film& a, const Film& reference, int block) {
         r.rmse[c] = pixels > 0 ? std::sqrt(sumSq[c] / pixels) : 0;
     }
     return r;
+}
+
+namespace {
+
+constexpr int kSsimRadius = 5;  // the 11 x 11 window
+constexpr double kSsimSigma = 1.5;
+
+/// The window's separable weights: exp(-d^2 / (2 sigma^2)) for d = -5..5, normalised so that
+/// the 2D window (their outer product) sums to 1.
+std::array<double, 2 * kSsimRadius + 1> gaussianWeights() {
+    std::array<double, 2 * kSsimRadius + 1> w{};
+    double sum = 0;
+    for (int d = -kSsimRadius; d <= kSsimRadius; ++d)
+        sum += w[static_cast<size_t>(d + kSsimRadius)] =
+            std::exp(-d * d / (2 * kSsimSigma * kSsimSigma));
+    for (double& v : w) v /= sum;
+    return w;
+}
+
+/// The weighted window sums of `v` at every position where the window fits ("valid"
+/// filtering): (width - 10) x (height - 10) values, row-major.
+std::vector<double> windowed(const std::vector<double>& v, int width, int height) {
+    const auto w = gaussianWeights();
+    const int ow = width - 2 * kSsimRadius, oh = height - 2 * kSsimRadius;
+    std::vector<double> rows(static_cast<size_t>(ow) * height), out(static_cast<size_t>(ow) * oh);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < ow; ++x) {
+            double s = 0;
+            for (int k = 0; k <= 2 * kSsimRadius; ++k)
+                s += w[static_cast<size_t>(k)] * v[static_cast<size_t>(y) * width + x + k];
+            rows[static_cast<size_t>(y) * ow + x] = s;
+        }
+    for (int y = 0; y < oh; ++y)
+        for (int x = 0; x < ow; ++x) {
+            double s = 0;
+            for (int k = 0; k <= 2 * kSsimRadius; ++k)
+                s += w[static_cast<size_t>(k)] * rows[static_cast<size_t>(y + k) * ow + x];
+            out[static_cast<size_t>(y) * ow + x] = s;
+        }
+    return out;
+}
+
+}  // namespace
+
+SsimResult ssim(const std::vector<double>& x, const std::vector<double>& y, int width, int height,
+                double dynamicRange) {
+    const int side = 2 * kSsimRadius + 1;
+    if (width < side || height < side)
+        throw std::invalid_argument("SSIM needs images of at least 11 x 11 pixels");
+    const size_t n = static_cast<size_t>(width) * static_cast<size_t>(height);
+    if (x.size() != n || y.size() != n)
+        throw std::invalid_argument("SSIM: the images are not width x height");
+    if (!(dynamicRange > 0) || !std::isfinite(dynamicRange))
+        throw std::invalid_argument("SSIM: the dynamic range must be positive");
+    std::vector<double> xx(n), yy(n), xy(n);
+    for (size_t i = 0; i < n; ++i) {
+        xx[i] = x[i] * x[i];
+        yy[i] = y[i] * y[i];
+        xy[i] = x[i] * y[i];
+    }
+    const std::vector<double> mx = windowed(x, width, height), my = windowed(y, width, height),
+                              mxx = windowed(xx, width, height), myy = windowed(yy, width, height),
+                              mxy = windowed(xy, width, height);
+    const double c1 = (0.01 * dynamicRange) * (0.01 * dynamicRange);
+    const double c2 = (0.03 * dynamicRange) * (0.03 * dynamicRange);
+    const int ow = width - 2 * kSsimRadius;
+    SsimResult r;
+    r.windows = static_cast<int>(mx.size());
+    double sum = 0;
+    for (size_t i = 0; i < mx.size(); ++i) {
+        // Weighted variances and covariance about the window's means (eqs. 15, 16): E[v^2] -
+        // mu^2. Round-off can make a variance slightly negative where the image is flat.
+        const double vx = std::max(0.0, mxx[i] - mx[i] * mx[i]);
+        const double vy = std::max(0.0, myy[i] - my[i] * my[i]);
+        const double cxy = mxy[i] - mx[i] * my[i];
+        const double s = (2 * mx[i] * my[i] + c1) * (2 * cxy + c2) /
+                         ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
+        sum += s;
+        if (s < r.lowest || std::isnan(s)) {
+            r.lowest = s;
+            r.lowestX = static_cast<int>(i % static_cast<size_t>(ow)) + kSsimRadius;
+            r.lowestY = static_cast<int>(i / static_cast<size_t>(ow)) + kSsimRadius;
+        }
+    }
+    r.mean = sum / static_cast<double>(r.windows);
+    return r;
+}
+
+std::vector<double> displayLuma(const Film& film, double exposure) {
+    const double scale = std::exp2(exposure);
+    std::vector<double> out(static_cast<size_t>(film.width()) * film.height());
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const Vec3& c = film.at(x, y);
+            out[static_cast<size_t>(y) * film.width() + x] = 0.2126 * srgbEncode(c.x * scale) +
+                                                             0.7152 * srgbEncode(c.y * scale) +
+                                                             0.0722 * srgbEncode(c.z * scale);
+        }
+    return out;
+}
+
+Film differenceImage(const Film& a, const Film& reference, double scale) {
+    const Film& b = reference;
+    if (a.width() != b.width() || a.height() != b.height())
+        throw std::invalid_argument("images differ in size");
+    if (!(scale > 0) || !std::isfinite(scale))
+        throw std::invalid_argument("the difference scale must be positive");
+    double mean = 0;
+    for (int y = 0; y < b.height(); ++y)
+        for (int x = 0; x < b.width(); ++x) mean += luminance(b.at(x, y));
+    mean /= std::max(1.0, static_cast<double>(b.width()) * b.height());
+    Film out(a.width(), a.height());
+    const double full = scale * (mean > 0 ? mean : 1);
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            double d = (luminance(a.at(x, y)) - luminance(b.at(x, y))) / full;
+            if (std::isnan(d)) d = 0;
+            d = std::clamp(d, -1.0, 1.0);
+            out.at(x, y) = d > 0 ? Vec3(d, 0.15 * d, 0) : Vec3(0, 0.3 * -d, -d);
+        }
+    return out;
 }
 
 }  // namespace glint

@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
+
+#include "glint/math/rng.h"
 
 namespace glint {
 namespace {
@@ -247,6 +251,159 @@ TEST(FilmComparison, SizesMustMatchAndBlocksBePositive) {
     EXPECT_THROW(compareFilms(a, b, 4), std::invalid_argument);
     EXPECT_THROW(compareFilms(a, a, 0), std::invalid_argument);
     EXPECT_EQ(compareFilms(a, a, 100).blocks, 1);
+}
+
+// --- SSIM ------------------------------------------------------------------------------------
+
+constexpr int kW = 48, kH = 40;
+
+/// A grey test image with structure at several scales: smooth waves plus texel noise, in
+/// [0.1, 0.9].
+std::vector<double> textured(uint64_t seed = 1) {
+    Rng rng(seed);
+    std::vector<double> v(kW * kH);
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            v[y * kW + x] =
+                0.5 + 0.2 * std::sin(x * 0.4) * std::cos(y * 0.3) + 0.2 * (rng.uniform() - 0.5);
+    return v;
+}
+
+std::vector<double> plusNoise(const std::vector<double>& v, double amplitude) {
+    Rng rng(99);
+    std::vector<double> out = v;
+    for (double& x : out) x += amplitude * (rng.uniform() - 0.5);
+    return out;
+}
+
+/// A box blur of radius r (clamped at the edges).
+std::vector<double> blurred(const std::vector<double>& v, int r) {
+    std::vector<double> out(v.size());
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            double sum = 0;
+            int n = 0;
+            for (int dy = -r; dy <= r; ++dy)
+                for (int dx = -r; dx <= r; ++dx) {
+                    int xx = std::clamp(x + dx, 0, kW - 1), yy = std::clamp(y + dy, 0, kH - 1);
+                    sum += v[yy * kW + xx];
+                    ++n;
+                }
+            out[y * kW + x] = sum / n;
+        }
+    return out;
+}
+
+TEST(Ssim, EqualImagesScoreOne) {
+    std::vector<double> x = textured();
+    SsimResult r = ssim(x, x, kW, kH);
+    EXPECT_NEAR(r.mean, 1.0, 1e-12);
+    EXPECT_NEAR(r.lowest, 1.0, 1e-12);
+    EXPECT_EQ(r.windows, (kW - 10) * (kH - 10));
+    // Flat images too: the constants keep 0 / 0 away.
+    std::vector<double> flat(kW * kH, 0.0);
+    EXPECT_DOUBLE_EQ(ssim(flat, flat, kW, kH).mean, 1.0);
+}
+
+TEST(Ssim, IsSymmetric) {
+    std::vector<double> x = textured(1), y = plusNoise(blurred(textured(1), 1), 0.1);
+    SsimResult xy = ssim(x, y, kW, kH), yx = ssim(y, x, kW, kH);
+    EXPECT_NEAR(xy.mean, yx.mean, 1e-12);
+    EXPECT_NEAR(xy.lowest, yx.lowest, 1e-12);
+    EXPECT_LT(xy.mean, 0.99);
+}
+
+TEST(Ssim, FallsAsNoiseGrows) {
+    std::vector<double> x = textured();
+    double previous = 1;
+    for (double amplitude : {0.02, 0.05, 0.1, 0.3}) {
+        double s = ssim(x, plusNoise(x, amplitude), kW, kH).mean;
+        EXPECT_LT(s, previous) << "noise amplitude " << amplitude;
+        previous = s;
+    }
+    EXPECT_LT(previous, 0.7);
+}
+
+TEST(Ssim, FallsAsBlurGrows) {
+    std::vector<double> x = textured();
+    double s1 = ssim(x, blurred(x, 1), kW, kH).mean, s2 = ssim(x, blurred(x, 2), kW, kH).mean;
+    EXPECT_LT(s1, 0.95);
+    EXPECT_LT(s2, s1);
+    // Blur keeps the local means: the luminance term stays near 1, structure is what falls.
+    EXPECT_GT(s2, 0);
+}
+
+TEST(Ssim, FlatImagesScoreTheirLuminanceTerm) {
+    // Equal variances (0) leave (2 mu_x mu_y + C1) / (mu_x^2 + mu_y^2 + C1), eq. 13.
+    std::vector<double> x(kW * kH, 0.2), y(kW * kH, 0.4);
+    const double c1 = 0.01 * 0.01;
+    const double expected = (2 * 0.2 * 0.4 + c1) / (0.2 * 0.2 + 0.4 * 0.4 + c1);
+    EXPECT_NEAR(ssim(x, y, kW, kH).mean, expected, 1e-12);
+    EXPECT_NEAR(ssim(x, y, kW, kH).lowest, expected, 1e-12);
+}
+
+TEST(Ssim, ScalesWithTheDynamicRange) {
+    // C1 and C2 grow with L^2 as means and variances do with the values: scaling both changes
+    // nothing.
+    std::vector<double> x = textured(3), y = plusNoise(x, 0.2), x255 = x, y255 = y;
+    for (double& v : x255) v *= 255;
+    for (double& v : y255) v *= 255;
+    EXPECT_NEAR(ssim(x, y, kW, kH).mean, ssim(x255, y255, kW, kH, 255).mean, 1e-9);
+    // Larger constants forgive more: the same values score higher with L = 255 than L = 1.
+    EXPECT_GT(ssim(x255, y255, kW, kH, 255).mean, ssim(x255, y255, kW, kH, 1).mean);
+}
+
+TEST(Ssim, InvertedContrastIsNegative) {
+    std::vector<double> x = textured(), y = x;
+    for (double& v : y) v = 1 - v;  // the same local means near 0.5, structure inverted
+    EXPECT_LT(ssim(x, y, kW, kH).mean, -0.5);
+}
+
+TEST(Ssim, FindsTheLowestWindow) {
+    std::vector<double> x = textured(), y = x;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) y[(20 + dy) * kW + 30 + dx] += 0.5;
+    SsimResult r = ssim(x, y, kW, kH);
+    // The windows that see the change at all are within 5 pixels of it; the lowest is close.
+    EXPECT_NEAR(r.lowestX, 30, 3);
+    EXPECT_NEAR(r.lowestY, 20, 3);
+    EXPECT_LT(r.lowest, 0.8);
+    EXPECT_GT(r.mean, r.lowest);
+}
+
+TEST(Ssim, RejectsSmallOrMismatchedImages) {
+    std::vector<double> small(10 * 40, 0.5), x = textured();
+    EXPECT_THROW(ssim(small, small, 10, 40), std::invalid_argument);
+    EXPECT_THROW(ssim(x, small, kW, kH), std::invalid_argument);
+    EXPECT_THROW(ssim(x, x, kW, kH, 0), std::invalid_argument);
+}
+
+TEST(Ssim, DisplayLumaIsTheSrgbEncodedPreview) {
+    Film f(4, 1);
+    f.at(0, 0) = Vec3(1);
+    f.at(1, 0) = Vec3(0);
+    f.at(2, 0) = Vec3(0.5, 0.5, 0.5);
+    f.at(3, 0) = Vec3(7, std::nan(""), 0);  // clamped; NaN counts as 0
+    std::vector<double> y = displayLuma(f);
+    EXPECT_DOUBLE_EQ(y[0], 1.0);
+    EXPECT_DOUBLE_EQ(y[1], 0.0);
+    EXPECT_NEAR(y[2], 0.735357, 1e-6);  // sRGB's 0.5 linear
+    EXPECT_NEAR(y[3], 0.2126, 1e-12);
+    EXPECT_NEAR(displayLuma(f, 1)[2], 1.0, 1e-12);  // 2^1 x 0.5
+}
+
+TEST(Ssim, DifferenceImageIsRedWhereBrighterBlueWhereDarker) {
+    Film b = filledFilm(3, 1, Vec3(0.5)), a = b;
+    a.at(0, 0) = Vec3(0.6);  // brighter by 0.1 = 0.2 x the mean
+    a.at(1, 0) = Vec3(0.0);  // darker by 0.5: beyond the scale, clamped
+    Film d = differenceImage(a, b, 0.4);
+    EXPECT_NEAR(d.at(0, 0).x, 0.5, 1e-9);
+    EXPECT_EQ(d.at(0, 0).z, 0.0);
+    EXPECT_NEAR(d.at(1, 0).z, 1.0, 1e-12);
+    EXPECT_EQ(d.at(1, 0).x, 0.0);
+    EXPECT_EQ(d.at(2, 0), Vec3(0));
+    EXPECT_THROW(differenceImage(a, filledFilm(2, 1, Vec3(1)), 0.4), std::invalid_argument);
+    EXPECT_THROW(differenceImage(a, b, 0), std::invalid_argument);
 }
 
 }  // namespace
