@@ -21,11 +21,14 @@
 #include "glint/core/parallel.h"
 #include "glint/core/system.h"
 #include "glint/io/course/course_loader.h"
+#include "glint/io/image/environment_io.h"
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
 #include "glint/render/integrator.h"
 #include "glint/render/progress.h"
+#include "glint/render/progressive.h"
 #include "glint/render/renderer.h"
+#include "glint/scene/studio_environment.h"
 
 namespace {
 
@@ -43,7 +46,11 @@ struct Options {
     int spp = 0;             ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;
     double exposure = 0;  ///< EV: radiance times 2^exposure before writing.
-    bool srgb = false;    ///< sRGB curve for 8-bit outputs.
+    int srgb = 0;         ///< sRGB curve for 8-bit outputs: 1 on, -1 off, 0 the scene's.
+    std::string toneMap;  ///< Empty: the scene's (PBR Neutral for models, else clamp).
+    std::string environment;  ///< Empty: the scene's; "studio", "none" or a file.
+    std::string ground;       ///< Empty: the model's (shadow); "shadow", "floor" or "none".
+    double timeBudget = 0;    ///< Seconds; 0: render a fixed number of samples.
     bool check = false;
     bool stats = false;
     bool quiet = false;
@@ -200,6 +207,16 @@ void printStats(const glint::Scene& scene, double parse, double build, const gli
                 static_cast<unsigned long long>(r.rays.nonFinite));
 }
 
+/// The environment `--environment` names: the studio's, none (a null map) or a file's.
+/// Throws RenderError if the file cannot be read.
+std::shared_ptr<const glint::EnvironmentMap> environmentNamed(const std::string& name) {
+    if (name == "studio") return glint::studioEnvironment();
+    if (name == "none") return nullptr;
+    glint::HdrImage image = glint::loadEnvironmentImage(name);
+    return std::make_shared<const glint::EnvironmentMap>(image.width, image.height,
+                                                         std::move(image.rgb));
+}
+
 int run(const Options& opt) {
     using Clock = std::chrono::steady_clock;
     const bool demo = opt.scene.empty();
@@ -220,12 +237,35 @@ int run(const Options& opt) {
     if (!opt.output.empty() && !glint::imageFormatFor(opt.output))
         return usageError("cannot write '" + opt.output + "': unknown image format (use " +
                           glint::kImageExtensions + ")");
+    // A model's look: the studio with the path tracer, the classic one with Whitted's.
+    glint::ModelLook look;
+    look.studio = opt.integrator != "whitted";
+    if (!opt.ground.empty()) {
+        look.ground = opt.ground == "shadow"  ? glint::ModelGround::Shadow
+                      : opt.ground == "floor" ? glint::ModelGround::Floor
+                                              : glint::ModelGround::None;
+        if (!look.studio && look.ground == glint::ModelGround::Shadow)
+            return usageError(
+                "--ground shadow needs the path tracer; with --integrator whitted use --ground "
+                "floor or none");
+    }
+    std::optional<std::shared_ptr<const glint::EnvironmentMap>> environment;
+    if (!opt.environment.empty()) {
+        try {
+            environment = environmentNamed(opt.environment);
+        } catch (const glint::RenderError& e) {
+            std::fprintf(stderr, "glint: error: --environment: %s\n", e.what());
+            return kExitSceneError;
+        }
+        look.environment = environment;
+    }
 
     // Parse.
     auto t0 = Clock::now();
     std::vector<glint::Diagnostic> warnings;
     std::unique_ptr<glint::Scene> scene;
     std::string modelNote;  // for a bare model: the camera, lights and floor Glint chose
+    bool framed = false;    // a model framed as a scene
     try {
         if (demo) {
             scene = glint::parseCourseScene(glint::kDemoScene, "demo.test", warnings);
@@ -235,9 +275,11 @@ int run(const Options& opt) {
             options.height = height;
             options.lenient = opt.lenient;
             options.camera = glint::CameraChoice::parse(opt.camera);
+            options.look = look;
             glint::ModelScene m = glint::loadSceneFile(opt.scene, warnings, options);
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
+            framed = m.framed;
         }
     } catch (const glint::SceneError& e) {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
@@ -253,6 +295,19 @@ int run(const Options& opt) {
     }
     if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
     if (!opt.integrator.empty()) scene->integrator = opt.integrator;
+    if (!framed) {  // a model's environment and ground were chosen when it was framed
+        if (environment) scene->environment = *environment;
+        if (!opt.ground.empty())
+            std::fprintf(stderr,
+                         "glint: warning: --ground applies to models (.obj, .gltf, .glb) only; "
+                         "'%s' is a scene: ignored\n",
+                         demo ? "demo.test" : opt.scene.c_str());
+    }
+    // How the image is shown: the scene's way (PBR Neutral and sRGB for a model), or the
+    // command line's.
+    glint::DisplayTransform display{opt.exposure, scene->display.srgb, scene->display.toneMap};
+    if (opt.srgb != 0) display.srgb = opt.srgb > 0;
+    if (!opt.toneMap.empty()) display.toneMap = *glint::toneMapNamed(opt.toneMap);
 
     // Where the image goes: -o, else the scene's output line, else <scene-stem>.png.
     std::string output = opt.output;
@@ -268,11 +323,17 @@ int run(const Options& opt) {
                      output.c_str(), glint::kImageExtensions);
         return kExitSceneError;
     }
-    // Float files hold linear radiance: the sRGB curve is for 8-bit files only.
-    if (opt.srgb && glint::isFloatFormat(*format))
+    // Float files hold linear radiance: the tone mapper and the sRGB curve are for 8-bit files
+    // only.
+    if (opt.srgb > 0 && glint::isFloatFormat(*format))
         std::fprintf(stderr,
                      "glint: warning: --srgb applies to 8-bit outputs (.png, .ppm) only; '%s' is "
                      "written linear\n",
+                     output.c_str());
+    if (!opt.toneMap.empty() && glint::isFloatFormat(*format))
+        std::fprintf(stderr,
+                     "glint: warning: --tonemap applies to 8-bit outputs (.png, .ppm) only; '%s' "
+                     "is written linear\n",
                      output.c_str());
     if (opt.check) {
         const auto& prims = scene->primitives;
@@ -314,13 +375,17 @@ int run(const Options& opt) {
     ro.seed = opt.seed;
     ro.cancel = &gStop;
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
-    glint::RenderResult result = glint::render(*scene, ro);
-    if (!opt.quiet) progress.finish({0, 0, result.seconds}, result.complete);
+    glint::RenderResult result =
+        opt.timeBudget > 0 ? glint::renderForTime(*scene, ro, {opt.timeBudget, opt.spp})
+                           : glint::render(*scene, ro);
+    if (!opt.quiet)
+        progress.finish({0, 0, result.seconds}, result.complete,
+                        opt.timeBudget > 0 && result.complete ? result.samplesPerPixel : 0);
 
     // Write.
     auto t2 = Clock::now();
     try {
-        glint::writeImage(output, result.film, {opt.exposure, opt.srgb});
+        glint::writeImage(output, result.film, display);
     } catch (const glint::RenderError& e) {
         std::fprintf(stderr, "glint: error: %s\n", e.what());
         return kExitSceneError;
@@ -332,6 +397,14 @@ int run(const Options& opt) {
                      "glint: %s: stopped early; wrote the partial image (%d of %d tiles, the rest "
                      "black) to %s\n",
                      signalName(gSignal), result.tilesDone, result.tilesTotal, output.c_str());
+        return 128 + gSignal;
+    }
+    if (result.stoppedEarly) {
+        // Also said with -q: the image is whole, but has fewer samples than there was time for.
+        std::fprintf(stderr,
+                     "glint: %s: stopped early; wrote the image of the %d passes done (%d "
+                     "samples per pixel) to %s\n",
+                     signalName(gSignal), result.passes, result.samplesPerPixel, output.c_str());
         return 128 + gSignal;
     }
     if (!opt.quiet)
@@ -348,7 +421,8 @@ int main(int argc, char** argv) {
     CLI::App app{
         "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
         "\nWithout SCENE it renders a built-in demo scene to glint.png; given a model (.obj,"
-        "\n.gltf, .glb, .ply, .stl) it adds what the model lacks of a camera, lights and a floor.",
+        "\n.gltf, .glb, .ply, .stl) it shows it as a glTF viewer does: path traced in a studio"
+        "\nenvironment, on a ground shadow, through the Khronos PBR Neutral tone mapper.",
         "glint"};
     app.get_formatter()->column_width(30);
     // One style for every usage error, whether CLI11 or Glint finds it.
@@ -391,10 +465,22 @@ int main(int argc, char** argv) {
         ->group(out)
         ->check(numberIn(-64, 64))
         ->type_name("EV");
-    app.add_flag("--srgb", opt.srgb,
-                 "Encode 8-bit outputs (.png, .ppm) with the sRGB curve, rounded (default: the "
-                 "course's clamp and floor(255 c)); float outputs stay linear")
+    app.add_flag_callback(
+           "--srgb", [&opt] { opt.srgb = 1; },
+           "Encode 8-bit outputs (.png, .ppm) with the sRGB curve, rounded (default for models; "
+           "scenes: the course's clamp and floor(255 c)); float outputs stay linear")
         ->group(out);
+    app.add_flag_callback(
+           "--no-srgb", [&opt] { opt.srgb = -1; },
+           "Encode 8-bit outputs with the course's floor(255 c), also for models")
+        ->group(out);
+    app.add_option("--tonemap", opt.toneMap,
+                   "How radiance is brought into [0, 1] for 8-bit outputs: neutral (Khronos PBR "
+                   "Neutral), clamp (the course's); default: neutral for models, clamp for "
+                   "scenes")
+        ->group(out)
+        ->check(CLI::IsMember({"neutral", "clamp"}))
+        ->type_name("NAME");
 
     const char* render = "Rendering";
     app.add_option("-t,--threads", opt.threads,
@@ -414,14 +500,16 @@ int main(int argc, char** argv) {
         ->group(render)
         ->type_name("WxH");
     app.add_option("--maxdepth", opt.maxDepth,
-                   "Maximum reflection depth, 0 to 64, overriding the scene's")
+                   "Maximum reflection depth, 0 to 64, overriding the scene's (models: 8)")
         ->group(render)
         ->check(integerIn(0, glint::kMaxDepthLimit))
         ->type_name("N");
 
     app.add_option("--integrator", opt.integrator,
                    "How light is computed, overriding the scene's 'integrator': " +
-                       glint::integratorNameList() + " (default: whitted, the course's)")
+                       glint::integratorNameList() +
+                       " (default: whitted, the course's; path for models, whitted giving "
+                       "them the classic look)")
         ->group(render)
         ->check(CLI::Validator(
             [](std::string& name) -> std::string {
@@ -433,10 +521,28 @@ int main(int argc, char** argv) {
         ->type_name("NAME");
     app.add_option("--spp", opt.spp,
                    "Camera rays per pixel, 1 to 65536: stratified, jittered, filtered "
-                   "(default: the scene's spp, else 1, the pixel centre)")
+                   "(default: the scene's spp, else 1, the pixel centre; 64 for models); with "
+                   "--time, the most")
         ->group(render)
         ->check(integerIn(1, 65536))
         ->type_name("N");
+    app.add_option("--time", opt.timeBudget,
+                   "Render in passes until SECONDS are spent, 0.01 to 1e6, then average them "
+                   "(default: a fixed --spp)")
+        ->group(render)
+        ->check(numberIn(0.01, 1e6))
+        ->type_name("SECONDS");
+    app.add_option("--environment", opt.environment,
+                   "Surroundings and light: an .hdr or .exr map, 'studio' (Glint's), or 'none' "
+                   "(default: the scene's; studio for models)")
+        ->group(render)
+        ->type_name("FILE");
+    app.add_option("--ground", opt.ground,
+                   "What a model stands on: shadow (a shadow catcher), floor (grey matte), none "
+                   "(default: shadow; floor with --integrator whitted)")
+        ->group(render)
+        ->check(CLI::IsMember({"shadow", "floor", "none"}))
+        ->type_name("NAME");
     app.add_option("--seed", opt.seed,
                    "Seed of every random choice: sub-pixel jitter, lens, area lights, "
                    "glossy rays (default 0)")

@@ -28,9 +28,16 @@ std::string dirWith(const std::string& name, std::initializer_list<const char*> 
 
 TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     std::string dir = dirWith("gltf-scene", {"scene.glb"});
-    CommandResult r = runGlint("scene.glb", dir);
+    CommandResult r = runGlint("scene.glb --spp 1", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_FALSE(contains(r.err, "has no")) << r.err;  // nothing was assumed
+    EXPECT_FALSE(contains(r.err, "has no")) << r.err;  // nothing was missing ...
+    // ... and the studio environment and a ground shadow were added to what it has.
+    EXPECT_TRUE(contains(r.err,
+                         "glint: showing scene.glb in the studio environment with a ground shadow "
+                         "at y = "))
+        << r.err;
+    EXPECT_TRUE(contains(r.err, "(and its camera 0 ")) << r.err;
+    EXPECT_TRUE(contains(r.err, " and 2 lights of its own)")) << r.err;
     EXPECT_TRUE(contains(r.err, "glint: wrote scene.png (640x360)")) << r.err;
     Image8 img = readImage8(dir + "/scene.png", 3);
     EXPECT_EQ(img.height, 360);
@@ -38,20 +45,29 @@ TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.out,
               "scene.glb: ok: 100x50, 530 triangles, 0 spheres, 2 mesh instances, 2 lights, "
-              "maxdepth 5, output scene.png\n");
+              "maxdepth 8, output scene.png\n");
+    // The classic look: the file's camera and lights alone, nothing said.
+    r = runGlint("scene.glb --integrator whitted --size 64x36", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(contains(r.err, "showing")) << r.err;
 }
 
 TEST(CliGltf, ABareModelIsFramedAndSaysSo) {
     std::string dir = dirWith("gltf-bare", {"quad.gltf", "quad.bin", "quadrants.png"});
-    CommandResult r = runGlint("quad.gltf --size 80x60", dir);
+    CommandResult r = runGlint("quad.gltf --size 80x60 --spp 4", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: quad.gltf has no camera: framing it with a camera at ("))
+        << r.err;
+    EXPECT_TRUE(contains(r.err, "and showing it in the studio environment with a ground shadow"))
+        << r.err;
+    EXPECT_TRUE(fs::exists(dir + "/quad.png"));
+    r = runGlint("-q quad.gltf --size 80x60 --spp 4 -o q.png", dir);
+    EXPECT_EQ(r.err, "");
+    r = runGlint("quad.gltf --size 80x60 --integrator whitted -o c.png", dir);
     EXPECT_TRUE(
         contains(r.err, "glint: quad.gltf has no camera or lights: framing it with a camera at ("))
         << r.err;
     EXPECT_TRUE(contains(r.err, "a key and a fill directional light")) << r.err;
-    EXPECT_TRUE(fs::exists(dir + "/quad.png"));
-    r = runGlint("-q quad.gltf --size 80x60 -o q.png", dir);
-    EXPECT_EQ(r.err, "");
 }
 
 TEST(CliGltf, BadFilesAreErrorsNamingTheFile) {

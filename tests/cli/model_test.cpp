@@ -36,35 +36,54 @@ int pixelsNear(const Image8& img, int r, int g, int b, int tolerance = 40) {
 
 TEST(CliModel, ABareObjIsFramedAndRenderedToItsStemPng) {
     std::string dir = dirWith("model", {"flat.obj"});
-    CommandResult r = runGlint("flat.obj --size 80x60", dir);
+    CommandResult r = runGlint("flat.obj --size 80x60 --spp 4", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(contains(r.err,
-                         "glint: flat.obj has no camera or lights: framing it with a "
-                         "camera at ("))
+    EXPECT_TRUE(contains(r.err, "glint: flat.obj has no camera: framing it with a camera at ("))
         << r.err;
-    EXPECT_TRUE(contains(r.err, "a key and a fill directional light")) << r.err;
+    EXPECT_TRUE(contains(r.err, "showing it in the studio environment with a ground shadow at y"))
+        << r.err;
     EXPECT_TRUE(contains(r.err, "glint: wrote flat.png (80x60)")) << r.err;
     Image8 img = readImage8(dir + "/flat.png", 3);
     EXPECT_EQ(img.width, 80);
     EXPECT_EQ(img.height, 60);
-    // The model is in the middle of the picture: its pixel there is not the floor's.
+    // The model is in the middle of the picture: its pixel there is not the ground's.
     EXPECT_NE(img.at(40, 30, 0), img.at(2, 58, 0));
 }
 
 TEST(CliModel, TheTexturedModelShowsItsTexels) {
     std::string dir = dirWith("textured", {"textured.obj", "textured.mtl", "quadrants.png"});
-    CommandResult r = runGlint("-q textured.obj --size 96x72 -o out.png", dir);
+    CommandResult r =
+        runGlint("-q textured.obj --size 96x72 -o out.png --integrator whitted", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err, "");  // -q: not even the framing note
     Image8 img = readImage8(dir + "/out.png", 3);
-    // Each quadrant of the square shows its texel's colour: the square faces +z, so the key
-    // and fill lights give it 0.75 x 0.537 + 0.3 x 0.512 = 0.556 of the texel, plus the MTL
-    // ambient 0.1 (0.2 x Kd x the texture's mean): 0.656 -> 167 for a full channel, 25 for
-    // an empty one.
+    // The classic look. Each quadrant of the square shows its texel's colour: the square faces
+    // +z, so the key and fill lights give it 0.75 x 0.537 + 0.3 x 0.512 = 0.556 of the texel,
+    // plus the MTL ambient 0.1 (0.2 x Kd x the texture's mean): 0.656 -> 167 for a full
+    // channel, 25 for an empty one.
     EXPECT_GT(pixelsNear(img, 167, 25, 25, 6), 20);
     EXPECT_GT(pixelsNear(img, 25, 167, 25, 6), 20);
     EXPECT_GT(pixelsNear(img, 25, 25, 167, 6), 20);
     EXPECT_GT(pixelsNear(img, 167, 167, 167, 6), 20);
+    // In the studio the quadrants keep their colours: saturated red, green and blue, and a
+    // white brighter than the grey around the square.
+    r = runGlint("-q textured.obj --size 96x72 --spp 16 -o studio.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    img = readImage8(dir + "/studio.png", 3);
+    auto dominant = [&](int c) {
+        int n = 0;
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x) {
+                int v = img.at(x, y, c), o1 = img.at(x, y, (c + 1) % 3),
+                    o2 = img.at(x, y, (c + 2) % 3);
+                n += v > 150 && o1 < 90 && o2 < 90;
+            }
+        return n;
+    };
+    EXPECT_GT(dominant(0), 20);
+    EXPECT_GT(dominant(1), 20);
+    EXPECT_GT(dominant(2), 20);
+    EXPECT_GT(pixelsNear(img, 245, 245, 245, 10), 20);
 }
 
 TEST(CliModel, ExtensionIsCaseInsensitiveAndCheckSummarises) {
@@ -72,6 +91,11 @@ TEST(CliModel, ExtensionIsCaseInsensitiveAndCheckSummarises) {
     fs::copy_file(kMeshes + "quad.obj", dir + "/QUAD.OBJ");
     CommandResult r = runGlint("QUAD.OBJ --check", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
+    // The studio: no plane and no light of Glint's (the environment lights it), maxdepth 8.
+    EXPECT_EQ(r.out,
+              "QUAD.OBJ: ok: 640x480, 2 triangles, 0 spheres, 0 lights, maxdepth 8, output "
+              "QUAD.png\n");
+    r = runGlint("QUAD.OBJ --check --integrator whitted", dir);
     EXPECT_EQ(r.out,
               "QUAD.OBJ: ok: 640x480, 2 triangles, 0 spheres, 1 plane, 2 lights, maxdepth 5, "
               "output QUAD.png\n");
@@ -79,7 +103,7 @@ TEST(CliModel, ExtensionIsCaseInsensitiveAndCheckSummarises) {
 
 TEST(CliModel, AMissingMaterialLibraryIsAWarningAndTheModelRenders) {
     std::string dir = dirWith("nomtl", {"missing-mtl.obj"});
-    CommandResult r = runGlint("-q missing-mtl.obj --size 40x30", dir);
+    CommandResult r = runGlint("-q missing-mtl.obj --size 40x30 --spp 4", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err,
               "missing-mtl.obj:1:8: warning: cannot read material library 'nowhere.mtl' "
@@ -102,7 +126,7 @@ TEST(CliModel, BrokenModelsAreErrorsNamingTheFileAndLine) {
 
 TEST(CliModel, AMissingTextureIsAWarningAndTheRenderGoesOn) {
     std::string dir = dirWith("notexture", {"missing-texture.obj", "missing-texture.mtl"});
-    CommandResult r = runGlint("missing-texture.obj --size 40x30", dir);
+    CommandResult r = runGlint("missing-texture.obj --size 40x30 --spp 4", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(contains(r.err,
                          "missing-texture.mtl:1:1: warning: material 'painted': cannot "

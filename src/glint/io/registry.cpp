@@ -101,17 +101,17 @@ Model loadModelAs(const FileFormat& format, const std::string& path,
 }
 
 Model loadPlyModel(const std::string& path, std::vector<Diagnostic>& warnings,
-                   const LoadLimits& limits) {
-    PlyOptions options;
-    options.limits = limits;
-    return singleMeshModel(loadPly(path, warnings, options));
+                   const LoadOptions& options) {
+    PlyOptions ply;
+    ply.limits = options.limits;
+    return singleMeshModel(loadPly(path, warnings, ply));
 }
 
 Model loadStlModel(const std::string& path, std::vector<Diagnostic>& warnings,
-                   const LoadLimits& limits) {
-    StlOptions options;
-    options.limits = limits;
-    return singleMeshModel(loadStl(path, warnings, options));
+                   const LoadOptions& options) {
+    StlOptions stl;
+    stl.limits = options.limits;
+    return singleMeshModel(loadStl(path, warnings, stl));
 }
 
 /// Whether `head` is not text: it has a NUL byte, or control characters other than blanks in
@@ -242,9 +242,9 @@ Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
 }
 
 ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width,
-                          int height, const LoadLimits& limits) {
+                          int height, const LoadLimits& limits, const ModelLook& look) {
     // The model is freed once placed, before the scene's BVH is built.
-    return frameModelScene(loadModel(path, warnings, limits), width, height);
+    return frameModelScene(loadModel(path, warnings, limits), width, height, look);
 }
 
 ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warnings,
@@ -262,7 +262,7 @@ ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warni
         return out;
     }
     return frameModelScene(loadModelAs(*choice.format, path, warnings, options), options.width,
-                           options.height);
+                           options.height, options.look);
 }
 
 }  // namespace glint

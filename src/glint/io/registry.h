@@ -39,6 +39,8 @@ struct LoadOptions {
     /// Which of a model file's cameras to use (`--camera`). A choice other than the default is
     /// an error for a scene file, and naming a camera is one for a model without cameras.
     CameraChoice camera;
+    /// How a model is shown (frameModelScene): the studio look unless asked otherwise.
+    ModelLook look;
 };
 
 /// A file format Glint knows, whether it reads it or not.
@@ -89,9 +91,11 @@ FormatChoice chooseFormat(const std::string& path, FileUse use, std::vector<Diag
 Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
                 const LoadLimits& limits = {});
 
-/// Reads the model at `path` and frames it for a `width` x `height` image (frameModelScene).
+/// Reads the model at `path` and frames it for a `width` x `height` image in `look`
+/// (frameModelScene).
 ModelScene loadModelScene(const std::string& path, std::vector<Diagnostic>& warnings, int width = 0,
-                          int height = 0, const LoadLimits& limits = {});
+                          int height = 0, const LoadLimits& limits = {},
+                          const ModelLook& look = {});
 
 /// What `glint FILE` renders: the scene of a scene file, or a model framed as one (its note
 /// says what was assumed; empty for a scene file). Not yet prepared (Scene::prepare). Throws

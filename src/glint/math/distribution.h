@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "glint/math/sampling.h"
@@ -37,6 +38,11 @@ class Distribution1D {
         }
         for (double& c : cdf_) c /= total_;
         if (n) cdf_[n] = 1;
+        // The guide: for each of n buckets [k / n, (k + 1) / n) of u, where its search starts.
+        guide_.resize(n ? n + 1 : 0);
+        for (size_t k = 0; k < guide_.size(); ++k)
+            guide_[k] = static_cast<uint32_t>(
+                lastAtMost(static_cast<double>(k) / static_cast<double>(n), 0, cdf_.size()));
     }
 
     size_t size() const { return weights_.size(); }
@@ -80,17 +86,42 @@ class Distribution1D {
     static constexpr double kOneMinus = 0x1.fffffffffffffp-1;
     /// The cell i with cdf_[i] <= u < cdf_[i + 1] and a positive weight.
     size_t find(double u) const {
-        auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-        size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0));
-        i = std::min(i, size() - 1);
+        // The last i with !(u < cdf_[i]), as std::upper_bound's result less one. The guide
+        // narrows the search to a few cells around u's bucket (u's bucket k is within one of
+        // floor(u n), whatever the rounding; cells at most guide_[k + 2] have cdf at most u):
+        // the same cell as a search of the whole table, found in constant expected time.
+        size_t i;
+        const size_t n = size();
+        if (u >= 0 && u < 1 && !guide_.empty()) {
+            size_t k = std::min(static_cast<size_t>(u * static_cast<double>(n)), n - 1);
+            size_t lo = guide_[k == 0 ? 0 : k - 1], hi = guide_[std::min(k + 2, n)];
+            i = lastAtMost(u, lo, hi + 1);
+        } else {
+            i = lastAtMost(u, 0, cdf_.size());
+        }
+        i = std::min(i, n - 1);
         // Cells of zero weight have zero width; u == cdf_[i] may land on one: step forward.
         while (i + 1 < size() && !(weights_[i] > 0)) ++i;
         while (i > 0 && !(weights_[i] > 0)) --i;
         return i;
     }
 
+    /// The last i in [first, last) with !(u < cdf_[i]), or `first` if there is none, found
+    /// without branches: the samples' u are random, and mispredicted branches would cost more
+    /// than the search.
+    size_t lastAtMost(double u, size_t first, size_t last) const {
+        const double* base = cdf_.data() + first;
+        for (size_t len = last - first; len > 1;) {
+            size_t half = len / 2;
+            base = u < base[half] ? base : base + half;
+            len -= half;
+        }
+        return static_cast<size_t>(base - cdf_.data());
+    }
+
     std::vector<double> weights_;
     std::vector<double> cdf_;
+    std::vector<uint32_t> guide_;  ///< n + 1 entries: guide_[k] = lastAtMost(k / n).
     double total_ = 0;
 };
 

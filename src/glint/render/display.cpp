@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "glint/render/tonemap.h"
+
 namespace glint {
 
 double srgbEncode(double linear) {
@@ -20,7 +22,20 @@ Image8 toImage8(const Film& film, const DisplayTransform& display) {
     if (display.isIdentity()) return toImage8(film);
     const double scale = display.scale();
     auto byte = display.srgb ? toByteSrgb : toByte;
-    return toImage8With(film, [&](double c) { return byte(scale * c); });
+    if (display.toneMap == ToneMap::Clamp)  // both byte conversions clamp
+        return toImage8With(film, [&](double c) { return byte(scale * c); });
+    // PBR Neutral maps whole pixels, not channels one by one.
+    Image8 img{film.width(), film.height(), 3, {}};
+    img.data.resize(static_cast<size_t>(img.width) * img.height * 3);
+    size_t i = 0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const Vec3 c = toneMap(display.toneMap, film.at(x, y) * scale);
+            img.data[i++] = byte(c.x);
+            img.data[i++] = byte(c.y);
+            img.data[i++] = byte(c.z);
+        }
+    return img;
 }
 
 }  // namespace glint

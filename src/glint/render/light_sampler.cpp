@@ -166,6 +166,17 @@ double LightSampler::pdfHit(const Vec3& from, const Hit& hit, const SurfaceInter
     return power_.probability(index) * pdfArea * d2 / cosLight;
 }
 
+Vec3 LightSampler::environment(const Vec3& dir, double* pdf) const {
+    if (!scene_.environment) {
+        *pdf = pdfEnvironment(dir);
+        return scene_.background.eval(dir);
+    }
+    const EnvironmentMap& map = *scene_.environment;
+    const Point2 st = map.imageCoordinates(dir);
+    *pdf = environment_ == UINT32_MAX ? 0 : power_.probability(environment_) * map.pdfAt(st);
+    return map.evalAt(st);
+}
+
 double LightSampler::pdfEnvironment(const Vec3& dir) const {
     if (environment_ == UINT32_MAX) return 0;
     double pdf = scene_.environment ? scene_.environment->pdf(dir) : 1 / (4 * kPi);

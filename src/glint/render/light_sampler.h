@@ -55,6 +55,9 @@ class LightSampler {
     /// Radiance of the environment (the map, else the background) arriving from direction `dir`.
     Vec3 environment(const Vec3& dir) const { return scene_.backgroundRadiance(dir); }
 
+    /// environment(dir) and pdfEnvironment(dir) together, the map looked up once.
+    Vec3 environment(const Vec3& dir, double* pdf) const;
+
   private:
     enum class Kind : uint8_t { Point, Directional, Triangle, Sphere, Shape, Environment };
     struct Entry {

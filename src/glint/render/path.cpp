@@ -37,6 +37,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
     : scene_(scene), lights_(scene), strategy_(strategy) {
     bsdfs_.reserve(scene.materials.size());
     for (const Material& m : scene.materials) bsdfs_.push_back(bsdfFromMaterial(m));
+    if (scene.shadowCatcher) catcher_.emplace(scene);
 }
 
 double PathIntegrator::bsdfWeight(double bsdfPdf, double lightPdf) const {
@@ -63,12 +64,24 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     if (found) hit = *cameraHit;
 
     for (int depth = 0;; ++depth) {
+        // A shadow catcher is seen by camera rays and their specular continuations only.
+        if (catcher_ && (depth == 0 || specularBounce)) [[unlikely]] {
+            std::optional<double> t = catcher_->intersect(ray);
+            if (t && (!found || *t < hit.t)) {
+                const Point2 uEnvironment = sampler.get2D();
+                const double uLight = sampler.get2D().x;
+                L += beta * catcher_->radiance(ray.origin + ray.dir * *t, normalize(ray.dir),
+                                               uEnvironment, uLight, ctx.counts);
+                break;
+            }
+        }
         if (!found) {
-            Vec3 le = lights_.environment(ray.dir);
+            double lightPdf = 0;
+            Vec3 le = lights_.environment(ray.dir, &lightPdf);
             if (depth == 0 || specularBounce)
                 L += beta * le;
             else if (!(le == Vec3(0)))
-                L += beta * le * bsdfWeight(bsdfPdf, lights_.pdfEnvironment(ray.dir));
+                L += beta * le * bsdfWeight(bsdfPdf, lightPdf);
             break;
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);

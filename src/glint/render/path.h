@@ -5,13 +5,16 @@
 /// course's, made physical by bsdfFromMaterial (render/bsdf.h); the course's ambient term is
 /// not used (the indirect light it stands for is computed), and `emission` makes a surface a
 /// light. The path length is the scene's `maxdepth`: the number of scattering events, so 1 is
-/// direct lighting only (pbrt's convention; the default is the course's 5).
+/// direct lighting only (pbrt's convention; the default is the course's 5). A shadow catcher
+/// (Scene::shadowCatcher) ends the camera paths that meet it (render/shadow_catcher.h).
 
+#include <optional>
 #include <vector>
 
 #include "glint/render/bsdf.h"
 #include "glint/render/integrator.h"
 #include "glint/render/light_sampler.h"
+#include "glint/render/shadow_catcher.h"
 
 namespace glint {
 
@@ -36,6 +39,7 @@ class PathIntegrator final : public Integrator {
     LightSampler lights_;
     Strategy strategy_;
     std::vector<Bsdf> bsdfs_;  ///< Of each material (textured ones: with the untextured colour).
+    std::optional<ShadowCatcherShading> catcher_;  ///< The scene's shadow catcher, if any.
 };
 
 }  // namespace glint

@@ -35,9 +35,13 @@ void ProgressReporter::update(const RenderProgress& p) {
     }
 }
 
-void ProgressReporter::finish(const RenderProgress& p, bool complete) {
+void ProgressReporter::finish(const RenderProgress& p, bool complete, int samplesPerPixel) {
     if (terminal_) std::fprintf(out_, "\r\x1b[K");
-    std::fprintf(out_, "glint: %s in %s\n", complete ? "rendered" : "stopped",
+    char samples[64] = "";
+    if (samplesPerPixel > 0)
+        std::snprintf(samples, sizeof samples, " %d sample%s per pixel", samplesPerPixel,
+                      samplesPerPixel == 1 ? "" : "s");
+    std::fprintf(out_, "glint: %s%s in %s\n", complete ? "rendered" : "stopped", samples,
                  formatSeconds(p.seconds).c_str());
     std::fflush(out_);
 }

@@ -16,8 +16,10 @@ class ProgressReporter {
         : out_(out), terminal_(terminal), logInterval_(logInterval) {}
 
     void update(const RenderProgress& p);
-    /// Ends the bar and prints the total time.
-    void finish(const RenderProgress& p, bool complete);
+    /// Ends the bar and prints the total time ("glint: rendered in 0.9 s"), and the samples
+    /// per pixel when `samplesPerPixel` > 0 (a render to a time budget: "glint: rendered 96
+    /// samples per pixel in 10.0 s").
+    void finish(const RenderProgress& p, bool complete, int samplesPerPixel = 0);
 
   private:
     std::FILE* out_;

@@ -153,6 +153,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     result.seconds = elapsed();
     result.tilesDone = tilesDone.load();
     result.tilesTotal = tilesTotal;
+    result.samplesPerPixel = sampler.samplesPerPixel();
     result.complete = result.tilesDone == tilesTotal;
     if (options.onProgress) options.onProgress({tilesDone.load(), tilesTotal, result.seconds});
     return result;

@@ -14,7 +14,13 @@ namespace glint {
 struct RenderProgress {
     int tilesDone = 0, tilesTotal = 0;
     double seconds = 0;  ///< Since the render started.
-    double fraction() const { return tilesTotal ? double(tilesDone) / tilesTotal : 1.0; }
+    /// The share of the whole job done, when the job is more than one pass over the tiles (a
+    /// render to a time budget, render/progressive.h); negative: tilesDone / tilesTotal.
+    double overall = -1;
+    double fraction() const {
+        if (overall >= 0) return overall;
+        return tilesTotal ? double(tilesDone) / tilesTotal : 1.0;
+    }
 };
 
 class ThreadPool;
@@ -40,6 +46,12 @@ struct RenderResult {
     double seconds = 0;
     bool complete = true;  ///< False if cancelled before every tile was rendered.
     int tilesDone = 0, tilesTotal = 0;
+    /// Camera samples per pixel in the image, and the passes they were rendered in (more than
+    /// one only for a render to a time budget, render/progressive.h).
+    int samplesPerPixel = 0, passes = 1;
+    /// A render to a time budget that was cancelled: the image is whole (every pass in it was
+    /// finished) but has fewer samples than there was time for.
+    bool stoppedEarly = false;
 };
 
 /// Renders `scene` (prepared, with a camera) at its width and height with the integrator it

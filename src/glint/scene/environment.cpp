@@ -144,8 +144,9 @@ Vec3 EnvironmentMap::direction(Point2 st) const {
     return {sinTheta * std::cos(phi), std::cos(theta), sinTheta * std::sin(phi)};
 }
 
-Vec3 EnvironmentMap::eval(const Vec3& dir) const {
-    Point2 st = imageCoordinates(dir);
+Vec3 EnvironmentMap::eval(const Vec3& dir) const { return evalAt(imageCoordinates(dir)); }
+
+Vec3 EnvironmentMap::evalAt(Point2 st) const {
     // Texel centres sit at (x + 1/2) / width and (y + 1/2) / height.
     double fx = st.x * width_ - 0.5, fy = st.y * height_ - 0.5;
     double x0f = std::floor(fx), y0f = std::floor(fy);
@@ -161,9 +162,10 @@ Vec3 EnvironmentMap::eval(const Vec3& dir) const {
     return finiteRadiance((top * (1 - ay) + bottom * ay) * scale_);
 }
 
-double EnvironmentMap::pdf(const Vec3& dir) const {
+double EnvironmentMap::pdf(const Vec3& dir) const { return pdfAt(imageCoordinates(dir)); }
+
+double EnvironmentMap::pdfAt(Point2 st) const {
     // Constant over each texel's cell: its probability over its solid angle, 2 pi / w x band.
-    Point2 st = imageCoordinates(dir);
     size_t row = std::min(static_cast<size_t>(st.y * height_), static_cast<size_t>(height_ - 1));
     return distribution_.density(st) / (2 * kPi * height_ * bands_[row]);
 }
@@ -192,9 +194,10 @@ std::optional<EnvironmentMap::Sample> EnvironmentMap::sample(Point2 u) const {
     Vec3 wi(sinTheta * std::cos(phi), cosTheta, sinTheta * std::sin(phi));
     // The density and radiance recomputed from wi, so that they agree with pdf() and eval()
     // to the bit, even where rounding moves wi across a texel's edge.
-    double p = pdf(wi);
+    const Point2 st2 = imageCoordinates(wi);
+    double p = pdfAt(st2);
     if (!(p > 0)) return std::nullopt;
-    return Sample{wi, eval(wi), p};
+    return Sample{wi, evalAt(st2), p};
 }
 
 double EnvironmentMap::power(double sceneRadius) const {

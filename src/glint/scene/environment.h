@@ -104,7 +104,14 @@ class EnvironmentMap {
         return {p[0], p[1], p[2]};
     }
 
+    /// eval() and pdf() at image coordinates (s, t) (as imageCoordinates() gives them, the
+    /// rotation included): what they return for a direction that looks there, without the
+    /// trigonometry of finding where it looks.
+    Vec3 evalAt(Point2 st) const;
+    double pdfAt(Point2 st) const;
+
   private:
+
     int width_, height_;
     std::vector<float> rgb_;
     double scale_, rotationDegrees_;

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "glint/scene/scene_builder.h"
+#include "glint/scene/studio_environment.h"
 
 namespace glint {
 namespace {
@@ -20,6 +21,12 @@ std::string format(const Vec3& v) {
     return buf;
 }
 
+std::string format(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g", v);
+    return buf;
+}
+
 Light directional(const Vec3& towards, double intensity) {
     Light l;
     l.kind = Light::Kind::Directional;
@@ -28,52 +35,95 @@ Light directional(const Vec3& towards, double intensity) {
     return l;
 }
 
+/// The model's bounds, centre and bounding-sphere radius. Throws if it has no geometry.
+struct Extent {
+    Vec3 lo, hi, center;
+    double radius;
+    /// Where the ground goes: a thousandth of the model's size under its lowest point, so that
+    /// a flat bottom does not coincide with it.
+    double groundY() const { return lo.y - 1e-3 * radius; }
+};
+
+Extent extentOf(const Scene& scene, const std::string& name) {
+    Bounds3f b = scene.primitives.bounds();
+    if (b.empty()) throw SceneError({name, 0, 0}, "the model has no faces of non-zero area");
+    Extent e{Vec3(b.lo), Vec3(b.hi), {}, 0};
+    e.center = (e.lo + e.hi) * 0.5;
+    e.radius = 0.5 * length(e.hi - e.lo);
+    if (!(e.radius > 0)) e.radius = 1;
+    return e;
+}
+
+/// Glint's camera for the model: on the +z/+y diagonal, the bounding sphere filling at most
+/// kFill of the narrower field of view. Returns its description for the note.
+std::string placeCamera(Scene& scene, const Extent& e) {
+    // The sphere fits when the camera is radius / sin(half angle) away, for the narrower
+    // of the vertical and horizontal fields of view.
+    double halfV = kFovyDegrees * std::numbers::pi / 360;
+    double halfH = std::atan(std::tan(halfV) * scene.width / scene.height);
+    double half = std::min(halfV, halfH);
+    double distance = e.radius / (kFill * std::sin(half));
+    Vec3 eye = e.center + normalize(Vec3{0, 0.5, 1}) * distance;
+    scene.camera = CameraSpec{eye, e.center, {0, 1, 0}, kFovyDegrees};
+    return "a camera at " + format(eye) + " looking at " + format(e.center) + " (fovy 40)";
+}
+
+/// An infinite grey matte floor at the ground's height. Returns its description.
+std::string placeFloor(Scene& scene, const Extent& e) {
+    Material grey;
+    grey.diffuse = Vec3(0.55);
+    grey.ambient = grey.diffuse * kMtlAmbientLight;
+    double y = e.groundY();
+    if (auto plane = Plane::make({e.center.x, y, e.center.z}, {0, 1, 0}, Transform()))
+        scene.primitives.addPlane(*plane, scene.addMaterial(grey));
+    return "a grey floor at y = " + format(y);
+}
+
+void addKeyAndFill(Scene& scene) {
+    // A key light from the upper left and a dimmer fill from the right.
+    scene.lights.push_back(directional({-1, 1.6, 1.2}, 0.75));
+    scene.lights.push_back(directional({1.2, 0.6, 0.8}, 0.3));
+}
+
 }  // namespace
 
 std::string frameModel(Scene& scene, const std::string& name, Framing framing) {
-    Bounds3f b = scene.primitives.bounds();
-    if (b.empty()) throw SceneError({name, 0, 0}, "the model has no faces of non-zero area");
-    Vec3 lo(b.lo), hi(b.hi);
-    Vec3 center = (lo + hi) * 0.5;
-    double radius = 0.5 * length(hi - lo);
-    if (!(radius > 0)) radius = 1;
-
+    const Extent e = extentOf(scene, name);
     std::string camera, lights, floor;
     if (framing.camera) {
-        // The sphere fits when the camera is radius / sin(half angle) away, for the narrower
-        // of the vertical and horizontal fields of view.
-        double halfV = kFovyDegrees * std::numbers::pi / 360;
-        double halfH = std::atan(std::tan(halfV) * scene.width / scene.height);
-        double half = std::min(halfV, halfH);
-        double distance = radius / (kFill * std::sin(half));
-        Vec3 eye = center + normalize(Vec3{0, 0.5, 1}) * distance;
-        scene.camera = CameraSpec{eye, center, {0, 1, 0}, kFovyDegrees};
-        camera = "a camera at " + format(eye) + " looking at " + format(center) + " (fovy 40)";
+        camera = placeCamera(scene, e);
         scene.background = Background{{1, 1, 1}, {0.45, 0.65, 0.95}};
-
-        // The floor, a thousandth of the model's size under its lowest point, so that a flat
-        // bottom does not coincide with it.
-        double floorY = lo.y - 1e-3 * radius;
-        Material grey;
-        grey.diffuse = Vec3(0.55);
-        grey.ambient = grey.diffuse * kMtlAmbientLight;
-        if (auto plane = Plane::make({center.x, floorY, center.z}, {0, 1, 0}, Transform()))
-            scene.primitives.addPlane(*plane, scene.addMaterial(grey));
-        char floorText[64];
-        std::snprintf(floorText, sizeof floorText, "%.4g", floorY);
-        floor = std::string("a grey floor at y = ") + floorText;
+        if (framing.floor) floor = placeFloor(scene, e);
     }
     if (framing.lights) {
-        // A key light from the upper left and a dimmer fill from the right.
-        scene.lights.push_back(directional({-1, 1.6, 1.2}, 0.75));
-        scene.lights.push_back(directional({1.2, 0.6, 0.8}, 0.3));
+        addKeyAndFill(scene);
         lights = "a key and a fill directional light";
     }
+    // "X, Y and Z": the parts that were added.
+    auto join = [](std::initializer_list<std::string> parts) {
+        std::string s, last;
+        for (const std::string& p : parts) {
+            if (p.empty()) continue;
+            if (!last.empty()) s += (s.empty() ? "" : ", ") + last;
+            last = p;
+        }
+        return s.empty() ? last : s + " and " + last;
+    };
     if (framing.camera && framing.lights)
-        return camera + ", " + lights + ", " + floor +
-               " and a light grey material where the model has none";
-    if (framing.camera) return camera + ", " + floor + " and a sky";
+        return join({camera, lights, floor, "a light grey material where the model has none"});
+    if (framing.camera) return join({camera, floor, "a sky"});
     return lights;
+}
+
+const char* modelGroundName(ModelGround g) {
+    switch (g) {
+        case ModelGround::Shadow:
+            return "shadow";
+        case ModelGround::Floor:
+            return "floor";
+        default:
+            return "none";
+    }
 }
 
 namespace {
@@ -86,19 +136,21 @@ Material lightGrey() {
     return grey;
 }
 
-}  // namespace
+/// The model placed in a new scene of the image's size, with its camera and lights.
+struct Placed {
+    std::unique_ptr<Scene> scene;
+    std::string has;  ///< What the file brought, for the note ("its camera 0", "2 lights ...").
+};
 
-ModelScene frameModelScene(const Model& model, int width, int height) {
+Placed placeWithItsOwn(const Model& model, int width, int height) {
     SceneBuilder builder;
     Scene& settings = builder.scene();
     settings.width = width > 0 ? width : 640;
     settings.height = height > 0 ? height : 480;
     placeModel(builder, model, Transform(), builder.addMaterial(lightGrey()));
-    Framing framing;
-    std::string has;  // what the file brought, for the note
+    std::string has;
     if (model.camera) {
         settings.camera = model.camera->spec;
-        framing.camera = false;
         has = "its " + model.camera->description;
         // The file's camera knows its picture's shape, unless the command line says.
         if (width <= 0 && model.camera->aspectRatio > 0)
@@ -107,26 +159,95 @@ ModelScene frameModelScene(const Model& model, int width, int height) {
     }
     if (!model.lights.empty()) {
         for (const Light& light : model.lights) builder.addLight(light);
-        framing.lights = false;
-        has = std::to_string(model.lights.size()) +
+        has = (has.empty() ? "" : has + " and ") + std::to_string(model.lights.size()) +
               (model.lights.size() == 1 ? " light" : " lights") + " of its own";
     }
-    ModelScene out;
-    out.scene = builder.finish();  // places the meshes: the scene's bounds are known now
-    Scene& scene = *out.scene;
+    return {builder.finish(), has};  // places the meshes: the scene's bounds are known now
+}
+
+/// The classic look: what the model lacks of a camera (with a floor and a sky) and lights.
+ModelScene classicScene(const Model& model, int width, int height, const ModelLook& look) {
+    Placed placed = placeWithItsOwn(model, width, height);
+    Scene& scene = *placed.scene;
     const std::string& path = model.name;
+    Framing framing{!model.camera, model.lights.empty(),
+                    look.groundOrDefault() != ModelGround::None};
+    ModelScene out;
     if (!framing.camera && !framing.lights) {
-        if (scene.primitives.bounds().empty())
-            throw SceneError({path, 0, 0}, "the model has no faces of non-zero area");
-        return out;
+        extentOf(scene, path);  // throws for a model of nothing visible
+    } else {
+        std::string assumed = frameModel(scene, path, framing);
+        if (framing.camera && framing.lights)
+            out.note = path + " has no camera or lights: framing it with " + assumed;
+        else if (framing.camera)
+            out.note =
+                path + " has no camera: framing it with " + assumed + " (and " + placed.has + ")";
+        else
+            out.note = path + " has no lights: lighting it with " + assumed + " (and " +
+                       placed.has + ")";
     }
-    std::string assumed = frameModel(scene, path, framing);
-    if (framing.camera && framing.lights)
-        out.note = path + " has no camera or lights: framing it with " + assumed;
-    else if (framing.camera)
-        out.note = path + " has no camera: framing it with " + assumed + " (and " + has + ")";
-    else
-        out.note = path + " has no lights: lighting it with " + assumed + " (and " + has + ")";
+    if (look.environment) {  // the command line's, over the sky
+        scene.environment = *look.environment;
+        if (!scene.environment) scene.background = Background{};
+    }
+    out.scene = std::move(placed.scene);
+    return out;
+}
+
+/// The studio look (see the header).
+ModelScene studioScene(const Model& model, int width, int height, const ModelLook& look) {
+    Placed placed = placeWithItsOwn(model, width, height);
+    Scene& scene = *placed.scene;
+    const std::string& path = model.name;
+    const Extent e = extentOf(scene, path);
+    scene.integrator = "path";
+    scene.spp = kStudioSpp;
+    scene.maxDepth = kStudioMaxDepth;
+    scene.display = DisplaySpec{ToneMap::PbrNeutral, true};
+
+    std::string camera;
+    if (!model.camera) camera = placeCamera(scene, e);
+    std::string staging;
+    if (!look.environment) {
+        scene.environment = studioEnvironment();
+        staging = "in the studio environment";
+    } else if (*look.environment) {
+        scene.environment = *look.environment;
+        staging = "in the environment map";
+    } else {
+        staging = "in the dark";
+    }
+    if (!scene.environment && model.lights.empty()) {
+        addKeyAndFill(scene);  // something must light it
+        staging += ", lit by a key and a fill directional light,";
+    }
+    switch (look.groundOrDefault()) {
+        case ModelGround::Shadow:
+            scene.shadowCatcher = ShadowCatcher{e.groundY()};
+            staging += " with a ground shadow at y = " + format(e.groundY());
+            break;
+        case ModelGround::Floor:
+            staging += " on " + placeFloor(scene, e);
+            break;
+        case ModelGround::None:
+            break;
+    }
+    if (staging.back() == ',') staging.pop_back();
+    ModelScene out;
+    out.note = camera.empty() ? "showing " + path + " " + staging
+                              : path + " has no camera: framing it with " + camera +
+                                    ", and showing it " + staging;
+    if (!placed.has.empty()) out.note += " (and " + placed.has + ")";
+    out.scene = std::move(placed.scene);
+    return out;
+}
+
+}  // namespace
+
+ModelScene frameModelScene(const Model& model, int width, int height, const ModelLook& look) {
+    ModelScene out = look.studio ? studioScene(model, width, height, look)
+                                 : classicScene(model, width, height, look);
+    out.framed = true;
     return out;
 }
 

@@ -2,10 +2,20 @@
 /// A whole scene of a bare model (`glint model.obj`, `glint model.gltf`): the model, and what
 /// it lacks of a camera, lights and surroundings, chosen from its size (docs/cli.md, "Rendering
 /// a model"). Knows no file format: it takes a Model (scene/model.h).
+///
+/// Two looks:
+/// - the **studio** look (the default): the path tracer at kStudioSpp samples per pixel, the
+///   studio environment (scene/studio_environment.h) plus the file's own lights, a shadow
+///   catcher under the model, and the Khronos PBR Neutral tone mapper with the sRGB curve:
+///   what a glTF viewer shows;
+/// - the **classic** look, for the course's Whitted integrator: a key and a fill directional
+///   light, a grey floor and a sky gradient, the course's conversion, one sample per pixel.
 
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "glint/scene/environment.h"
 #include "glint/scene/model.h"
 #include "glint/scene/scene.h"
 
@@ -13,30 +23,72 @@ namespace glint {
 
 struct ModelScene {
     std::unique_ptr<Scene> scene;
+    bool framed = false;  ///< A model framed as a scene (false: a scene file's scene).
     /// What was assumed, for the user, as a sentence after "glint: " ("knot.obj has no camera
     /// or lights: framing it with ..."); empty when the model brought everything.
     std::string note;
 };
 
-/// What frameModel() adds.
-struct Framing {
-    bool camera = true;  ///< A camera, a floor and a sky.
-    bool lights = true;  ///< A key and a fill light.
+/// Camera rays per pixel of the studio look: enough for rough metal and soft shadows to come
+/// out clean at 640 x 480 (docs/performance.md, "The model mode").
+inline constexpr int kStudioSpp = 64;
+/// Path length of the studio look: a ray through a glass model and out again, with a bounce.
+inline constexpr int kStudioMaxDepth = 8;
+
+/// What a framed model stands on.
+enum class ModelGround {
+    Shadow,  ///< A shadow catcher: the environment, darkened by the model's shadow.
+    Floor,   ///< An infinite light grey matte floor.
+    None,    ///< Nothing: the model floats in its environment.
 };
 
-/// Adds to `scene`, which holds a model's geometry, what a bare model lacks, for an image of
-/// the scene's size: by default camera, lights, floor and background. Returns what it assumed,
-/// for the user. Throws SceneError, naming `name`, if the scene has no geometry.
+/// "shadow", "floor", "none".
+const char* modelGroundName(ModelGround g);
+
+/// How a bare model is shown.
+struct ModelLook {
+    bool studio = true;  ///< The studio look; false: the classic one (see the file comment).
+    /// What rays that miss the model see, and (for the path tracer) what lights it: when unset,
+    /// the look's own (the studio environment, or the classic sky); else this map, or black
+    /// when it holds null.
+    std::optional<std::shared_ptr<const EnvironmentMap>> environment;
+    /// What the model stands on; unset: the look's own (a shadow, or the classic floor).
+    std::optional<ModelGround> ground;
+
+    /// The classic look (what `glint model.obj` rendered before the studio).
+    static ModelLook classic() {
+        ModelLook look;
+        look.studio = false;
+        return look;
+    }
+    ModelGround groundOrDefault() const {
+        return ground.value_or(studio ? ModelGround::Shadow : ModelGround::Floor);
+    }
+};
+
+/// What frameModel() adds.
+struct Framing {
+    bool camera = true;  ///< A camera and a sky (and the floor, if `floor`).
+    bool lights = true;  ///< A key and a fill light.
+    bool floor = true;   ///< With the camera: a grey floor under the model.
+};
+
+/// Adds to `scene`, which holds a model's geometry, what a bare model lacks in the classic look,
+/// for an image of the scene's size: by default camera, lights, floor and background. Returns
+/// what it assumed, for the user. Throws SceneError, naming `name`, if the scene has no
+/// geometry.
 std::string frameModel(Scene& scene, const std::string& name, Framing framing = {});
 
 /// The scene of `model` for a `width` x `height` image (0 x 0: 640 x 480, or 640 wide at the
-/// aspect ratio of the model's camera): the model placed as it is, with its camera and lights,
-/// and what it lacks added: a camera on the +z/+y diagonal (elevation about 27 degrees) whose
-/// 40-degree vertical field of view holds the model's bounding sphere with a margin, with a
-/// grey ground plane just under the model and a sky gradient; a key and a fill directional
-/// light. Faces without a material of the model's are light grey. `model.name` names it in the
-/// note. Throws SceneError if the model has no faces of non-zero area or a placement lies beyond
-/// the coordinate range.
-ModelScene frameModelScene(const Model& model, int width = 0, int height = 0);
+/// aspect ratio of the model's camera), in `look`: the model placed as it is, with its camera
+/// and lights, and what it lacks added. Glint's camera is on the +z/+y diagonal (elevation
+/// about 27 degrees), its 40-degree vertical field of view holding the model's bounding sphere
+/// with a margin; the ground lies just under the model's lowest point. Faces without a material
+/// of the model's are light grey. The studio look sets the scene's integrator, samples, path
+/// length and display (Scene::display); the classic look leaves the course's defaults.
+/// `model.name` names it in the note. Throws SceneError if the model has no faces of non-zero
+/// area or a placement lies beyond the coordinate range.
+ModelScene frameModelScene(const Model& model, int width = 0, int height = 0,
+                           const ModelLook& look = {});
 
 }  // namespace glint

@@ -10,6 +10,7 @@
 #include "glint/accel/bvh.h"
 #include "glint/geometry/primitives.h"
 #include "glint/scene/camera.h"
+#include "glint/scene/display_spec.h"
 #include "glint/scene/environment.h"
 #include "glint/scene/filter_spec.h"
 #include "glint/scene/light.h"
@@ -28,6 +29,16 @@ struct Background {
         double t = (dir.y + 1) * 0.5;
         return down * (1 - t) + up * t;
     }
+};
+
+/// A shadow catcher (the ground of a framed model, docs/cli.md "Rendering a model"): the
+/// infinite horizontal plane y = height, seen from above and only by camera rays and the rays
+/// mirrors and glass continue from them. Where they meet it, it shows what lies behind it (the
+/// environment or the background) darkened by the shadows the scene casts on it; every other
+/// ray passes through it, so it adds no light and no occlusion. Rendered by the path tracer
+/// (render/shadow_catcher.h); the Whitted integrator ignores it.
+struct ShadowCatcher {
+    double height = 0;
 };
 
 /// Limits on what a scene may ask for, checked by loaders before anything is allocated.
@@ -69,6 +80,11 @@ class Scene {
     /// An environment map (`environment`): radiance from every direction at infinity, in place
     /// of the background. Null: none.
     std::shared_ptr<const EnvironmentMap> environment;
+    /// A ground that shows shadows only; none by default.
+    std::optional<ShadowCatcher> shadowCatcher;
+    /// How the image is meant to be shown: the course's clamp by default (the command line may
+    /// override it).
+    DisplaySpec display;
     std::vector<Light> lights;
     /// Camera rays per pixel the scene asks for (`spp`); 0: not given (the CLI decides).
     int spp = 0;

@@ -6,11 +6,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include "glint/math/mat4.h"
 #include "glint/scene/model_framing.h"
+#include "glint/scene/studio_environment.h"
 #include "unit/test_support.h"
 
 namespace glint {
@@ -18,6 +20,7 @@ namespace {
 
 using test::expectNear;
 using ::testing::HasSubstr;
+using ::testing::EndsWith;
 using ::testing::StartsWith;
 
 /// A unit right triangle in z = 0, named "tri.obj".
@@ -99,14 +102,23 @@ TEST(CameraChoice, NoneANumberOrAName) {
     EXPECT_EQ(CameraChoice::parse("-1").kind, Kind::Name);  // not a number of a camera
 }
 
+// ---- The classic look (the course's Whitted integrator) ----
+
 TEST(ModelFraming, AModelWithoutCameraOrLightsGetsGlintsAndSaysSo) {
-    ModelScene m = frameModelScene(singleMeshModel(triangle()));
+    ModelScene m = frameModelScene(singleMeshModel(triangle()), 0, 0, ModelLook::classic());
+    EXPECT_TRUE(m.framed);
     EXPECT_EQ(m.scene->width, 640);
     EXPECT_EQ(m.scene->height, 480);
     ASSERT_TRUE(m.scene->camera);
     EXPECT_EQ(m.scene->lights.size(), 2u);
     EXPECT_EQ(m.scene->primitives.planeCount(), 1u);  // the floor
     EXPECT_THAT(m.note, StartsWith("tri.obj has no camera or lights: framing it with a camera"));
+    // The course's settings: nothing of the studio's.
+    EXPECT_EQ(m.scene->integrator, "whitted");
+    EXPECT_EQ(m.scene->spp, 0);
+    EXPECT_FALSE(m.scene->environment);
+    EXPECT_FALSE(m.scene->shadowCatcher);
+    EXPECT_EQ(m.scene->display, DisplaySpec{});
 }
 
 TEST(ModelFraming, TheModelsOwnCameraAndLightsAreKept) {
@@ -115,22 +127,103 @@ TEST(ModelFraming, TheModelsOwnCameraAndLightsAreKept) {
     Light light;
     light.position = {0, 0, 3};
     model.lights.push_back(light);
-    ModelScene m = frameModelScene(model);
+    ModelScene m = frameModelScene(model, 0, 0, ModelLook::classic());
     EXPECT_EQ(m.note, "");  // nothing assumed
     EXPECT_EQ(m.scene->camera->fovyDegrees, 30);
     EXPECT_EQ(m.scene->height, 320);  // 640 wide at the camera's aspect ratio
     ASSERT_EQ(m.scene->lights.size(), 1u);
     EXPECT_EQ(m.scene->lights[0].position, Vec3(0, 0, 3));
     model.lights.clear();
-    EXPECT_THAT(frameModelScene(model).note,
+    EXPECT_THAT(frameModelScene(model, 0, 0, ModelLook::classic()).note,
                 HasSubstr("has no lights: lighting it with a key and a fill directional light "
                           "(and its camera 0 (node 1))"));
+}
+
+TEST(ModelFraming, TheClassicLookTakesTheGroundAndEnvironmentAskedFor) {
+    ModelLook look = ModelLook::classic();
+    look.ground = ModelGround::None;
+    look.environment = std::shared_ptr<const EnvironmentMap>();  // black
+    ModelScene m = frameModelScene(singleMeshModel(triangle()), 0, 0, look);
+    EXPECT_EQ(m.scene->primitives.planeCount(), 0u);
+    EXPECT_EQ(m.scene->backgroundRadiance({0, 1, 0}), Vec3(0));
+    EXPECT_THAT(m.note, HasSubstr("(fovy 40), a key and a fill directional light and a light "
+                                  "grey material"));
 }
 
 TEST(ModelFraming, AModelOfNothingVisibleIsAnError) {
     MeshData flat = triangle();
     flat.positions[2] = {2, 0, 0};  // zero area
     EXPECT_THROW(frameModelScene(singleMeshModel(flat)), SceneError);
+    EXPECT_THROW(frameModelScene(singleMeshModel(flat), 0, 0, ModelLook::classic()), SceneError);
+}
+
+// ---- The studio look (the default) ----
+
+TEST(ModelFraming, TheStudioLookPathTracesInTheStudioOnAGroundShadow) {
+    ModelScene m = frameModelScene(singleMeshModel(triangle()));
+    const Scene& scene = *m.scene;
+    EXPECT_TRUE(m.framed);
+    EXPECT_EQ(scene.integrator, "path");
+    EXPECT_EQ(scene.spp, kStudioSpp);
+    EXPECT_EQ(scene.maxDepth, kStudioMaxDepth);
+    EXPECT_EQ(scene.environment.get(), studioEnvironment().get());
+    EXPECT_EQ(scene.display, (DisplaySpec{ToneMap::PbrNeutral, true}));
+    // The ground: a shadow catcher a thousandth of the model's size under its lowest point (the
+    // triangle's bounding sphere has radius sqrt(2) / 2), and no plane or light of Glint's.
+    ASSERT_TRUE(scene.shadowCatcher);
+    EXPECT_NEAR(scene.shadowCatcher->height, -1e-3 * std::sqrt(0.5), 1e-9);
+    EXPECT_EQ(scene.primitives.planeCount(), 0u);
+    EXPECT_TRUE(scene.lights.empty());
+    ASSERT_TRUE(scene.camera);
+    EXPECT_THAT(m.note, StartsWith("tri.obj has no camera: framing it with a camera at ("));
+    EXPECT_THAT(m.note, HasSubstr("(fovy 40), and showing it in the studio environment with a "
+                                  "ground shadow at y = -0.0007071"));
+}
+
+TEST(ModelFraming, TheStudioAddsToTheModelsOwnCameraAndLights) {
+    Model model = singleMeshModel(triangle());
+    model.camera = ModelCamera{{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 30}, 2.0, "camera 0 (node 1)"};
+    Light light;
+    light.position = {0, 0, 3};
+    model.lights.push_back(light);
+    ModelScene m = frameModelScene(model);
+    EXPECT_EQ(m.scene->camera->fovyDegrees, 30);
+    ASSERT_EQ(m.scene->lights.size(), 1u);  // its own, and the environment
+    EXPECT_TRUE(m.scene->environment);
+    EXPECT_TRUE(m.scene->shadowCatcher);
+    EXPECT_EQ(m.note,
+              "showing tri.obj in the studio environment with a ground shadow at y = -0.0007071 "
+              "(and its camera 0 (node 1) and 1 light of its own)");
+}
+
+TEST(ModelFraming, EachStudioDefaultCanBeTurnedOff) {
+    ModelLook look;
+    look.ground = ModelGround::None;
+    ModelScene none = frameModelScene(singleMeshModel(triangle()), 0, 0, look);
+    EXPECT_FALSE(none.scene->shadowCatcher);
+    EXPECT_EQ(none.scene->primitives.planeCount(), 0u);
+    EXPECT_THAT(none.note, EndsWith("showing it in the studio environment"));
+
+    look.ground = ModelGround::Floor;
+    ModelScene floor = frameModelScene(singleMeshModel(triangle()), 0, 0, look);
+    EXPECT_FALSE(floor.scene->shadowCatcher);
+    EXPECT_EQ(floor.scene->primitives.planeCount(), 1u);
+    EXPECT_THAT(floor.note, HasSubstr("in the studio environment on a grey floor at y = "));
+
+    // Another map, or none: then a key and a fill light, since nothing else would light it.
+    look = ModelLook{};
+    auto sky = std::make_shared<const EnvironmentMap>(2, 1, std::vector<float>(6, 0.5f));
+    look.environment = sky;
+    ModelScene mapped = frameModelScene(singleMeshModel(triangle()), 0, 0, look);
+    EXPECT_EQ(mapped.scene->environment.get(), sky.get());
+    EXPECT_TRUE(mapped.scene->lights.empty());
+    EXPECT_THAT(mapped.note, HasSubstr("in the environment map with a ground shadow"));
+    look.environment = std::shared_ptr<const EnvironmentMap>();
+    ModelScene dark = frameModelScene(singleMeshModel(triangle()), 0, 0, look);
+    EXPECT_FALSE(dark.scene->environment);
+    EXPECT_EQ(dark.scene->lights.size(), 2u);
+    EXPECT_THAT(dark.note, HasSubstr("in the dark, lit by a key and a fill directional light, "
+                                     "with a ground shadow"));
 }
 
 }  // namespace

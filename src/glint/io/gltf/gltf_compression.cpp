@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <type_traits>
@@ -37,6 +38,14 @@ constexpr const char* kPlaceholderUri = "data:application/octet-stream;base64,AA
 /// libdraco's working memory while it decodes, per index of the primitive (an upper bound
 /// measured on a 1M-triangle mesh, docs/performance.md "Compressed glTF"), on top of the output.
 constexpr size_t kDracoBytesPerIndex = 64;
+/// The CPU time libdraco may take for a file's Draco primitives together: GltfOptions::
+/// dracoSeconds and so much per decoded index, 150 times what it takes here (0.13 us), so that
+/// a slow machine or valgrind never reaches it. libdraco 1.5.5 can spend up to about 10 s (and
+/// 256 MiB) on a few corrupt bytes whatever the mesh's size: texture coordinates' prediction
+/// data hold a count of orientations it loops over without checking it against the mesh
+/// (docs/robustness.md). One such primitive cannot be stopped; a file of many is, after the
+/// first.
+constexpr double kDracoSecondsPerIndex = 20e-6;
 
 enum class MeshoptMode { Attributes, Triangles, Indices };
 enum class MeshoptFilter { None, Octahedral, Quaternion, Exponential, Color };
@@ -74,6 +83,8 @@ struct Compression {
     std::map<size_t, std::vector<unsigned char>> views;   ///< decoded, by bufferView
     std::set<size_t> placeholders;  ///< fallback buffers replaced by a byte for tinygltf
     size_t bytes = 0;               ///< decoded so far
+    double dracoSeconds = 0;        ///< CPU time in libdraco so far
+    double dracoIndices = 0;        ///< indices (3 per triangle) libdraco has decoded so far
 };
 
 namespace {
@@ -378,12 +389,19 @@ void decodeDraco(const Context& ctx, Compression& c, size_t which) {
     draco::DecoderBuffer buffer;
     buffer.Init(bytes.data(), bytes.size());
     draco::Decoder decoder;
+    const std::clock_t start = std::clock();
     auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    c.dracoSeconds += double(std::clock() - start) / CLOCKS_PER_SEC;
     if (!decoded.ok() || !decoded.value())
         ctx.fail(label + ": libdraco cannot decode bufferView " + std::to_string(d.bufferView) +
                  " (" + std::to_string(bytes.size()) + " bytes): " +
                  (decoded.ok() ? std::string("no mesh") : decoded.status().error_msg_string()));
     const draco::Mesh& mesh = *decoded.value();
+    c.dracoIndices += 3.0 * mesh.num_faces();
+    if (c.dracoSeconds > ctx.options.dracoSeconds + kDracoSecondsPerIndex * c.dracoIndices)
+        ctx.fail(label + ": libdraco took " + std::to_string(int(c.dracoSeconds)) +
+                 " s of CPU time for " + std::to_string(size_t(c.dracoIndices / 3)) +
+                 " triangles, far more than such data needs: the Draco data is corrupt");
 
     if (p.indices < 0) dracoIndices(ctx, mesh, -1, label);  // checks the triangles' order
     for (const auto& [accessor, source] : c.dracoAccessors) {

@@ -28,6 +28,9 @@ struct GltfOptions {
     /// perspective camera. The cameras are numbered in the order the node walk meets their
     /// nodes: depth first through the default scene's trees, children in order.
     CameraChoice camera;
+    /// CPU seconds libdraco may take for the file's Draco meshes together, beyond 20 us per
+    /// index decoded: corrupt Draco data can make it spin (docs/robustness.md).
+    double dracoSeconds = 2;
 };
 
 /// Glint's light colour for a glTF light of `intensity` (candela for point lights, lux for

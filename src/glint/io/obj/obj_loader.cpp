@@ -17,6 +17,7 @@
 #include "glint/core/system.h"
 #include "glint/geometry/polygon.h"
 #include "glint/io/obj/obj_internal.h"
+#include "glint/scene/tangents.h"
 
 namespace glint {
 namespace obj {
@@ -413,6 +414,21 @@ MeshData Reader::run() {
                          "the mesh has no faces ('f' statements): is the file complete?");
     if (!text_.empty() && text_.back() != '\n' && text_.back() != '\r')
         warnings_.push_back({here(), "the last line has no line break: the file may be truncated"});
+    // Faces whose material has a normal map get MikkTSpace's tangents, as glTF's would.
+    std::vector<bool> normalMapped(mesh_.materials.size());
+    bool any = false;
+    for (size_t i = 0; i < mesh_.materials.size(); ++i) {
+        const auto& pbr = mesh_.materials[i].pbr;
+        normalMapped[i] = pbr && pbr->normalTexture;
+        any = any || normalMapped[i];
+    }
+    if (any && mesh_.uvTriangles > 0) {
+        TangentRequest request;
+        request.select = [&](const MeshData::Triangle& t) {
+            return t.material != MeshData::kNone && normalMapped[t.material];
+        };
+        generateTangents(mesh_, request);
+    }
     return std::move(mesh_);
 }
 

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -246,7 +248,7 @@ TEST(GltfMeshopt, RoundTripsExactlyOrWithinTheFilters) {
             ASSERT_EQ(model.meshes[0].triangles.size(), mesh.indices.size() / 3);
             const Vec3f first =
                 model.meshes[0].positions[model.meshes[0].triangles[5].corners[0].position];
-            const auto& want = trianglesOf(mesh)[5];
+            const std::array<Vertex, 3> want = trianglesOf(mesh)[5];
             const bool found = std::any_of(want.begin(), want.end(), [&](const Vertex& v) {
                 return std::abs(v.p[0] - first.x) + std::abs(v.p[1] - first.y) +
                            std::abs(v.p[2] - first.z) <=
@@ -377,6 +379,47 @@ TEST(GltfDraco, AccessorsMustMatchTheDecodedMesh) {
     second["extensions"]["KHR_draco_mesh_compression"]["attributes"]["POSITION"] = 2;
     b.json["meshes"][0]["primitives"].push_back(second);
     EXPECT_THAT(errorOf(b), HasSubstr("is decoded from other Draco data"));
+}
+
+/// CPU seconds libdraco takes to decode `bytes`; negative if it cannot decode them.
+double dracoDecodeSeconds(const std::string& bytes) {
+    draco::DecoderBuffer in;
+    in.Init(bytes.data(), bytes.size());
+    draco::Decoder decoder;
+    const std::clock_t start = std::clock();
+    const bool ok = decoder.DecodeMeshFromBuffer(&in).ok();
+    const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
+    return ok ? seconds : -1;
+}
+
+TEST(GltfDraco, CorruptDataThatMakesLibdracoSpinIsStopped) {
+    // libdraco 1.5.5 loops over a count of texture-coordinate orientations it reads as it is
+    // (docs/robustness.md). Find that count in the cube's data: the int32 that, made 2^25, makes
+    // decoding slow (0.03 to 0.1 s; 2^31 takes seconds) but still successful. Speed 3
+    // (draco_transcoder's default) predicts texture coordinates so.
+    DracoSettings settings;
+    settings.speed = 3;
+    TestAsset a = dracoAsset(cubeMesh(), settings);
+    const double normal = dracoDecodeSeconds(a.bin);
+    std::string slow;
+    for (size_t at = 11; at + 4 <= a.bin.size() && slow.empty(); ++at) {
+        std::string patched = a.bin;
+        const int32_t count = 1 << 25;
+        std::memcpy(patched.data() + at, &count, 4);
+        if (dracoDecodeSeconds(patched) > std::max(0.004, 30 * normal)) slow = patched;
+    }
+    ASSERT_FALSE(slow.empty()) << "libdraco no longer spins on a corrupt orientation count: "
+                                  "update docs/robustness.md";
+    a.bin = slow;
+    // It still decodes, slowly: within the default allowance, but not within a tiny one.
+    EXPECT_NO_THROW(loadAsset(a));
+    GltfOptions strict;
+    strict.dracoSeconds = 0.002;
+    EXPECT_THAT(errorOf(a, strict),
+                AllOf(HasSubstr("mesh 0, primitive 0: KHR_draco_mesh_compression: libdraco took"),
+                      HasSubstr("far more than such data needs: the Draco data is corrupt")));
+    // The cube as encoded decodes within the tiny allowance.
+    EXPECT_NO_THROW(loadAsset(dracoAsset(cubeMesh(), settings), nullptr, strict));
 }
 
 TEST(GltfDraco, MemoryIsCheckedBeforeDecoding) {

@@ -364,7 +364,7 @@ TEST(GltfLoader, SpotLightsAreLitAsPointLightsAndOrthographicCamerasIgnored) {
 
 TEST(GltfScene, TheFileCameraAndLightsAreUsedAndItsAspectRatioSizesTheImage) {
     std::vector<Diagnostic> warnings;
-    ModelScene m = loadModelScene(dataPath("scene.glb"), warnings);
+    ModelScene m = loadModelScene(dataPath("scene.glb"), warnings, 0, 0, {}, ModelLook::classic());
     EXPECT_TRUE(warnings.empty());
     EXPECT_EQ(m.note, "");  // nothing assumed
     EXPECT_EQ(m.scene->width, 640);
@@ -374,13 +374,14 @@ TEST(GltfScene, TheFileCameraAndLightsAreUsedAndItsAspectRatioSizesTheImage) {
     EXPECT_EQ(m.scene->lights.size(), 2u);
     EXPECT_EQ(m.scene->primitives.planeCount(), 0u);  // no floor of Glint's
     // A size given wins over the camera's aspect ratio.
-    ModelScene sized = loadModelScene(dataPath("scene.glb"), warnings, 100, 100);
+    ModelScene sized = loadModelScene(dataPath("scene.glb"), warnings, 100, 100);  // studio
+    EXPECT_EQ(sized.scene->lights.size(), 2u);  // its own, with the studio environment
     EXPECT_EQ(sized.scene->height, 100);
 }
 
 TEST(GltfScene, ABareModelIsFramedAsAnObjIs) {
     std::vector<Diagnostic> warnings;
-    ModelScene m = loadModelScene(dataPath("quad.glb"), warnings);
+    ModelScene m = loadModelScene(dataPath("quad.glb"), warnings, 0, 0, {}, ModelLook::classic());
     EXPECT_THAT(m.note, HasSubstr("quad.glb has no camera or lights: framing it with a camera at"));
     EXPECT_EQ(m.scene->lights.size(), 2u);
     EXPECT_EQ(m.scene->primitives.planeCount(), 1u);
@@ -398,7 +399,7 @@ TEST_F(GltfSceneFile, OnlyWhatIsMissingIsAdded) {
                                                     light,
                                                 kTriangle);
     std::vector<Diagnostic> warnings;
-    ModelScene m = loadModelScene(path("lit.gltf"), warnings);
+    ModelScene m = loadModelScene(path("lit.gltf"), warnings, 0, 0, {}, ModelLook::classic());
     EXPECT_THAT(m.note, HasSubstr("lit.gltf has no camera: framing it with a camera at"));
     EXPECT_THAT(m.note, HasSubstr("(and 1 light of its own)"));
     ASSERT_EQ(m.scene->lights.size(), 1u);  // the file's, not Glint's key and fill

@@ -339,7 +339,9 @@ TEST_F(ObjPbrMaps, MapsAndNormalMapsAreRead) {
     std::filesystem::copy_file(meshPath("quadrants.png"), path("q.png"));
     std::ofstream(path("m.mtl")) << "newmtl a\nKd 1 1 1\nPr 1\nmap_Pr q.png\nmap_Pm q.png\n"
                                     "map_Bump -bm 0.5 q.png\nmap_Ke -s 2 2 1 q.png\n";
-    std::ofstream(path("m.obj")) << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+    std::ofstream(path("m.obj"))
+        << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\n"
+           "f 1/1 2/2 3/3\n";
     std::vector<Diagnostic> warnings;
     MeshData mesh = loadObj(path("m.obj"), warnings);
     ASSERT_EQ(mesh.materials.size(), 1u);
@@ -354,6 +356,11 @@ TEST_F(ObjPbrMaps, MapsAndNormalMapsAreRead) {
     EXPECT_EQ(p.emissive, Vec3(1));                        // map_Ke without Ke: the texture alone
     EXPECT_NEAR(p.emissiveTexture.transform[0], 2, 1e-6);  // -s 2 2
     EXPECT_TRUE(warnings.empty());
+    // The normal-mapped face gets tangents along +u (+x here), right-handed.
+    ASSERT_EQ(mesh.tangents.size(), 3u);
+    EXPECT_NEAR(mesh.tangents[0][0], 1, 1e-6);
+    EXPECT_EQ(mesh.tangents[0][3], 1);
+    EXPECT_NE(mesh.triangles[0].corners[0].tangent, MeshData::kNone);
 }
 
 TEST(ObjLoader, TexturedMaterialsCarryTheirImage) {

@@ -1,0 +1,37 @@
+#pragma once
+/// How a scene's linear radiance is meant to become 8-bit pixels (the conversion itself is in
+/// render/display.h and render/tonemap.h). A scene carries its default; the command line may
+/// override it (`--tonemap`, `--srgb`, `--no-srgb`).
+
+#include <optional>
+#include <string_view>
+
+namespace glint {
+
+/// What compresses radiance into [0, 1] before it is encoded.
+enum class ToneMap {
+    Clamp,      ///< Each channel clamped to [0, 1]: the course's conversion.
+    PbrNeutral  ///< Khronos PBR Neutral (render/tonemap.h): the glTF viewers' convention.
+};
+
+struct DisplaySpec {
+    ToneMap toneMap = ToneMap::Clamp;
+    /// 8-bit outputs through the sRGB curve, rounded; false: the course's floor(255 c).
+    bool srgb = false;
+
+    bool operator==(const DisplaySpec&) const = default;
+};
+
+/// "clamp" or "neutral": the names `--tonemap` takes.
+inline std::string_view toneMapName(ToneMap t) {
+    return t == ToneMap::Clamp ? "clamp" : "neutral";
+}
+
+/// The tone mapper called `name` ("clamp", "neutral"), if there is one.
+inline std::optional<ToneMap> toneMapNamed(std::string_view name) {
+    if (name == "clamp") return ToneMap::Clamp;
+    if (name == "neutral") return ToneMap::PbrNeutral;
+    return std::nullopt;
+}
+
+}  // namespace glint
