@@ -45,9 +45,9 @@ struct Options {
     std::string integrator;  ///< Empty: the scene's `integrator`, else whitted.
     int spp = 0;             ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;
-    double exposure = 0;  ///< EV: radiance times 2^exposure before writing.
-    int srgb = 0;         ///< sRGB curve for 8-bit outputs: 1 on, -1 off, 0 the scene's.
-    std::string toneMap;  ///< Empty: the scene's (PBR Neutral for models, else clamp).
+    double exposure = 0;      ///< EV: radiance times 2^exposure before writing.
+    int srgb = 0;             ///< sRGB curve for 8-bit outputs: 1 on, -1 off, 0 the scene's.
+    std::string toneMap;      ///< Empty: the scene's (PBR Neutral for models, else clamp).
     std::string environment;  ///< Empty: the scene's; "studio", "none" or a file.
     std::string ground;       ///< Empty: the model's (shadow); "shadow", "floor" or "none".
     double timeBudget = 0;    ///< Seconds; 0: render a fixed number of samples.
@@ -375,9 +375,9 @@ int run(const Options& opt) {
     ro.seed = opt.seed;
     ro.cancel = &gStop;
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
-    glint::RenderResult result =
-        opt.timeBudget > 0 ? glint::renderForTime(*scene, ro, {opt.timeBudget, opt.spp})
-                           : glint::render(*scene, ro);
+    glint::RenderResult result = opt.timeBudget > 0
+                                     ? glint::renderForTime(*scene, ro, {opt.timeBudget, opt.spp})
+                                     : glint::render(*scene, ro);
     if (!opt.quiet)
         progress.finish({0, 0, result.seconds}, result.complete,
                         opt.timeBudget > 0 && result.complete ? result.samplesPerPixel : 0);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Loading and rendering a 1M-triangle model with no scene file (`glint model.obj`, .glb, .ply
-# or .stl): medians over RUNS runs of parse (file to MeshData to scene), BVH build,
-# render and peak memory.
+# Loading and rendering a 1M-triangle model with no scene file (`glint model.obj --integrator
+# whitted`, or .glb, .ply, .stl): medians over RUNS runs of parse (file to MeshData to scene),
+# BVH build, render and peak memory.
 # Usage: bench/mesh_stats.sh BUILD_DIR [RUNS] [THREADS] [obj|glb|draco|meshopt|ply|stl]
 # The model (bench/gen_mesh.cpp: a rippled trefoil-knot tube, 1,048,576 triangles with vertex
 # normals; about 80 MB of OBJ text, a 25 MB binary glTF, a 26 MB binary PLY or a 52 MB binary STL
@@ -53,7 +53,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 . "$here/measure.sh"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-glint_runs "$runs" "$out/runs" "$build/glint" -q --stats -t "$threads" "$model" -o "$out/img.png"
+# The classic look (--integrator whitted: one sample per pixel, the course's integrator), as
+# before the model mode's studio: this measures loading; bench/model_mode.sh measures the studio.
+glint_runs "$runs" "$out/runs" "$build/glint" -q --stats -t "$threads" "$model" \
+    --integrator whitted -o "$out/img.png"
 grep -E '^(Scene|BVH)' "$out/runs.stats"
 glint_header
 echo

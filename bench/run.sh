@@ -10,6 +10,8 @@
 #      Cycles reference is rendered once and kept in ../cycles-out beside the repository);
 #   7. reading 1M-triangle PLY and STL files with Glint's readers and with Assimp
 #      (bench/mesh_load_stats.sh).
+#   8. the model mode at its default quality, a 15k-triangle textured model and a 1M-triangle
+#      one (bench/model_mode.sh).
 # Usage: bench/run.sh BUILD_DIR
 set -euo pipefail
 
@@ -57,3 +59,6 @@ fi
 
 header "7. PLY and STL: Glint's readers vs Assimp, 1M triangles"
 "$here/mesh_load_stats.sh" "$build" 5
+
+header "8. The model mode at its default quality: glint knot-15k.obj, glint trefoil-1m.glb"
+"$here/model_mode.sh" "$build" 3 2

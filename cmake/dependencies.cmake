@@ -31,8 +31,8 @@ find_package(nlohmann_json 3 CONFIG REQUIRED)
 
 # Draco 1.5.5 (libdraco-dev) and meshoptimizer 0.18 (libmeshoptimizer-dev): the decoders of
 # compressed glTF meshes (KHR_draco_mesh_compression; EXT_ and KHR_meshopt_compression), in io/
-# (src/glint/io/gltf/gltf_compression.cpp), both as Debian's shared libraries (src/CMakeLists.txt
-# says why not libdraco.a).
+# (src/glint/io/gltf/gltf_compression.cpp, gltf_draco.cpp), both as Debian's shared libraries
+# (src/CMakeLists.txt says why not libdraco.a).
 find_package(draco CONFIG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
 

@@ -110,8 +110,8 @@ TEST(CliModelMode, WhittedGivesTheClassicLook) {
     std::string dir = withTetrahedron("mode-classic");
     CommandResult r = runGlint("flat.obj --size 32x24 --integrator whitted -o classic.png", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(contains(r.err,
-                         "flat.obj has no camera or lights: framing it with a camera at (0.5, "))
+    EXPECT_TRUE(
+        contains(r.err, "flat.obj has no camera or lights: framing it with a camera at (0.5, "))
         << r.err;
     EXPECT_TRUE(contains(r.err, "a key and a fill directional light, a grey floor at y = "))
         << r.err;
@@ -141,8 +141,9 @@ TEST(CliModelMode, SceneFilesKeepTheCoursesConversion) {
     EXPECT_EQ(readBytes(dir + "/default.png"), readBytes(dir + "/ground.png"));
     // The tone mapper and the curve are for 8-bit files: asked for with a float file, a warning.
     r = runGlint("s.test --tonemap neutral -o linear.pfm", dir);
-    EXPECT_TRUE(contains(r.err, "glint: warning: --tonemap applies to 8-bit outputs (.png, .ppm) "
-                                "only; 'linear.pfm' is written linear"))
+    EXPECT_TRUE(contains(r.err,
+                         "glint: warning: --tonemap applies to 8-bit outputs (.png, .ppm) "
+                         "only; 'linear.pfm' is written linear"))
         << r.err;
     // A model's own defaults say nothing of the kind.
     fs::copy_file(kMeshes + "flat.obj", dir + "/flat.obj");
@@ -158,7 +159,7 @@ TEST(CliModelMode, EnvironmentTakesAFileStudioOrNone) {
     CommandResult r = runGlint("-q empty.test --environment sky.hdr -o sky.pfm", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     Film f = readPfm(dir + "/sky.pfm");
-    EXPECT_NEAR(f.at(1, 0).x, 0.5, 1e-6);  // above the horizon
+    EXPECT_NEAR(f.at(1, 0).x, 0.5, 1e-6);   // above the horizon
     EXPECT_NEAR(f.at(1, 3).x, 0.25, 1e-6);  // below it
     ASSERT_EQ(runGlint("-q empty.test --environment studio -o studio.pfm", dir).exitCode, 0);
     EXPECT_GT(readPfm(dir + "/studio.pfm").at(1, 3).x, 0.3);  // the studio's light ground
@@ -167,13 +168,13 @@ TEST(CliModelMode, EnvironmentTakesAFileStudioOrNone) {
     // A model in another map.
     r = runGlint("flat.obj --size 16x12 --spp 2 --environment sky.hdr", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(contains(r.err, "showing it in the environment map with a ground shadow"))
-        << r.err;
+    EXPECT_TRUE(contains(r.err, "showing it in the environment map with a ground shadow")) << r.err;
     // A file that cannot be read: exit 1, before anything is rendered.
     r = runGlint("flat.obj --environment nowhere.hdr -o x.png", dir);
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_TRUE(contains(r.err, "glint: error: --environment: cannot read environment map "
-                                "'nowhere.hdr'"))
+    EXPECT_TRUE(contains(r.err,
+                         "glint: error: --environment: cannot read environment map "
+                         "'nowhere.hdr'"))
         << r.err;
     EXPECT_FALSE(fs::exists(dir + "/x.png"));
 }

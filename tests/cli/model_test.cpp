@@ -52,8 +52,7 @@ TEST(CliModel, ABareObjIsFramedAndRenderedToItsStemPng) {
 
 TEST(CliModel, TheTexturedModelShowsItsTexels) {
     std::string dir = dirWith("textured", {"textured.obj", "textured.mtl", "quadrants.png"});
-    CommandResult r =
-        runGlint("-q textured.obj --size 96x72 -o out.png --integrator whitted", dir);
+    CommandResult r = runGlint("-q textured.obj --size 96x72 -o out.png --integrator whitted", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err, "");  // -q: not even the framing note
     Image8 img = readImage8(dir + "/out.png", 3);

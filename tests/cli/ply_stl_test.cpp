@@ -41,10 +41,9 @@ const char* kAsciiStl =
 TEST(CliPlyStl, ABarePlyIsFramedAndRendered) {
     std::string dir = freshDir("ply-model");
     writeFile(dir + "/quad.ply", binaryPly());
-    CommandResult r = runGlint("quad.ply --size 80x60", dir);
+    CommandResult r = runGlint("quad.ply --size 80x60 --spp 4", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(contains(r.err, "glint: quad.ply has no camera: framing it with a camera at"))
-        << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: quad.ply has no camera: framing it")) << r.err;
     EXPECT_TRUE(contains(r.err, "glint: wrote quad.png (80x60)")) << r.err;
     Image8 img = readImage8(dir + "/quad.png", 3);
     ASSERT_EQ(img.width, 80);

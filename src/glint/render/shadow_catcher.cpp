@@ -132,8 +132,7 @@ Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvi
     if (std::optional<EnvironmentSample> s = sampleEnvironment(uEnvironment);
         s && !(s->L == Vec3(0))) {
         counts.shadow++;
-        if (scene_.bvh().occluded(spawnRay(p, s->wi, offset)))
-            blocked += s->L * (s->wi.y / s->pdf);
+        if (scene_.bvh().occluded(spawnRay(p, s->wi, offset))) blocked += s->L * (s->wi.y / s->pdf);
     }
 
     // The lights: each one's irradiance, and its shadow ray (or, among many lights, one

@@ -23,9 +23,7 @@ struct DisplaySpec {
 };
 
 /// "clamp" or "neutral": the names `--tonemap` takes.
-inline std::string_view toneMapName(ToneMap t) {
-    return t == ToneMap::Clamp ? "clamp" : "neutral";
-}
+inline std::string_view toneMapName(ToneMap t) { return t == ToneMap::Clamp ? "clamp" : "neutral"; }
 
 /// The tone mapper called `name` ("clamp", "neutral"), if there is one.
 inline std::optional<ToneMap> toneMapNamed(std::string_view name) {

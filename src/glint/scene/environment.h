@@ -111,7 +111,6 @@ class EnvironmentMap {
     double pdfAt(Point2 st) const;
 
   private:
-
     int width_, height_;
     std::vector<float> rgb_;
     double scale_, rotationDegrees_;

@@ -183,8 +183,8 @@ ModelScene classicScene(const Model& model, int width, int height, const ModelLo
             out.note =
                 path + " has no camera: framing it with " + assumed + " (and " + placed.has + ")";
         else
-            out.note = path + " has no lights: lighting it with " + assumed + " (and " +
-                       placed.has + ")";
+            out.note =
+                path + " has no lights: lighting it with " + assumed + " (and " + placed.has + ")";
     }
     if (look.environment) {  // the command line's, over the sky
         scene.environment = *look.environment;

@@ -75,8 +75,7 @@ std::shared_ptr<const EnvironmentMap> studioEnvironment() {
                 p[2] = static_cast<float>(L.z);
             }
         }
-        return std::make_shared<const EnvironmentMap>(kStudioWidth, kStudioHeight,
-                                                      std::move(rgb));
+        return std::make_shared<const EnvironmentMap>(kStudioWidth, kStudioHeight, std::move(rgb));
     }();
     return map;
 }

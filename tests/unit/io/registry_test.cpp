@@ -169,3 +169,42 @@ TEST_F(RegistryFiles, LoadingAFileGlintCannotReadNamesIt) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST_F(RegistryFiles, AModelGetsTheStudioAndASceneFileKeepsTheCoursesSettings) {
+    // A model: the studio look, unless the options ask for the classic one.
+    std::string model = path("tri.obj");
+    std::ofstream(model) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::vector<Diagnostic> warnings;
+    ModelScene m = loadSceneFile(model, warnings);
+    EXPECT_TRUE(m.framed);
+    EXPECT_EQ(m.scene->integrator, "path");
+    EXPECT_EQ(m.scene->spp, kStudioSpp);
+    EXPECT_TRUE(m.scene->environment);
+    EXPECT_TRUE(m.scene->shadowCatcher);
+    EXPECT_EQ(m.scene->display, (DisplaySpec{ToneMap::PbrNeutral, true}));
+    LoadOptions classic;
+    classic.look = ModelLook::classic();
+    m = loadSceneFile(model, warnings, classic);
+    EXPECT_EQ(m.scene->integrator, "whitted");
+    EXPECT_FALSE(m.scene->shadowCatcher);
+    EXPECT_EQ(m.scene->display, DisplaySpec{});
+
+    // A scene file: exactly what it says, whatever look a model would get.
+    std::string scene = path("s.test");
+    std::ofstream(scene) << "camera 0 0 4 0 0 0 0 1 0 45\nsphere 0 0 0 1\n";
+    m = loadSceneFile(scene, warnings);
+    EXPECT_FALSE(m.framed);
+    EXPECT_EQ(m.note, "");
+    EXPECT_EQ(m.scene->integrator, "whitted");
+    EXPECT_EQ(m.scene->spp, 0);
+    EXPECT_FALSE(m.scene->environment);
+    EXPECT_FALSE(m.scene->shadowCatcher);
+    EXPECT_EQ(m.scene->display, DisplaySpec{});
+    EXPECT_TRUE(warnings.empty());
+}
+
+}  // namespace
+}  // namespace glint

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "glint/math/rng.h"
 #include "unit/statistics.h"
 
@@ -45,6 +47,43 @@ TEST(Distribution1D, ContinuousDensityMatchesHistogram) {
     EXPECT_EQ(observed[8] + observed[9] + observed[10] + observed[11], 0) << "zero cell sampled";
     test::ChiSquareResult r = test::chiSquareTest(observed, expected);
     EXPECT_GT(r.pValue, 0.001) << "chi2 " << r.chi2;
+}
+
+TEST(Distribution1D, TheGuidedSearchFindsTheCellOfASearchOfTheWholeTable) {
+    // The cell sampleDiscrete picks is the one std::upper_bound finds in the cumulative sums
+    // (then moved off cells of weight 0), for weights from uniform to very uneven, runs of
+    // zeros, and u at cell edges, at bucket edges, 0 and just below 1.
+    Rng rng(11);
+    for (int trial = 0; trial < 40; ++trial) {
+        const size_t n = 1 + static_cast<size_t>(rng.uniform() * 300);
+        std::vector<double> w(n);
+        for (size_t i = 0; i < n; ++i) {
+            double r = rng.uniform();
+            w[i] = r < 0.2 ? 0.0 : r < 0.3 ? 1000.0 * r : r;
+        }
+        if (trial % 5 == 0) std::fill(w.begin() + static_cast<long>(n / 3), w.end(), 0.0);
+        Distribution1D d(w);
+        double total = 0;
+        for (double x : w) total += x;
+        if (!(total > 0)) continue;
+        std::vector<double> cdf(n + 1, 0.0);
+        for (size_t i = 0; i < n; ++i) cdf[i + 1] = cdf[i] + w[i];
+        for (double& c : cdf) c /= total;
+        cdf[n] = 1;
+        std::vector<double> us = {0.0, 0x1.fffffffffffffp-1};
+        for (size_t i = 0; i <= n; ++i) us.push_back(cdf[i]);
+        for (size_t k = 0; k <= n; ++k)
+            us.push_back(static_cast<double>(k) / static_cast<double>(n));
+        for (int i = 0; i < 2000; ++i) us.push_back(rng.uniform());
+        for (double u : us) {
+            if (!(u < 1)) continue;
+            auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+            size_t expected = std::min(static_cast<size_t>(it - cdf.begin() - 1), n - 1);
+            while (expected + 1 < n && !(w[expected] > 0)) ++expected;
+            while (expected > 0 && !(w[expected] > 0)) --expected;
+            ASSERT_EQ(d.sampleDiscrete(u), expected) << "n " << n << " u " << u;
+        }
+    }
 }
 
 TEST(Distribution1D, AllZeroWeightsFallBackToUniform) {

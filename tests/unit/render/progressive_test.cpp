@@ -54,9 +54,9 @@ TEST(RenderForTime, PassesDoubleAndAreAveragedByTheirSamples) {
     }
     for (int y = 0; y < scene.height; ++y)
         for (int x = 0; x < scene.width; ++x) {
-            Vec3 expected = (passes[0].at(x, y) * 4.0 + passes[1].at(x, y) * 8.0 +
-                             passes[2].at(x, y) * 16.0) *
-                            (1.0 / 28);
+            Vec3 expected =
+                (passes[0].at(x, y) * 4.0 + passes[1].at(x, y) * 8.0 + passes[2].at(x, y) * 16.0) *
+                (1.0 / 28);
             for (int c = 0; c < 3; ++c)
                 EXPECT_NEAR(r.film.at(x, y)[c], expected[c], 1e-12 * (1 + expected[c]));
         }
@@ -129,7 +129,7 @@ TEST(RenderForTime, CancelledAfterAPassKeepsTheFinishedPasses) {
         if (p.fraction() >= 4.0 / 28 - 1e-9) cancel = true;
     };
     RenderResult r = renderForTime(scene, o, {1e6, 28});
-    EXPECT_TRUE(r.complete);  // a whole image ...
+    EXPECT_TRUE(r.complete);      // a whole image ...
     EXPECT_TRUE(r.stoppedEarly);  // ... of fewer samples
     EXPECT_EQ(r.samplesPerPixel, 4);
     EXPECT_EQ(r.passes, 1);

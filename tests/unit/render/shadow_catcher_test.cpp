@@ -88,8 +88,8 @@ TEST(ShadowCatcher, SamplesTheUpperHemisphereByRadianceTimesCosine) {
     std::vector<std::shared_ptr<const EnvironmentMap>> maps = {
         std::make_shared<const EnvironmentMap>(w, h, rgb),
         std::make_shared<const EnvironmentMap>(w, h, rgb, 2.0, 75.0),
-        std::make_shared<const EnvironmentMap>(w, h - 1, std::vector<float>(rgb.begin(),
-                                                                            rgb.end() - 48)),
+        std::make_shared<const EnvironmentMap>(w, h - 1,
+                                               std::vector<float>(rgb.begin(), rgb.end() - 48)),
         nullptr};
     for (const auto& map : maps) {
         Scene scene;
@@ -134,10 +134,10 @@ TEST(ShadowCatcher, IsMetFromAboveOnly) {
     std::optional<double> t = catcher.intersect(Ray{{0, 2.5, 0}, {0.6, -0.8, 0}, 0, kInfinity});
     ASSERT_TRUE(t);
     EXPECT_NEAR(*t, 2.5, 1e-12);
-    EXPECT_FALSE(catcher.intersect(Ray{{0, 1.5, 0}, {0, 1, 0}, 0, kInfinity}));   // upwards
-    EXPECT_FALSE(catcher.intersect(Ray{{0, 0, 0}, {0, -1, 0}, 0, kInfinity}));    // from below
-    EXPECT_FALSE(catcher.intersect(Ray{{0, 1.5, 0}, {1, 0, 0}, 0, kInfinity}));   // level
-    EXPECT_FALSE(catcher.intersect(Ray{{0, 1.5, 0}, {0, -1, 0}, 0, 0.9}));        // too short
+    EXPECT_FALSE(catcher.intersect(Ray{{0, 1.5, 0}, {0, 1, 0}, 0, kInfinity}));  // upwards
+    EXPECT_FALSE(catcher.intersect(Ray{{0, 0, 0}, {0, -1, 0}, 0, kInfinity}));   // from below
+    EXPECT_FALSE(catcher.intersect(Ray{{0, 1.5, 0}, {1, 0, 0}, 0, kInfinity}));  // level
+    EXPECT_FALSE(catcher.intersect(Ray{{0, 1.5, 0}, {0, -1, 0}, 0, 0.9}));       // too short
 }
 
 TEST(ShadowCatcher, ShowsTheEnvironmentExactlyWhereNothingIsInTheWay) {

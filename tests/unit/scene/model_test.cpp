@@ -19,8 +19,8 @@ namespace glint {
 namespace {
 
 using test::expectNear;
-using ::testing::HasSubstr;
 using ::testing::EndsWith;
+using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
 /// A unit right triangle in z = 0, named "tri.obj".

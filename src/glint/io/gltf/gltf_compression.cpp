@@ -1,6 +1,7 @@
-// Compressed glTF meshes: KHR_draco_mesh_compression through libdraco 1.5.5, and
+// Compressed glTF meshes: KHR_draco_mesh_compression through libdraco 1.5.5 (gltf_draco.cpp), and
 // EXT_meshopt_compression and KHR_meshopt_compression (its version-0 streams) through
-// libmeshoptimizer 0.18, the Debian 12 packages (docs/scene-format.md, "glTF").
+// libmeshoptimizer 0.18 (here), the Debian 12 packages (docs/scene-format.md, "Compressed
+// meshes").
 //
 // tinygltf 2.7 as Debian builds it has no Draco, and cannot read either extension's files: it
 // rejects a primitive whose indices accessor has no bufferView (Draco's accessors have none),
@@ -11,83 +12,22 @@
 // and a meshopt bufferView holds the bytes its uncompressed fallback would have held, so that
 // accessor reading (gltf_meshes.cpp) works on them as on any other.
 
-#include <draco/compression/decode.h>
+#include "glint/io/gltf/gltf_compression.h"
+
 #include <meshoptimizer.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
-#include <ctime>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <type_traits>
 
 #include "glint/core/system.h"
-#include "glint/io/gltf/gltf_internal.h"
 
 namespace glint::gltf {
-
 namespace {
 
-constexpr const char* kDraco = "KHR_draco_mesh_compression";
-constexpr const char* kMeshoptExt = "EXT_meshopt_compression";
-constexpr const char* kMeshoptKhr = "KHR_meshopt_compression";
 /// What stands in for a meshopt fallback buffer for tinygltf: one byte (tinygltf refuses an
 /// empty data: URI).
 constexpr const char* kPlaceholderUri = "data:application/octet-stream;base64,AA==";
-/// libdraco's working memory while it decodes, per index of the primitive (an upper bound
-/// measured on a 1M-triangle mesh, docs/performance.md "Compressed glTF"), on top of the output.
-constexpr size_t kDracoBytesPerIndex = 64;
-/// The CPU time libdraco may take for a file's Draco primitives together: GltfOptions::
-/// dracoSeconds and so much per decoded index, 150 times what it takes here (0.13 us), so that
-/// a slow machine or valgrind never reaches it. libdraco 1.5.5 can spend up to about 10 s (and
-/// 256 MiB) on a few corrupt bytes whatever the mesh's size: texture coordinates' prediction
-/// data hold a count of orientations it loops over without checking it against the mesh
-/// (docs/robustness.md). One such primitive cannot be stopped; a file of many is, after the
-/// first.
-constexpr double kDracoSecondsPerIndex = 20e-6;
-
-enum class MeshoptMode { Attributes, Triangles, Indices };
-enum class MeshoptFilter { None, Octahedral, Quaternion, Exponential, Color };
-
-/// A bufferView's meshopt extension, as the JSON gives it.
-struct MeshoptView {
-    const char* extension = kMeshoptExt;
-    size_t buffer = 0, byteOffset = 0, byteLength = 0, byteStride = 0, count = 0;
-    MeshoptMode mode = MeshoptMode::Attributes;
-    MeshoptFilter filter = MeshoptFilter::None;
-};
-
-/// A primitive's KHR_draco_mesh_compression, as the JSON gives it.
-struct DracoPrimitive {
-    size_t mesh = 0, primitive = 0, bufferView = 0;
-    std::vector<std::pair<std::string, uint32_t>> attributes;  ///< glTF name, Draco unique id
-    bool decoded = false;
-};
-
-/// Where a Draco primitive's accessor comes from: its faces, or an attribute's unique id.
-struct DracoSource {
-    size_t primitive = 0;  ///< In Compression::draco.
-    bool indices = false;
-    uint32_t uniqueId = 0;
-};
-
-}  // namespace
-
-struct Compression {
-    std::map<std::pair<size_t, size_t>, int> removedIndices;  ///< (mesh, primitive): indices
-    std::vector<DracoPrimitive> draco;
-    std::map<int, DracoSource> dracoAccessors;            ///< by accessor
-    std::map<int, std::vector<unsigned char>> accessors;  ///< decoded, by accessor
-    std::map<size_t, MeshoptView> meshopt;                ///< by bufferView
-    std::map<size_t, std::vector<unsigned char>> views;   ///< decoded, by bufferView
-    std::set<size_t> placeholders;  ///< fallback buffers replaced by a byte for tinygltf
-    size_t bytes = 0;               ///< decoded so far
-    double dracoSeconds = 0;        ///< CPU time in libdraco so far
-    double dracoIndices = 0;        ///< indices (3 per triangle) libdraco has decoded so far
-};
-
-namespace {
 
 using json = nlohmann::json;
 
@@ -183,238 +123,6 @@ DracoPrimitive parseDraco(const Context& ctx, const json& e, size_t mesh, size_t
             it.key(), static_cast<uint32_t>(unsignedMember(ctx, *attributes, it.key().c_str(),
                                                            what + " attributes")));
     return d;
-}
-
-/// "mesh 0 'Cube', primitive 1: KHR_draco_mesh_compression"
-std::string dracoLabel(const Context& ctx, const DracoPrimitive& d) {
-    return describe("mesh", d.mesh, ctx.model.meshes[d.mesh].name) + ", primitive " +
-           std::to_string(d.primitive) + ": " + kDraco;
-}
-
-/// Fails unless `more` bytes of decoded data fit in the memory available, with what is decoded.
-void reserveDecoded(const Context& ctx, Compression& c, double more, const std::string& what) {
-    const size_t available = memoryAvailable(ctx.options.limits);
-    if (available > 0 && double(c.bytes) + more > double(available))
-        ctx.fail(what + ": decoding it needs about " + formatBytes(double(c.bytes) + more) +
-                 " of memory, more than the " + formatBytes(double(available)) + " available");
-}
-
-// ---- Draco ----
-
-int componentSize(int componentType) {
-    switch (componentType) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            return 1;
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            return 2;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        case TINYGLTF_COMPONENT_TYPE_FLOAT:
-            return 4;
-        default:
-            return 0;  // none glTF allows in an attribute
-    }
-}
-
-/// A float in [0, 1] (or [-1, 1]) as the normalised integer T glTF defines.
-template <typename T>
-T quantize(float x) {
-    constexpr double max = std::numeric_limits<T>::max();
-    const double lo = std::is_signed_v<T> ? -1 : 0;
-    return static_cast<T>(std::lround(std::clamp(double(x), lo, 1.0) * max));
-}
-
-/// Writes attribute `a` of every point as `components` values of T.
-template <typename T>
-void convertAttribute(const Context& ctx, const draco::PointAttribute& a, size_t points,
-                      int components, bool normalized, unsigned char* out,
-                      const std::string& label) {
-    const bool fromFloat = a.data_type() == draco::DT_FLOAT32 || a.data_type() == draco::DT_FLOAT64;
-    // A float attribute into a normalised integer accessor: libdraco would truncate, unscaled.
-    const bool quantizing = std::is_integral_v<T> && normalized && fromFloat;
-    T value[4];
-    float f[4];
-    const size_t size = static_cast<size_t>(components) * sizeof(T);
-    for (size_t i = 0; i < points; ++i) {
-        const draco::AttributeValueIndex v =
-            a.mapped_index(draco::PointIndex(static_cast<uint32_t>(i)));
-        bool ok;
-        if (quantizing) {
-            ok = a.ConvertValue<float>(v, static_cast<int8_t>(components), f);
-            for (int k = 0; k < components && ok; ++k) {
-                ok = !std::isnan(f[k]);
-                value[k] = quantize<T>(f[k]);
-            }
-        } else {
-            ok = a.ConvertValue<T>(v, static_cast<int8_t>(components), value);
-        }
-        if (!ok)
-            ctx.fail(label + ": the value of point " + std::to_string(i) +
-                     " does not fit the accessor's component type");
-        std::memcpy(out + i * size, value, size);
-    }
-}
-
-/// Decoded accessor `index` (a Draco attribute of `mesh`) in the accessor's layout.
-std::vector<unsigned char> dracoAttribute(const Context& ctx, const draco::Mesh& mesh, int index,
-                                          uint32_t uniqueId, const std::string& label) {
-    const tinygltf::Accessor& acc = ctx.model.accessors[static_cast<size_t>(index)];
-    const draco::PointAttribute* a = mesh.GetAttributeByUniqueId(uniqueId);
-    if (!a)
-        ctx.fail(label + ": the decoded mesh has no attribute of unique id " +
-                 std::to_string(uniqueId));
-    const size_t points = mesh.num_points();
-    const int components = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(acc.type));
-    const int bytes = componentSize(acc.componentType);
-    if (components < 1 || components > 4 || bytes == 0)
-        ctx.fail(label + ": the accessor's type and component type are none a Draco attribute " +
-                 "decodes to");
-    if (acc.count != points)
-        ctx.fail(label + ": the accessor's count is " + std::to_string(acc.count) +
-                 ", but the decoded mesh has " + std::to_string(points) + " points");
-    if (a->num_components() != components)
-        ctx.fail(label + ": the decoded attribute has " + std::to_string(a->num_components()) +
-                 " components, the accessor " + std::to_string(components));
-    if (!a->is_mapping_identity() && a->indices_map_size() < points)
-        ctx.fail(label + ": the decoded attribute maps fewer points than the mesh has");
-    std::vector<unsigned char> out(points * static_cast<size_t>(components * bytes));
-    auto convert = [&](auto zero) {
-        convertAttribute<decltype(zero)>(ctx, *a, points, components, acc.normalized, out.data(),
-                                         label);
-    };
-    switch (acc.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-            convert(int8_t{});
-            break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            convert(uint8_t{});
-            break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-            convert(int16_t{});
-            break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            convert(uint16_t{});
-            break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-            convert(uint32_t{});
-            break;
-        default:
-            convert(float{});
-            break;
-    }
-    return out;
-}
-
-/// The decoded faces as indices accessor `index`, or (index -1) checked to be in vertex order.
-std::vector<unsigned char> dracoIndices(const Context& ctx, const draco::Mesh& mesh, int index,
-                                        const std::string& label) {
-    const size_t faces = mesh.num_faces(), points = mesh.num_points();
-    if (index < 0) {  // no indices: the triangles must be the points in order
-        bool ordered = points == 3 * faces;
-        for (uint32_t f = 0; f < faces && ordered; ++f) {
-            const draco::Mesh::Face& face = mesh.face(draco::FaceIndex(f));
-            for (uint32_t k = 0; k < 3; ++k) ordered = ordered && face[k].value() == 3 * f + k;
-        }
-        if (!ordered)
-            ctx.fail(label +
-                     ": the primitive has no indices, but the decoded triangles do not "
-                     "take its points in order");
-        return {};
-    }
-    const tinygltf::Accessor& acc = ctx.model.accessors[static_cast<size_t>(index)];
-    const std::string what = label + " (indices, accessor " + std::to_string(index) + ")";
-    if (acc.type != TINYGLTF_TYPE_SCALAR ||
-        (acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-         acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-         acc.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-        ctx.fail(what + ": indices must be unsigned byte, short or int scalars");
-    if (acc.count != 3 * faces)
-        ctx.fail(what + ": the accessor's count is " + std::to_string(acc.count) +
-                 ", but the decoded mesh has " + std::to_string(faces) + " triangles (" +
-                 std::to_string(3 * faces) + " indices)");
-    const size_t bytes = static_cast<size_t>(componentSize(acc.componentType));
-    const uint64_t max = bytes == 4 ? UINT32_MAX : (uint64_t{1} << (8 * bytes)) - 1;
-    if (points > 0 && points - 1 > max)
-        ctx.fail(what + ": the decoded mesh's " + std::to_string(points) +
-                 " points do not fit in the accessor's component type");
-    std::vector<unsigned char> out(3 * faces * bytes);
-    unsigned char* p = out.data();
-    for (uint32_t f = 0; f < faces; ++f) {
-        const draco::Mesh::Face& face = mesh.face(draco::FaceIndex(f));
-        for (int k = 0; k < 3; ++k, p += bytes) {
-            const uint32_t i = face[static_cast<size_t>(k)].value();
-            if (i >= points)
-                ctx.fail(what + ": decoded triangle " + std::to_string(f) + " refers to point " +
-                         std::to_string(i) + " of " + std::to_string(points));
-            if (bytes == 1) {
-                *p = static_cast<uint8_t>(i);
-            } else if (bytes == 2) {
-                const uint16_t x = static_cast<uint16_t>(i);
-                std::memcpy(p, &x, 2);
-            } else {
-                std::memcpy(p, &i, 4);
-            }
-        }
-    }
-    return out;
-}
-
-/// Decodes Draco primitive `d` into the accessors it holds.
-void decodeDraco(const Context& ctx, Compression& c, size_t which) {
-    DracoPrimitive& d = c.draco[which];
-    d.decoded = true;
-    const std::string label = dracoLabel(ctx, d);
-    const tinygltf::Primitive& p = ctx.model.meshes[d.mesh].primitives[d.primitive];
-    if (p.mode != TINYGLTF_MODE_TRIANGLES)
-        ctx.fail(label + ": the primitive's mode is " + std::to_string(p.mode) +
-                 ": Glint decodes Draco triangle lists (mode 4) only");
-
-    // The output, and libdraco's working memory, before a byte is decoded.
-    double output = 0, indices = 0;
-    for (const auto& [accessor, source] : c.dracoAccessors)
-        if (source.primitive == which) {
-            const tinygltf::Accessor& a = ctx.model.accessors[static_cast<size_t>(accessor)];
-            const double element =
-                double(componentSize(a.componentType)) *
-                double(
-                    std::max(1, tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type))));
-            output += double(a.count) * element;
-            if (source.indices) indices = double(a.count);
-        }
-    reserveDecoded(ctx, c, output + indices * kDracoBytesPerIndex, label);
-
-    const std::string_view bytes =
-        bufferViewBytes(ctx, static_cast<int>(d.bufferView), label + " data");
-    draco::DecoderBuffer buffer;
-    buffer.Init(bytes.data(), bytes.size());
-    draco::Decoder decoder;
-    const std::clock_t start = std::clock();
-    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-    c.dracoSeconds += double(std::clock() - start) / CLOCKS_PER_SEC;
-    if (!decoded.ok() || !decoded.value())
-        ctx.fail(label + ": libdraco cannot decode bufferView " + std::to_string(d.bufferView) +
-                 " (" + std::to_string(bytes.size()) + " bytes): " +
-                 (decoded.ok() ? std::string("no mesh") : decoded.status().error_msg_string()));
-    const draco::Mesh& mesh = *decoded.value();
-    c.dracoIndices += 3.0 * mesh.num_faces();
-    if (c.dracoSeconds > ctx.options.dracoSeconds + kDracoSecondsPerIndex * c.dracoIndices)
-        ctx.fail(label + ": libdraco took " + std::to_string(int(c.dracoSeconds)) +
-                 " s of CPU time for " + std::to_string(size_t(c.dracoIndices / 3)) +
-                 " triangles, far more than such data needs: the Draco data is corrupt");
-
-    if (p.indices < 0) dracoIndices(ctx, mesh, -1, label);  // checks the triangles' order
-    for (const auto& [accessor, source] : c.dracoAccessors) {
-        if (source.primitive != which) continue;
-        std::vector<unsigned char> data =
-            source.indices
-                ? dracoIndices(ctx, mesh, accessor, label)
-                : dracoAttribute(ctx, mesh, accessor, source.uniqueId,
-                                 label + " (attribute " + std::to_string(source.uniqueId) +
-                                     ", accessor " + std::to_string(accessor) + ")");
-        c.bytes += data.size();
-        c.accessors[accessor] = std::move(data);
-    }
 }
 
 // ---- meshopt ----
@@ -520,6 +228,19 @@ std::vector<unsigned char> decodeMeshopt(const Context& ctx, Compression& c, siz
 }
 
 }  // namespace
+
+std::string dracoLabel(const Context& ctx, const DracoPrimitive& d) {
+    return describe("mesh", d.mesh, ctx.model.meshes[d.mesh].name) + ", primitive " +
+           std::to_string(d.primitive) + ": " + kDraco;
+}
+
+void reserveDecoded(const Context& ctx, const Compression& c, double more,
+                    const std::string& what) {
+    const size_t available = memoryAvailable(ctx.options.limits);
+    if (available > 0 && double(c.bytes) + more > double(available))
+        ctx.fail(what + ": decoding it needs about " + formatBytes(double(c.bytes) + more) +
+                 " of memory, more than the " + formatBytes(double(available)) + " available");
+}
 
 bool mayUseCompression(std::string_view json) {
     return json.find("_draco_mesh_compression") != std::string_view::npos ||

@@ -249,7 +249,8 @@ void checkRequiredExtensions(const Context& ctx, const std::vector<std::string>&
         "EXT_meshopt_compression", "KHR_draco_mesh_compression",
         "KHR_lights_punctual",     "KHR_materials_emissive_strength",
         "KHR_materials_ior",       "KHR_materials_transmission",
-        "KHR_mesh_quantization",   "KHR_meshopt_compression"};
+        "KHR_materials_volume",    "KHR_mesh_quantization",
+        "KHR_meshopt_compression", "KHR_texture_transform"};
     for (const std::string& e : required)
         if (std::find(std::begin(kSupported), std::end(kSupported), e) == std::end(kSupported))
             ctx.fail("the file requires extension " + e + ", which Glint does not support");

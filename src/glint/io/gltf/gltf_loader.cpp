@@ -393,8 +393,9 @@ void readMeshes(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& s
             maxPositions = std::max(maxPositions, counts[m]->positions);
             maxNormals = std::max(maxNormals, counts[m]->normals);
             maxGeneration = std::max(maxGeneration, counts[m]->largestGeneration);
-            if (skinnedMesh[m])
-                meshBytes += double(counts[m]->positions) * sizeof(VertexWeights::Vertex);
+            if (skinnedMesh[m])  // the weights, and each vertex's matrix while posing
+                meshBytes += double(counts[m]->positions) *
+                             double(sizeof(VertexWeights::Vertex) + sizeof(Mat4));
         }
     for (const auto& [key, n] : uses) {
         const MeshCounts& c = *counts[key.first];

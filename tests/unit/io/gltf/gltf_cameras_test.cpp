@@ -105,6 +105,7 @@ TEST_F(CameraChoiceFile, TheRegistryPassesTheChoiceAndFramesWithoutACamera) {
     std::ofstream(path("cams.gltf")) << kCameras;
     std::vector<Diagnostic> warnings;
     LoadOptions options;
+    options.look = ModelLook::classic();  // its note and floor are what this checks
     options.camera = CameraChoice::parse("Main");
     ModelScene m = loadSceneFile(path("cams.gltf"), warnings, options);
     ASSERT_TRUE(m.scene->camera);

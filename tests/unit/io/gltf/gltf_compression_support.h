@@ -149,7 +149,22 @@ struct DracoSettings {
     int speed = 5;         ///< libdraco's encoding speed: 10 is sequential, below edgebreaker.
     int indexType = 5123;  ///< The indices accessor's component type.
     int positionBits = 14, normalBits = 10, uvBits = 12;  ///< Quantization (0: none)
+    /// COLOR_0 (bytes), TANGENT (floats) and TEXCOORD_1 (floats in Draco, unsigned shorts in
+    /// its accessor) too, made from each vertex by the functions below.
+    bool otherAttributes = false;
 };
+
+/// The other attributes of vertex `i` of a mesh.
+inline std::array<uint8_t, 4> testColor(size_t i) {
+    return {uint8_t(10 * i % 256), uint8_t(255 - 7 * i % 256), 128, 255};
+}
+inline std::array<float, 4> testTangent(size_t i) {
+    const float a = 0.3f * float(i);
+    return {std::cos(a), std::sin(a), 0, i % 2 ? 1.0f : -1.0f};
+}
+inline std::array<float, 2> testUv1(const TestMesh& m, size_t i) {
+    return {m.uvs[i][0] * 0.5f, m.uvs[i][1] * 0.5f + 0.25f};
+}
 
 /// `m` compressed with libdraco into a KHR_draco_mesh_compression asset, written as a tool
 /// does: the accessors declare what the decoded mesh holds (its points and triangles, found
@@ -161,9 +176,25 @@ inline TestAsset dracoAsset(const TestMesh& m, const DracoSettings& settings = {
     const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
     const int nor = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
     const int tex = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+    int col = -1, tan = -1, tex1 = -1;
+    if (settings.otherAttributes) {
+        col = builder.AddAttribute(draco::GeometryAttribute::COLOR, 4, draco::DT_UINT8, true);
+        tan = builder.AddAttribute(draco::GeometryAttribute::GENERIC, 4, draco::DT_FLOAT32);
+        tex1 = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
+    }
     for (int f = 0; f < faces; ++f) {
         const uint32_t* t = &m.indices[static_cast<size_t>(3 * f)];
         const draco::FaceIndex face(static_cast<uint32_t>(f));
+        if (settings.otherAttributes) {
+            std::array<std::array<uint8_t, 4>, 3> c;
+            std::array<std::array<float, 4>, 3> g;
+            std::array<std::array<float, 2>, 3> u;
+            for (size_t k = 0; k < 3; ++k)
+                c[k] = testColor(t[k]), g[k] = testTangent(t[k]), u[k] = testUv1(m, t[k]);
+            builder.SetAttributeValuesForFace(col, face, c[0].data(), c[1].data(), c[2].data());
+            builder.SetAttributeValuesForFace(tan, face, g[0].data(), g[1].data(), g[2].data());
+            builder.SetAttributeValuesForFace(tex1, face, u[0].data(), u[1].data(), u[2].data());
+        }
         builder.SetAttributeValuesForFace(pos, face, m.positions[t[0]].data(),
                                           m.positions[t[1]].data(), m.positions[t[2]].data());
         builder.SetAttributeValuesForFace(nor, face, m.normals[t[0]].data(), m.normals[t[1]].data(),
@@ -212,6 +243,21 @@ inline TestAsset dracoAsset(const TestMesh& m, const DracoSettings& settings = {
          {{"POSITION", mesh->attribute(pos)->unique_id()},
           {"NORMAL", mesh->attribute(nor)->unique_id()},
           {"TEXCOORD_0", mesh->attribute(tex)->unique_id()}}}};
+    if (settings.otherAttributes) {
+        nlohmann::json color = accessorJson(5121, points, "VEC4"),
+                       uv1 = accessorJson(5123, points, "VEC2");
+        color["normalized"] = uv1["normalized"] = true;
+        a.json["accessors"].push_back(color);                               // 4
+        a.json["accessors"].push_back(accessorJson(5126, points, "VEC4"));  // 5
+        a.json["accessors"].push_back(uv1);                                 // 6
+        p["attributes"]["COLOR_0"] = 4;
+        p["attributes"]["TANGENT"] = 5;
+        p["attributes"]["TEXCOORD_1"] = 6;
+        auto& ids = p["extensions"]["KHR_draco_mesh_compression"]["attributes"];
+        ids["COLOR_0"] = mesh->attribute(col)->unique_id();
+        ids["TANGENT"] = mesh->attribute(tan)->unique_id();
+        ids["TEXCOORD_1"] = mesh->attribute(tex1)->unique_id();
+    }
     return a;
 }
 

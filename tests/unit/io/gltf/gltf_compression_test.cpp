@@ -18,6 +18,7 @@
 #include <random>
 #include <string>
 
+#include "glint/io/gltf/gltf_internal.h"
 #include "glint/io/gltf/gltf_loader.h"
 #include "glint/render/renderer.h"
 #include "glint/scene/model_framing.h"
@@ -171,6 +172,60 @@ TEST(GltfDraco, RoundTripsWithinTheQuantization) {
     }
 }
 
+TEST(GltfDraco, EveryAttributeItListsDecodesIntoItsAccessorsLayout) {
+    // COLOR_0 as normalised bytes, TANGENT as floats and TEXCOORD_1 as normalised unsigned
+    // shorts (from Draco's floats: scaled and rounded), read as the meshes code reads any
+    // accessor: through the loader's own hook, by point, matched to the cube's vertices by
+    // position and normal.
+    const TestMesh cube = cubeMesh();
+    DracoSettings settings;
+    settings.otherAttributes = true;
+    const TestAsset a = dracoAsset(cube, settings);
+    std::vector<Diagnostic> warnings;
+    GltfOptions options;
+    gltf::Context ctx("t.glb", warnings, options);
+    gltf::parseContainer(ctx, glbOf(a.json.dump(), a.bin));
+    const auto* positions = gltf::dracoAccessor(ctx, 1);
+    const auto* normals = gltf::dracoAccessor(ctx, 2);
+    const auto* colors = gltf::dracoAccessor(ctx, 4);
+    const auto* tangents = gltf::dracoAccessor(ctx, 5);
+    const auto* uv1s = gltf::dracoAccessor(ctx, 6);
+    ASSERT_TRUE(positions && normals && colors && tangents && uv1s);
+    const size_t points = positions->size() / 12;
+    ASSERT_EQ(points, 24u);
+    ASSERT_EQ(colors->size(), points * 4);
+    ASSERT_EQ(tangents->size(), points * 16);
+    ASSERT_EQ(uv1s->size(), points * 4);
+    for (size_t i = 0; i < points; ++i) {
+        float p[3], n[3], t[4];
+        uint16_t uv1[2];
+        std::memcpy(p, positions->data() + 12 * i, 12);
+        std::memcpy(n, normals->data() + 12 * i, 12);
+        std::memcpy(t, tangents->data() + 16 * i, 16);
+        std::memcpy(uv1, uv1s->data() + 4 * i, 4);
+        size_t v = cube.positions.size();
+        for (size_t k = 0; k < cube.positions.size(); ++k) {
+            double d = 0;
+            for (size_t c = 0; c < 3; ++c)
+                d += std::abs(p[c] - cube.positions[k][c]) + std::abs(n[c] - cube.normals[k][c]);
+            if (d < 0.01) v = k;
+        }
+        ASSERT_LT(v, cube.positions.size()) << "point " << i;
+        const auto color = testColor(v);
+        const auto tangent = testTangent(v);
+        const auto uv = testUv1(cube, v);
+        for (size_t c = 0; c < 4; ++c) {
+            EXPECT_EQ((*colors)[4 * i + c], color[c]);
+            EXPECT_FLOAT_EQ(t[c], tangent[c]);
+        }
+        for (size_t c = 0; c < 2; ++c)
+            EXPECT_NEAR(uv1[c], uv[c] * 65535.0, 65535.0 * halfStep(1, 12) + 0.5);
+    }
+    // And the mesh loads with them.
+    Model model = loadAsset(a);
+    EXPECT_EQ(model.meshes[0].triangles.size(), 12u);
+}
+
 TEST(GltfDraco, TheComparisonTellsMeshesApart) {
     // The check above tells meshes apart: the cube is not the cube moved by a quantization step.
     TestMesh moved = cubeMesh();
@@ -297,8 +352,10 @@ TEST(GltfCompression, CompressedMeshesRenderAsTheUncompressedOnes) {
         meanDifference(plainSphere, renderModel(loadAsset(turned(dracoAsset(sphere)))));
     const double meshopt =
         meanDifference(plainSphere, renderModel(loadAsset(turned(meshoptAsset(sphere)))));
-    EXPECT_LT(draco, 5e-4);
-    EXPECT_LT(meshopt, 5e-4);
+    // (1e-3: shading normals that bend a direction across the surface now carry no light, which
+    // moves a few more pixels at the sphere's rim with the quantized normals.)
+    EXPECT_LT(draco, 1e-3);
+    EXPECT_LT(meshopt, 1e-3);
     // Another shape differs by far more: the measure sees geometry.
     EXPECT_GT(meanDifference(plainCube, plainSphere), 1e-2);
 }

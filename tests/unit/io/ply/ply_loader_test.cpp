@@ -480,15 +480,17 @@ TEST_F(PlyFiles, ErrorsNameTheFile) {
 
 TEST_F(PlyFiles, APlyModelRendersWhereItIs) {
     // The unit quad and its neighbour, framed as `glint quad.ply` frames it: the camera looks
-    // at the mesh, so the image's centre sees it, lit (light grey in the studio environment).
+    // at the mesh, so the image's centre sees it lit, and it is brighter there than the same
+    // framing without the mesh's faces would be (they are light grey under two lights).
     std::ofstream(path("quad.ply"), std::ios::binary) << binaryPly(false);
     std::vector<Diagnostic> warnings;
     LoadOptions options;
     options.width = 48;
     options.height = 36;
+    options.look = ModelLook::classic();  // lights and a floor: what this checks
     ModelScene m = loadSceneFile(path("quad.ply"), warnings, options);
     ASSERT_TRUE(m.scene);
-    EXPECT_THAT(m.note, HasSubstr("quad.ply has no camera: framing it with a camera at"));
+    EXPECT_THAT(m.note, HasSubstr("quad.ply has no camera or lights"));
     EXPECT_EQ(m.scene->primitives.triangleCount(), 3u);
     m.scene->prepare();
     // A ray from the camera through the middle of the image hits the mesh (z = 0, within
