@@ -226,8 +226,9 @@ SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const
                 const double det = du1 * dv2 - du2 * dv1;
                 if (det != 0) si.dpdu = (e1 * dv2 - e2 * dv1) / det;
             }
-            if (!triangleExtras_.empty()) extrasAt(hit.primId, th.b1, th.b2, si);
         }
+        // Not under the test above: a triangle may have colours without normals (a PLY scan).
+        if (!triangleExtras_.empty()) extrasAt(hit.primId, th.b1, th.b2, si);
     } else if (uint32_t i = hit.primId - triangleCount(); i < sphereCount()) {
         const Sphere& s = spheres_[i];
         Vec3 local;

@@ -531,5 +531,41 @@ TEST_F(PlyFiles, ASceneFilePlacesAPlyMeshWithItsMaterial) {
     expectNear(film.at(16, 2), Vec3(0));
 }
 
+TEST_F(PlyFiles, VertexColoursTintAPhysicallyBasedMaterialOnly) {
+    // A unit quad whose vertices are all red: under `metallic 0` (a physically based material,
+    // base colour white) the path tracer shows red; under the course's flat material the
+    // colours are not used, as for a glTF primitive without a material (docs/scene-format.md).
+    std::ofstream(path("red.ply")) << "ply\nformat ascii 1.0\nelement vertex 4\n"
+                                      "property float x\nproperty float y\nproperty float z\n"
+                                      "property uchar red\nproperty uchar green\n"
+                                      "property uchar blue\nelement face 1\n"
+                                      "property list uchar int vertex_indices\nend_header\n"
+                                      "0 0 0 255 0 0\n2 0 0 255 0 0\n2 1 0 255 0 0\n"
+                                      "0 1 0 255 0 0\n4 0 1 2 3\n";
+    auto renderWith = [&](const std::string& material) {
+        std::ofstream(path("s.test")) << "size 32 32\nintegrator path\nspp 4\n"
+                                         "camera 1 0.5 3 1 0.5 0 0 1 0 45\n"
+                                         "directional 0 1 1 1 1 1\ndiffuse 1 1 1\n" +
+                                             material + "mesh red.ply\n";
+        std::vector<Diagnostic> warnings;
+        ModelScene m = loadSceneFile(path("s.test"), warnings);
+        m.scene->prepare();
+        // The hit has the colour, without vertex normals or texture coordinates.
+        auto si = test::shoot(*m.scene, {1, 0.5, 3}, {0, 0, -1});
+        EXPECT_TRUE(si && si->hasColor);
+        if (si) expectNear(si->color, {1, 0, 0}, 1e-6);
+        RenderOptions o;
+        o.threads = 1;
+        return render(*m.scene, o).film.at(16, 16);  // looks at (1, 0.5, 0), inside the quad
+    };
+    Vec3 pbr = renderWith("metallic 0\n");
+    EXPECT_GT(pbr.x, 0.2);
+    EXPECT_LT(pbr.y, 0.01 * pbr.x);
+    EXPECT_LT(pbr.z, 0.01 * pbr.x);
+    Vec3 flat = renderWith("");
+    EXPECT_GT(flat.x, 0.2);
+    EXPECT_NEAR(flat.y, flat.x, 1e-6 + 0.01 * flat.x);
+}
+
 }  // namespace
 }  // namespace glint
