@@ -31,6 +31,23 @@ bool specularOnly(const Bsdf& bsdf) {
     return std::visit(Visitor{}, bsdf.lobe);
 }
 
+/// A normal-mapped shading normal `n` that the viewer, at unit direction `wo`, sees past its
+/// own horizon (the far slopes of a steep normal map): shading with it would leave those
+/// slopes black, because no direction is on the viewer's side of both it and the geometric
+/// normal `ng`. It is turned, in the plane of `n` and `wo`, until `wo` stands just above its
+/// horizon, keeping the direction of its tilt; a normal the viewer sees from above comes back
+/// as it was. The result is on the side of `ng` the viewer is on.
+Vec3 facingViewer(const Vec3& n, const Vec3& ng, const Vec3& wo) {
+    constexpr double kLift = 0.05;  // the cosine between the view and a turned normal
+    const Vec3 side = (dot(n, ng) < 0) == (dot(wo, ng) < 0) ? n : -n;
+    const double c = dot(side, wo);
+    if (c >= kLift) return side;
+    const Vec3 across = side - wo * c;  // the part of the normal across the view
+    const double len = length(across);
+    if (!(len > 1e-12)) return side;  // along the view: no direction to turn towards
+    return wo * kLift + across * (std::sqrt(1 - kLift * kLift) / len);
+}
+
 }  // namespace
 
 PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
@@ -107,6 +124,8 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             const PbrSurface ps = evalSurface(*pm, si);
             emission = ps.emission;
             shadingNormal = ps.normal;
+            if (pm->normalTexture.image)
+                shadingNormal = facingViewer(shadingNormal, si.ng, -ray.dir);
             const double alpha = ps.roughness * ps.roughness;
             bsdf.lobe = MetallicRoughness{
                 ps.baseColor,    ps.metallic, std::max(alpha, MetallicRoughness::kMinAlpha),

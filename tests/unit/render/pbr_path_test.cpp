@@ -174,6 +174,39 @@ TEST(PbrPath, ANormalMapTurnsTheShadingTowardsAGrazingLight) {
     EXPECT_NEAR(mapped / flat, expectedRatio, 0.1 * expectedRatio);
 }
 
+TEST(PbrPath, ANormalMapSeenPastItsOwnHorizonIsStillLit) {
+    // The map tilts the normals 60 degrees towards +x; the camera looks from the -x side,
+    // 20 degrees above the plane, so it sees the mapped normals from behind (a steep map's far
+    // slopes). Lit from straight above, that side stays lit, as glTF viewers show it, and
+    // no brighter than the unmapped quad (the turned normal leans away from the light).
+    auto render = [](bool mapped) {
+        auto scene = std::make_unique<Scene>();
+        PbrMaterial pm;
+        pm.baseColor = Vec3(0.8);
+        pm.metallic = 0;
+        pm.roughness = 1;
+        pm.ior = 1;
+        if (mapped) {
+            const double s = std::sin(std::numbers::pi / 3), c = std::cos(std::numbers::pi / 3);
+            auto byte = [](double x) { return static_cast<uint8_t>(std::lround((x + 1) * 127.5)); };
+            pm.normalTexture = slot(image(1, 1, [&](int, int) {
+                return std::array<uint8_t, 4>{byte(s), byte(0), byte(c), 255};
+            }));
+        }
+        addQuad(*scene, pbrMaterial(*scene, pm));
+        scene->lights.push_back(directional({0, 0, 1}, 1));
+        scene->maxDepth = 1;
+        scene->prepare();
+        const double elevation = 20 * std::numbers::pi / 180;
+        const Vec3 eye(-3 * std::cos(elevation), 0, 3 * std::sin(elevation));
+        return estimate(*scene, towards(eye, {0, 0, 0}), 500).mean();
+    };
+    const double flat = render(false), mapped = render(true);
+    EXPECT_GT(flat, 0.2);
+    EXPECT_GT(mapped, 0.5 * flat);
+    EXPECT_LE(mapped, flat * (1 + 1e-9));
+}
+
 TEST(PbrPath, AnAlphaMaskCutsOutTexelsForCameraRaysAndShadows) {
     auto scene = std::make_unique<Scene>();
     PbrMaterial leaf;
