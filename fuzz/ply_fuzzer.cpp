@@ -12,42 +12,15 @@
 #include <vector>
 
 #include "fuzz_render.h"
-#include "glint/core/error.h"
 #include "glint/io/ply/ply_loader.h"
-#include "glint/scene/model_framing.h"
-
-namespace {
-
-constexpr int kSide = 8;                // images of 8 x 8 pixels
-constexpr size_t kMaxTriangles = 4096;  // larger meshes are loaded but not rendered
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    std::string_view input(reinterpret_cast<const char*>(data), size);
     glint::PlyOptions options;
     options.limits.readFiles = false;
     options.limits.memoryBytes = size_t(64) << 20;
-    std::vector<glint::Diagnostic> warnings;
-    glint::MeshData mesh;
-    try {
-        mesh = glint::parsePly(input, "fuzz.ply", warnings, options);
-    } catch (const glint::SceneError& e) {
-        (void)e.diagnostic().format("error");  // formatting the message must not fail either
-        return 0;
-    }
-    for (const glint::Diagnostic& w : warnings) (void)w.format("warning");
-    if (mesh.triangles.size() > kMaxTriangles) return 0;
-
-    glint::ModelScene m;
-    try {
-        m = glint::frameModelScene(glint::singleMeshModel(std::move(mesh)), kSide, kSide);
-    } catch (const glint::SceneError&) {
-        return 0;  // beyond the coordinate range, or nothing of non-zero area
-    }
-    glint::Scene& scene = *m.scene;
-    scene.maxDepth = 2;
-    scene.prepare();
-    glint::fuzz::renderExpectingFinitePixels(scene, "glint_fuzz_ply");
-    return 0;
+    return glint::fuzz::loadAndRenderModel(
+        std::string_view(reinterpret_cast<const char*>(data), size), "glint_fuzz_ply",
+        [&](std::string_view input, std::vector<glint::Diagnostic>& warnings) {
+            return glint::singleMeshModel(glint::parsePly(input, "fuzz.ply", warnings, options));
+        });
 }

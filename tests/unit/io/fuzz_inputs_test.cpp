@@ -34,6 +34,16 @@ std::vector<fs::path> inputs(const char* sub) {
     return files;
 }
 
+/// Renders a prepared `scene` on one thread and expects every pixel to be finite.
+void expectFinitePixels(const Scene& scene, const std::string& name) {
+    RenderOptions o;
+    o.threads = 1;
+    Film f = render(scene, o).film;
+    for (int y = 0; y < f.height(); ++y)
+        for (int x = 0; x < f.width(); ++x)
+            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
+}
+
 /// Parses `text` as the harness does; returns false for a clean SceneError. Renders a scene
 /// that parses at a tiny size and expects every pixel to be finite.
 bool parsesAndRendersFinite(const std::string& text, const std::string& name) {
@@ -51,12 +61,7 @@ bool parsesAndRendersFinite(const std::string& text, const std::string& name) {
     scene->height = std::min(scene->height, 8);
     scene->maxDepth = std::min(scene->maxDepth, 3);
     scene->prepare();
-    RenderOptions o;
-    o.threads = 1;
-    Film f = render(*scene, o).film;
-    for (int y = 0; y < f.height(); ++y)
-        for (int x = 0; x < f.width(); ++x)
-            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
+    expectFinitePixels(*scene, name);
     return true;
 }
 
@@ -82,8 +87,32 @@ TEST(FuzzInputs, EveryRegressionFromFuzzingStaysFixed) {
     for (const auto& f : files) parsesAndRendersFinite(read(f), f.filename().string());
 }
 
-/// What fuzz/obj_fuzzer.cpp does with one input: returns false for a clean SceneError; a mesh
-/// that loads is placed, framed and rendered tiny, and every pixel must be finite.
+/// What the model readers' harnesses do with one input (fuzz/fuzz_render.h,
+/// loadAndRenderModel): `parse(input, warnings)` gives a Model; returns false for a clean
+/// SceneError; a model that loads becomes the scene `glint model.EXT` makes, rendered tiny,
+/// every pixel finite.
+template <typename Parse>
+bool modelLoadsAndRendersFinite(const std::string& input, const std::string& name, Parse parse) {
+    std::vector<Diagnostic> warnings;
+    Model model;
+    try {
+        model = parse(input, warnings);
+    } catch (const SceneError&) {
+        return false;
+    }
+    ModelScene m;
+    try {
+        m = frameModelScene(model, 8, 8);
+    } catch (const SceneError&) {
+        return true;
+    }
+    m.scene->maxDepth = 2;
+    m.scene->prepare();
+    expectFinitePixels(*m.scene, name);
+    return true;
+}
+
+/// fuzz/obj_fuzzer.cpp: an OBJ text, optionally followed by "#mtl" and the MTL text.
 bool objLoadsAndRendersFinite(const std::string& input, const std::string& name) {
     const std::string marker = "\n#mtl\n";
     std::string objText = input, mtl;
@@ -94,30 +123,36 @@ bool objLoadsAndRendersFinite(const std::string& input, const std::string& name)
         mtl = input.substr(at + marker.size());
         options.mtlText = &mtl;
     }
-    std::vector<Diagnostic> warnings;
-    MeshData mesh;
-    try {
-        mesh = parseObj(objText, name, warnings, options);
-    } catch (const SceneError&) {
-        return false;
-    }
-    Scene scene;
-    scene.width = scene.height = 8;
-    scene.maxDepth = 2;
-    try {
-        addMesh(scene, mesh, Transform(), scene.addMaterial(Material{}));
-        frameModel(scene, name);
-    } catch (const SceneError&) {
-        return true;
-    }
-    scene.prepare();
-    RenderOptions o;
-    o.threads = 1;
-    Film f = render(scene, o).film;
-    for (int y = 0; y < f.height(); ++y)
-        for (int x = 0; x < f.width(); ++x)
-            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
-    return true;
+    return modelLoadsAndRendersFinite(objText, name, [&](const std::string& text, auto& warnings) {
+        return singleMeshModel(parseObj(text, name, warnings, options));
+    });
+}
+
+/// The options of the harnesses that limit memory: no file read, 64 MiB.
+template <typename Options>
+Options fuzzOptions() {
+    Options options;
+    options.limits.readFiles = false;
+    options.limits.memoryBytes = size_t(64) << 20;
+    return options;
+}
+
+bool gltfLoadsAndRendersFinite(const std::string& input, const std::string& name) {
+    return modelLoadsAndRendersFinite(input, name, [&](const std::string& text, auto& warnings) {
+        return parseGltf(text, name, warnings, fuzzOptions<GltfOptions>());
+    });
+}
+
+bool plyLoadsAndRendersFinite(const std::string& input, const std::string& name) {
+    return modelLoadsAndRendersFinite(input, name, [&](const std::string& text, auto& warnings) {
+        return singleMeshModel(parsePly(text, name, warnings, fuzzOptions<PlyOptions>()));
+    });
+}
+
+bool stlLoadsAndRendersFinite(const std::string& input, const std::string& name) {
+    return modelLoadsAndRendersFinite(input, name, [&](const std::string& text, auto& warnings) {
+        return singleMeshModel(parseStl(text, name, warnings, fuzzOptions<StlOptions>()));
+    });
 }
 
 TEST(FuzzInputs, ObjSeedCorpusLoadsOrFailsCleanlyAndRendersFinite) {
@@ -134,36 +169,6 @@ TEST(FuzzInputs, EveryObjRegressionFromFuzzingStaysFixed) {
     for (const auto& f : files) objLoadsAndRendersFinite(read(f), f.filename().string());
 }
 
-/// What fuzz/gltf_fuzzer.cpp does with one input: returns false for a clean SceneError; a model
-/// that loads becomes the scene `glint model.gltf` makes, rendered tiny, every pixel finite.
-bool gltfLoadsAndRendersFinite(const std::string& input, const std::string& name) {
-    GltfOptions options;
-    options.limits.readFiles = false;
-    options.limits.memoryBytes = size_t(64) << 20;
-    std::vector<Diagnostic> warnings;
-    Model model;
-    try {
-        model = parseGltf(input, name, warnings, options);
-    } catch (const SceneError&) {
-        return false;
-    }
-    ModelScene m;
-    try {
-        m = frameModelScene(model, 8, 8);
-    } catch (const SceneError&) {
-        return true;
-    }
-    m.scene->maxDepth = 2;
-    m.scene->prepare();
-    RenderOptions o;
-    o.threads = 1;
-    Film f = render(*m.scene, o).film;
-    for (int y = 0; y < f.height(); ++y)
-        for (int x = 0; x < f.width(); ++x)
-            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
-    return true;
-}
-
 TEST(FuzzInputs, GltfSeedCorpusLoadsOrFailsCleanlyAndRendersFinite) {
     auto files = inputs("corpus/gltf");
     ASSERT_GE(files.size(), 10u) << "the glTF seed corpus is missing";
@@ -176,46 +181,6 @@ TEST(FuzzInputs, EveryGltfRegressionFromFuzzingStaysFixed) {
     auto files = inputs("regressions/gltf");
     if (files.empty()) GTEST_SKIP() << "no fuzzing finding so far";
     for (const auto& f : files) gltfLoadsAndRendersFinite(read(f), f.filename().string());
-}
-
-/// What fuzz/ply_fuzzer.cpp and fuzz/stl_fuzzer.cpp do with one input (`parse` is parsePly or
-/// parseStl): returns false for a clean SceneError; a mesh that loads becomes the scene `glint
-/// model.ply` makes, rendered tiny, every pixel finite.
-template <typename Options, typename Parse>
-bool meshLoadsAndRendersFinite(const std::string& input, const std::string& name, Parse parse) {
-    Options options;
-    options.limits.readFiles = false;
-    options.limits.memoryBytes = size_t(64) << 20;
-    std::vector<Diagnostic> warnings;
-    MeshData mesh;
-    try {
-        mesh = parse(input, name, warnings, options);
-    } catch (const SceneError&) {
-        return false;
-    }
-    ModelScene m;
-    try {
-        m = frameModelScene(singleMeshModel(std::move(mesh)), 8, 8);
-    } catch (const SceneError&) {
-        return true;
-    }
-    m.scene->maxDepth = 2;
-    m.scene->prepare();
-    RenderOptions o;
-    o.threads = 1;
-    Film f = render(*m.scene, o).film;
-    for (int y = 0; y < f.height(); ++y)
-        for (int x = 0; x < f.width(); ++x)
-            EXPECT_TRUE(isFinite(f.at(x, y))) << name << " pixel " << x << "," << y;
-    return true;
-}
-
-bool plyLoadsAndRendersFinite(const std::string& input, const std::string& name) {
-    return meshLoadsAndRendersFinite<PlyOptions>(input, name, parsePly);
-}
-
-bool stlLoadsAndRendersFinite(const std::string& input, const std::string& name) {
-    return meshLoadsAndRendersFinite<StlOptions>(input, name, parseStl);
 }
 
 TEST(FuzzInputs, PlySeedCorpusLoadsOrFailsCleanlyAndRendersFinite) {
