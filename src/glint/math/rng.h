@@ -38,6 +38,24 @@ class Rng {
     /// Uniform float in [0, 1).
     float uniform() { return static_cast<float>(next() >> 8) * 0x1p-24f; }
 
+    /// Skips `delta` values in O(log delta) steps: the state is then the one `delta` calls of
+    /// next() would leave. One step of the generator is the affine map s -> a s + c (mod
+    /// 2^64); its n-th power is again affine, s -> A s + C, and is built by squaring: the
+    /// map's powers of two are composed for the bits of `delta` that are set.
+    constexpr void advance(uint64_t delta) {
+        uint64_t a = 6364136223846793005ULL, c = inc_;  // the map for 2^k steps, k = 0 first
+        uint64_t accA = 1, accC = 0;                   // the map for the bits done so far
+        for (; delta; delta >>= 1) {
+            if (delta & 1) {
+                accA *= a;
+                accC = accC * a + c;
+            }
+            c = (a + 1) * c;  // (a s + c) composed with itself: a^2 s + (a + 1) c
+            a *= a;
+        }
+        state_ = accA * state_ + accC;
+    }
+
   private:
     uint64_t state_ = 0;
     uint64_t inc_ = 0;

@@ -26,12 +26,29 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
     // Per-sample random numbers only where something draws them.
     const bool seeded = camera.hasLens() || integrator->usesRandomNumbers();
-    const double weight = 1.0 / sampler.samplesPerPixel();
+    const int spp = sampler.samplesPerPixel();
+    const int sampleBegin = std::clamp(options.sampleBegin, 0, spp);
+    const int sampleEnd =
+        options.sampleEnd > 0 ? std::clamp(options.sampleEnd, sampleBegin, spp) : spp;
+    const double rendered = sampleEnd - sampleBegin;  // samples per pixel of this part
+    if (options.keepSums) result.sums = FilmSums(scene.width, scene.height);
 
+    // The tiles of the part asked for: the image's tile grid, rows of it picked by `part`,
+    // each tile clipped to the crop.
     const int tile = std::max(1, options.tileSize);
-    const int tilesX = (scene.width + tile - 1) / tile;
-    const int tilesY = (scene.height + tile - 1) / tile;
-    const int tilesTotal = tilesX * tilesY;
+    PixelBounds crop = options.crop.empty() ? PixelBounds{0, scene.width, 0, scene.height}
+                                            : options.crop;
+    crop = {std::max(crop.x0, 0), std::min(crop.x1, scene.width), std::max(crop.y0, 0),
+            std::min(crop.y1, scene.height)};
+    const int parts = std::max(options.parts, 1);
+    std::vector<PixelBounds> tiles;
+    for (int y0 = crop.y0 - crop.y0 % tile; y0 < crop.y1; y0 += tile) {
+        if ((y0 / tile) % parts != options.part) continue;
+        for (int x0 = crop.x0 - crop.x0 % tile; x0 < crop.x1; x0 += tile)
+            tiles.push_back({std::max(x0, crop.x0), std::min(x0 + tile, crop.x1),
+                             std::max(y0, crop.y0), std::min(y0 + tile, crop.y1)});
+    }
+    const int tilesTotal = static_cast<int>(tiles.size());
     std::atomic<int> nextTile{0}, tilesDone{0};
 
     // Camera rays go in packets of eight: 4 x 2 pixels at one sample per pixel, or eight
@@ -53,21 +70,27 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 if (!seeded) {
-                    sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
-                        samples.push_back({y * 4 + x, camera.generateRay(px, py), kUnseeded});
-                    });
+                    sampler.forEachSample(
+                        bx + x, by + y,
+                        [&](double px, double py) {
+                            samples.push_back({y * 4 + x, camera.generateRay(px, py), kUnseeded});
+                        },
+                        sampleBegin, sampleEnd);
                     continue;
                 }
-                int index = 0;
+                int index = sampleBegin;
                 const uint64_t pixelSeed = sampler.pixelSeed(bx + x, by + y);  // once per pixel
-                sampler.forEachSample(bx + x, by + y, [&](double px, double py) {
-                    Rng rng(sampler.sampleSeed(bx + x, by + y, index++));
-                    Ray ray = camera.hasLens()
-                                  ? camera.generateRay(px, py, rng.uniform(), rng.uniform())
-                                  : camera.generateRay(px, py);
-                    samples.push_back(
-                        {y * 4 + x, ray, rng, static_cast<uint32_t>(index - 1), pixelSeed});
-                });
+                sampler.forEachSample(
+                    bx + x, by + y,
+                    [&](double px, double py) {
+                        Rng rng(sampler.sampleSeed(bx + x, by + y, index++));
+                        Ray ray = camera.hasLens()
+                                      ? camera.generateRay(px, py, rng.uniform(), rng.uniform())
+                                      : camera.generateRay(px, py);
+                        samples.push_back(
+                            {y * 4 + x, ray, rng, static_cast<uint32_t>(index - 1), pixelSeed});
+                    },
+                    sampleBegin, sampleEnd);
             }
         Vec3 sum[8];
         for (size_t i = 0; i < samples.size(); i += 8) {
@@ -97,7 +120,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const Vec3& s = sum[y * 4 + x];
-                result.film.at(bx + x, by + y) = sampler.samplesPerPixel() == 1 ? s : s * weight;
+                result.film.at(bx + x, by + y) = pixelValue(s, rendered);
+                if (options.keepSums) {
+                    result.sums.sum(bx + x, by + y) = s;
+                    result.sums.weight(bx + x, by + y) = rendered;
+                }
             }
     };
 
@@ -115,8 +142,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
                 int t = nextTile.fetch_add(1, std::memory_order_relaxed);
                 if (t >= tilesTotal) break;
-                int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
-                int x1 = std::min(x0 + tile, scene.width), y1 = std::min(y0 + tile, scene.height);
+                const auto [x0, x1, y0, y1] = tiles[static_cast<size_t>(t)];
                 bool stopped = false;
                 for (int by = y0; by < y1 && !stopped; by += 2)
                     for (int bx = x0; bx < x1; bx += 4) {

@@ -38,10 +38,21 @@ struct RenderOptions {
     std::function<void(const RenderProgress&)> onProgress;
     /// When set and it becomes true, every thread stops after its current block of pixels.
     const std::atomic<bool>* cancel = nullptr;
+
+    // Part of a frame (docs/scale-out.md): the image keeps the scene's size; pixels outside
+    // the part are black with weight 0 in RenderResult::sums. Every pixel and sample rendered
+    // is exactly the one the whole render computes there.
+    PixelBounds crop;   ///< The pixels to render; empty: the whole image.
+    int part = 0;       ///< With `parts` > 1: only the rows of tiles (tileSize pixels high,
+    int parts = 1;      ///< counted from the image's top) whose index % parts == part.
+    int sampleBegin = 0;  ///< Samples [sampleBegin, sampleEnd) of each pixel's `spp`;
+    int sampleEnd = 0;    ///< sampleEnd 0: up to spp.
+    bool keepSums = false;  ///< Fill RenderResult::sums (for merging parts).
 };
 
 struct RenderResult {
     Film film;
+    FilmSums sums;  ///< With RenderOptions::keepSums: the sums and weights behind `film`.
     RayCounts rays;
     double seconds = 0;
     bool complete = true;  ///< False if cancelled before every tile was rendered.

@@ -31,24 +31,27 @@ class PixelSampler {
     int samplesPerPixel() const { return spp_; }
 
     /// Sample positions of pixel (x, y), in pixels from the image's top-left corner, passed
-    /// to `f(px, py)` in a fixed order.
+    /// to `f(px, py)` in a fixed order: samples [begin, end) of it (end < 0: all), exactly those
+    /// that the whole sequence has there (the jitter's generator skips the ones before).
     template <typename F>
-    void forEachSample(int x, int y, F&& f) const {
+    void forEachSample(int x, int y, F&& f, int begin = 0, int end = -1) const {
+        if (end < 0 || end > spp_) end = spp_;
         if (spp_ == 1) {
-            f(x + 0.5, y + 0.5);
+            if (begin < end) f(x + 0.5, y + 0.5);
             return;
         }
         Rng rng(
             mixBits(seed_ ^ mixBits((static_cast<uint64_t>(y) << 32) | static_cast<uint32_t>(x))));
-        for (int j = 0; j < rows_; ++j)
-            for (int i = 0; i < cols_; ++i) {
-                double u = (i + static_cast<double>(rng.uniform())) / cols_;
-                double v = (j + static_cast<double>(rng.uniform())) / rows_;
-                if (pixelBox_)
-                    f(x + u, y + v);
-                else
-                    f(x + 0.5 + filter_.sample(u), y + 0.5 + filter_.sample(v));
-            }
+        if (begin > 0) rng.advance(2 * static_cast<uint64_t>(begin));  // two values a sample
+        for (int k = begin; k < end; ++k) {
+            const int i = k % cols_, j = k / cols_;
+            double u = (i + static_cast<double>(rng.uniform())) / cols_;
+            double v = (j + static_cast<double>(rng.uniform())) / rows_;
+            if (pixelBox_)
+                f(x + u, y + v);
+            else
+                f(x + 0.5 + filter_.sample(u), y + 0.5 + filter_.sample(v));
+        }
     }
 
     /// Seed of pixel (x, y) for the low-discrepancy values its samples draw (math/sobol.h).
