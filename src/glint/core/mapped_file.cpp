@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <system_error>
 
+#include "glint/core/input_log.h"
+
 namespace glint {
 namespace {
 
@@ -27,6 +29,7 @@ MappedFile::MappedFile(const std::string& path) {
     size_ = static_cast<size_t>(st.st_size);
     if (size_ == 0) {
         ::close(fd);
+        InputLog::record(path, text());
         return;
     }
     void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
@@ -35,6 +38,7 @@ MappedFile::MappedFile(const std::string& path) {
         data_ = static_cast<const char*>(p);
         mapped_ = true;
         ::close(fd);
+        InputLog::record(path, text());
         return;
     }
     // Not mappable: read it (no zero-filling of the buffer first).
@@ -52,6 +56,7 @@ MappedFile::MappedFile(const std::string& path) {
     }
     ::close(fd);
     data_ = buffer_.get();
+    InputLog::record(path, text());
 }
 
 MappedFile::~MappedFile() {
