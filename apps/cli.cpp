@@ -1,0 +1,414 @@
+#include "cli.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "demo_scene.h"
+#include "glint/core/error.h"
+#include "glint/io/course/course_loader.h"
+#include "glint/io/image/environment_io.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/registry.h"
+#include "glint/render/integrator.h"
+#include "glint/render/progressive.h"
+#include "glint/scene/studio_environment.h"
+
+namespace glint::cli {
+namespace {
+
+/// Parses "WxH" within the scene limits; returns what is wrong, or nothing.
+std::string parseSize(const std::string& s, int& w, int& h) {
+    const std::string form = "--size expects WIDTHxHEIGHT, e.g. 640x480, got '" + s + "'";
+    auto x = s.find_first_of("xX");
+    if (x == std::string::npos) return form;
+    long long a = 0, b = 0;
+    auto whole = [](const char* first, const char* last, long long& v) {
+        auto [p, ec] = std::from_chars(first, last, v);
+        return first != last && ec == std::errc() && p == last;
+    };
+    if (!whole(s.data(), s.data() + x, a) || !whole(s.data() + x + 1, s.data() + s.size(), b))
+        return form;
+    if (a < 1 || b < 1 || a > kMaxImageSide || b > kMaxImageSide)
+        return "--size: each side must be 1 to " + std::to_string(kMaxImageSide) +
+               " pixels, got '" + s + "'";
+    if (a * b > kMaxImagePixels)
+        return "--size: at most " + std::to_string(kMaxImagePixels) + " pixels, got '" + s + "'";
+    w = static_cast<int>(a);
+    h = static_cast<int>(b);
+    return {};
+}
+
+/// An integer option within [lo, hi], with plain messages for anything else.
+CLI::Validator integerIn(long long lo, long long hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            long long v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size())
+                return "expected an integer, got '" + text + "'";
+            if (v < lo || v > hi)
+                return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+                       text;
+            return {};
+        },
+        "", "");
+}
+
+/// A finite real number within [lo, hi], with plain messages for anything else.
+CLI::Validator numberIn(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            double v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
+                return "expected a number, got '" + text + "'";
+            auto str = [](double d) {
+                char buf[32];
+                return std::string(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
+            };
+            if (v < lo || v > hi) return "must be " + str(lo) + " to " + str(hi) + ", got " + text;
+            return {};
+        },
+        "", "");
+}
+
+/// The environment `--environment` names: the studio's, none (a null map) or a file's.
+/// Throws RenderError if the file cannot be read.
+std::shared_ptr<const EnvironmentMap> environmentNamed(const std::string& name) {
+    if (name == "studio") return studioEnvironment();
+    if (name == "none") return nullptr;
+    HdrImage image = loadEnvironmentImage(name);
+    return std::make_shared<const EnvironmentMap>(image.width, image.height, std::move(image.rgb));
+}
+
+}  // namespace
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// "1 light", "2 lights".
+std::string count(unsigned long long n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+/// "2 triangles, 1 sphere", then the other kinds the scene has: "1 box, 2 planes". Polygons
+/// are counted as the triangles they became.
+std::string primitiveSummary(const Primitives& prims) {
+    using glint::ShapeKind;
+    std::string s = count(prims.triangleCount(), "triangle", "triangles") + ", " +
+                    count(prims.sphereCount(), "sphere", "spheres");
+    const struct {
+        unsigned long long n;
+        const char *one, *many;
+    } kinds[] = {{prims.shapeCount(ShapeKind::Box), "box", "boxes"},
+                 {prims.shapeCount(ShapeKind::Cylinder), "cylinder", "cylinders"},
+                 {prims.shapeCount(ShapeKind::Cone), "cone", "cones"},
+                 {prims.shapeCount(ShapeKind::Disk), "disk", "disks"},
+                 {prims.instanceCount(), "mesh instance", "mesh instances"},
+                 {prims.planeCount(), "plane", "planes"}};
+    for (const auto& k : kinds)
+        if (k.n > 0) s += ", " + count(k.n, k.one, k.many);
+    return s;
+}
+
+int usageError(const std::string& message) {
+    std::fprintf(stderr, "glint: error: %s\nRun 'glint --help' for usage.\n", message.c_str());
+    return kExitUsage;
+}
+
+void printStats(const Scene& scene, double parse, double build, const RenderResult& r,
+                double write) {
+    const auto& bvh = scene.bvh().stats();
+    double mrays = r.seconds > 0 ? static_cast<double>(r.rays.total()) / r.seconds / 1e6 : 0;
+    std::printf("Scene       %s, %s, %s\n", primitiveSummary(scene.primitives).c_str(),
+                count(scene.lights.size(), "light", "lights").c_str(),
+                count(scene.materials.size(), "material", "materials").c_str());
+    if (scene.primitives.instanceCount() > 0)
+        std::printf(
+            "Instances   %s of %s: %s placed, %s stored once\n",
+            count(scene.primitives.instanceCount(), "instance", "instances").c_str(),
+            count(scene.primitives.sharedMeshCount(), "shared mesh", "shared meshes").c_str(),
+            count(scene.primitives.instancedTriangleCount(), "triangle", "triangles").c_str(),
+            count(scene.sharedTriangleCount(), "triangle", "triangles").c_str());
+    std::printf("BVH         %u nodes, %u leaves, depth %u, %.2f MB", bvh.nodes, bvh.leaves,
+                bvh.maxDepth, static_cast<double>(bvh.bytes) / 1e6);
+    if (scene.primitives.sharedMeshCount() > 0)
+        std::printf(" + shared meshes %.2f MB", static_cast<double>(scene.sharedBvhBytes()) / 1e6);
+    std::printf("\n");
+    std::printf("Time        parse %.3f s, build %.3f s, render %.3f s, write %.3f s\n", parse,
+                build, r.seconds, write);
+    std::printf("Rays        %llu camera, %llu shadow, %llu reflection, %llu total\n",
+                static_cast<unsigned long long>(r.rays.camera),
+                static_cast<unsigned long long>(r.rays.shadow),
+                static_cast<unsigned long long>(r.rays.reflection),
+                static_cast<unsigned long long>(r.rays.total()));
+    std::printf("Throughput  %.2f Mrays/s\n", mrays);
+    // Non-zero only through a bug: NaN or infinite radiance, repaired before the film.
+    std::printf("Repaired    %llu non-finite radiance values\n",
+                static_cast<unsigned long long>(r.rays.nonFinite));
+}
+
+int prepare(const Options& opt, Prepared& out) {
+    using Clock = std::chrono::steady_clock;
+    const bool demo = opt.scene.empty();
+    int width = 0, height = 0;
+    if (!opt.size.empty()) {
+        if (std::string problem = parseSize(opt.size, width, height); !problem.empty())
+            return usageError(problem);
+    }
+    Isa kernels = opt.kernels == "avx2"       ? Isa::Avx2
+                  : opt.kernels == "portable" ? Isa::Portable
+                                              : Isa::Auto;
+    if (kernels == Isa::Avx2 && Bvh::bestIsa() != Isa::Avx2)
+        return usageError(
+            "--kernels avx2: this CPU (or this build of glint) has no AVX2; use "
+            "auto or portable");
+    if (demo && !opt.camera.empty())
+        return usageError("--camera chooses among a model file's cameras: name a model to render");
+    if (!opt.output.empty() && !imageFormatFor(opt.output))
+        return usageError("cannot write '" + opt.output + "': unknown image format (use " +
+                          kImageExtensions + ")");
+    // A model's look: the studio with the path tracer, the classic one with Whitted's.
+    ModelLook look;
+    look.studio = opt.integrator != "whitted";
+    if (!opt.ground.empty()) {
+        look.ground = opt.ground == "shadow"  ? ModelGround::Shadow
+                      : opt.ground == "floor" ? ModelGround::Floor
+                                              : ModelGround::None;
+        if (!look.studio && look.ground == ModelGround::Shadow)
+            return usageError(
+                "--ground shadow needs the path tracer; with --integrator whitted use --ground "
+                "floor or none");
+    }
+    std::optional<std::shared_ptr<const EnvironmentMap>> environment;
+    if (!opt.environment.empty()) {
+        try {
+            environment = environmentNamed(opt.environment);
+        } catch (const RenderError& e) {
+            std::fprintf(stderr, "glint: error: --environment: %s\n", e.what());
+            return kExitSceneError;
+        }
+        look.environment = environment;
+    }
+
+    // Parse.
+    auto t0 = Clock::now();
+    std::vector<Diagnostic> warnings;
+    std::unique_ptr<Scene> scene;
+    std::string modelNote;  // for a bare model: the camera, lights and floor Glint chose
+    bool framed = false;    // a model framed as a scene
+    try {
+        if (demo) {
+            scene = parseCourseScene(kDemoScene, "demo.test", warnings);
+        } else {
+            LoadOptions options;
+            options.width = width;
+            options.height = height;
+            options.lenient = opt.lenient;
+            options.camera = CameraChoice::parse(opt.camera);
+            options.look = look;
+            ModelScene m = loadSceneFile(opt.scene, warnings, options);
+            scene = std::move(m.scene);
+            modelNote = std::move(m.note);
+            framed = m.framed;
+        }
+    } catch (const SceneError& e) {
+        for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
+        std::fprintf(stderr, "%s\n", e.what());
+        return kExitSceneError;
+    }
+    double parseSeconds = secondsSince(t0);
+    for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
+    if (!modelNote.empty() && !opt.quiet) std::fprintf(stderr, "glint: %s\n", modelNote.c_str());
+    if (width > 0) {
+        scene->width = width;
+        scene->height = height;
+    }
+    if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
+    if (!opt.integrator.empty()) scene->integrator = opt.integrator;
+    if (!framed) {  // a model's environment and ground were chosen when it was framed
+        if (environment) scene->environment = *environment;
+        if (!opt.ground.empty())
+            std::fprintf(stderr,
+                         "glint: warning: --ground applies to models (.obj, .gltf, .glb) only; "
+                         "'%s' is a scene: ignored\n",
+                         demo ? "demo.test" : opt.scene.c_str());
+    }
+    // How the image is shown: the scene's way (PBR Neutral and sRGB for a model), or the
+    // command line's.
+    DisplayTransform display{opt.exposure, scene->display.srgb, scene->display.toneMap};
+    if (opt.srgb != 0) display.srgb = opt.srgb > 0;
+    if (!opt.toneMap.empty()) display.toneMap = *toneMapNamed(opt.toneMap);
+
+    // Where the image goes: -o, else the scene's output line, else <scene-stem>.png.
+    std::string output = opt.output;
+    if (output.empty()) output = scene->output;
+    if (output.empty()) output = std::filesystem::path(opt.scene).stem().string() + ".png";
+    if (demo && opt.output.empty()) output = "glint.png";
+
+    std::optional<ImageFormat> format = imageFormatFor(output);
+    if (!format) {
+        std::fprintf(stderr,
+                     "glint: error: cannot write '%s': unknown image format (use %s, or choose a "
+                     "file with -o)\n",
+                     output.c_str(), kImageExtensions);
+        return kExitSceneError;
+    }
+    // Float files hold linear radiance: the tone mapper and the sRGB curve are for 8-bit files
+    // only.
+    if (opt.srgb > 0 && isFloatFormat(*format))
+        std::fprintf(stderr,
+                     "glint: warning: --srgb applies to 8-bit outputs (.png, .ppm) only; '%s' is "
+                     "written linear\n",
+                     output.c_str());
+    if (!opt.toneMap.empty() && isFloatFormat(*format))
+        std::fprintf(stderr,
+                     "glint: warning: --tonemap applies to 8-bit outputs (.png, .ppm) only; '%s' "
+                     "is written linear\n",
+                     output.c_str());
+    out.scene = std::move(scene);
+    out.display = display;
+    out.output = output;
+    out.kernels = kernels;
+    out.parseSeconds = parseSeconds;
+    out.demo = demo;
+    return kGoOn;
+}
+
+void addOptions(CLI::App& app, Options& opt) {
+    app.add_option("SCENE", opt.scene,
+                   "Scene file to render (CSE167x .test format), or an .obj, .gltf, .glb, .ply "
+                   "or .stl model to frame");
+
+    const char* input = "Input";
+    app.add_flag("--lenient", opt.lenient,
+                 "Skip unknown commands and ignore unmatched popTransforms in scene files, with "
+                 "a warning, as the course's own parser did (default: they are errors)")
+        ->group(input);
+    app.add_option("--camera", opt.camera,
+                   "Which of a model file's cameras to render through: its number N (from 0, in "
+                   "the order of the file's node tree), the name of the camera or of its node, "
+                   "or none to ignore the file's cameras and frame the model (default: its first "
+                   "perspective camera)")
+        ->group(input)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                if (text.empty()) return "expected a camera number, a name, or none";
+                return {};
+            },
+            "", ""))
+        ->type_name("N|NAME|none");
+
+    const char* out = "Output";
+    app.add_option("-o,--output", opt.output,
+                   "Image file to write; .png, .ppm, .pfm or .exr (float). Default: the "
+                   "scene's 'output' line, else <scene-stem>.png")
+        ->group(out)
+        ->type_name("FILE");
+    app.add_option("--exposure", opt.exposure,
+                   "Multiply radiance by 2^EV before writing, -64 to 64, every format "
+                   "(default 0: unchanged)")
+        ->group(out)
+        ->check(numberIn(-64, 64))
+        ->type_name("EV");
+    app.add_flag_callback(
+           "--srgb", [&opt] { opt.srgb = 1; },
+           "Encode 8-bit outputs (.png, .ppm) with the sRGB curve, rounded (default for models; "
+           "scenes: the course's clamp and floor(255 c)); float outputs stay linear")
+        ->group(out);
+    app.add_flag_callback(
+           "--no-srgb", [&opt] { opt.srgb = -1; },
+           "Encode 8-bit outputs with the course's floor(255 c), also for models")
+        ->group(out);
+    app.add_option("--tonemap", opt.toneMap,
+                   "How radiance is brought into [0, 1] for 8-bit outputs: neutral (Khronos PBR "
+                   "Neutral), clamp (the course's); default: neutral for models, clamp for "
+                   "scenes")
+        ->group(out)
+        ->check(CLI::IsMember({"neutral", "clamp"}))
+        ->type_name("NAME");
+
+    const char* render = "Rendering";
+    app.add_option("-t,--threads", opt.threads,
+                   "Threads for the BVH build and the render, 1 to 4096 (default: all hardware "
+                   "threads); 1 runs everything on one thread")
+        ->group(render)
+        ->check(integerIn(1, 4096))
+        ->type_name("N");
+    app.add_option("--kernels", opt.kernels,
+                   std::string("Traversal kernels: auto (the best this CPU runs: ") + Bvh::isa() +
+                       " here), avx2, portable (plain C++); every choice gives the same image")
+        ->group(render)
+        ->check(CLI::IsMember({"auto", "avx2", "portable"}))
+        ->type_name("NAME");
+    app.add_option("--size", opt.size, "Image size, overriding the scene's 'size'")
+        ->group(render)
+        ->type_name("WxH");
+    app.add_option("--maxdepth", opt.maxDepth,
+                   "Maximum reflection depth, 0 to 64, overriding the scene's (models: 8)")
+        ->group(render)
+        ->check(integerIn(0, kMaxDepthLimit))
+        ->type_name("N");
+
+    app.add_option(
+           "--integrator", opt.integrator,
+           "How light is computed, overriding the scene's 'integrator': " + integratorNameList() +
+               " (default: whitted, the course's; path for models, whitted giving "
+               "them the classic look)")
+        ->group(render)
+        ->check(CLI::Validator(
+            [](std::string& name) -> std::string {
+                if (findIntegrator(name)) return {};
+                return "unknown integrator '" + name + "' (Glint has " + integratorNameList() + ")";
+            },
+            "", ""))
+        ->type_name("NAME");
+    app.add_option("--spp", opt.spp,
+                   "Camera rays per pixel, 1 to 65536: stratified, jittered, filtered "
+                   "(default: the scene's spp, else 1, the pixel centre; 64 for models); with "
+                   "--time, the most")
+        ->group(render)
+        ->check(integerIn(1, 65536))
+        ->type_name("N");
+    app.add_option("--time", opt.timeBudget,
+                   "Render in passes until SECONDS are spent, 0.01 to 1e6, then average them "
+                   "(default: a fixed --spp)")
+        ->group(render)
+        ->check(numberIn(0.01, 1e6))
+        ->type_name("SECONDS");
+    app.add_option("--environment", opt.environment,
+                   "Surroundings and light: an .hdr or .exr map, 'studio' (Glint's), or 'none' "
+                   "(default: the scene's; studio for models)")
+        ->group(render)
+        ->type_name("FILE");
+    app.add_option("--ground", opt.ground,
+                   "What a model stands on: shadow (a shadow catcher), floor (grey matte), none "
+                   "(default: shadow; floor with --integrator whitted)")
+        ->group(render)
+        ->check(CLI::IsMember({"shadow", "floor", "none"}))
+        ->type_name("NAME");
+    app.add_option("--seed", opt.seed,
+                   "Seed of every random choice: sub-pixel jitter, lens, area lights, "
+                   "glossy rays (default 0)")
+        ->group(render)
+        ->type_name("N");
+
+    const char* info = "Information";
+    app.add_flag("--check", opt.check,
+                 "Parse and validate the scene, print a summary, render nothing")
+        ->group(info);
+    app.add_flag("--stats", opt.stats, "Print times per phase, rays traced and Mrays/s")
+        ->group(info);
+    app.add_flag("-q,--quiet", opt.quiet, "No progress or messages; warnings and errors only")
+        ->group(info);
+    app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION +
+                                          " (traversal kernels: " + Bvh::isa() + ")")
+        ->group(info);
+    app.set_help_flag("-h,--help", "Print this help and exit")->group(info);
+}
+
+}  // namespace glint::cli

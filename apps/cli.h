@@ -1,0 +1,72 @@
+#pragma once
+// What the glint command line shares with its other entry points (the MPI mode): the options,
+// loading and setting up a scene as they ask, and the reports. Usage errors exit 2, scene and
+// render errors exit 1.
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "glint/accel/bvh.h"
+#include "glint/render/display.h"
+#include "glint/render/renderer.h"
+#include "glint/scene/scene.h"
+
+namespace glint::cli {
+
+constexpr int kExitSceneError = 1;
+constexpr int kExitUsage = 2;
+constexpr int kGoOn = -1;  ///< From prepare(): no error, go on.
+
+/// The command line, as parsed.
+struct Options {
+    std::string scene;
+    std::string output;
+    int threads = 0;  ///< 0: all hardware threads.
+    std::string kernels = "auto";
+    std::string size;
+    int maxDepth = -1;
+    std::string integrator;  ///< Empty: the scene's `integrator`, else whitted.
+    int spp = 0;             ///< 0: the scene's `spp`, else 1.
+    uint64_t seed = 0;
+    double exposure = 0;      ///< EV: radiance times 2^exposure before writing.
+    int srgb = 0;             ///< sRGB curve for 8-bit outputs: 1 on, -1 off, 0 the scene's.
+    std::string toneMap;      ///< Empty: the scene's (PBR Neutral for models, else clamp).
+    std::string environment;  ///< Empty: the scene's; "studio", "none" or a file.
+    std::string ground;       ///< Empty: the model's (shadow); "shadow", "floor" or "none".
+    double timeBudget = 0;    ///< Seconds; 0: render a fixed number of samples.
+    bool check = false;
+    bool stats = false;
+    bool quiet = false;
+    bool lenient = false;
+    std::string camera;  ///< --camera: empty for the model's first camera.
+};
+
+/// Registers every option and flag of `glint` on `app`, storing into `opt`.
+void addOptions(CLI::App& app, Options& opt);
+
+/// A scene loaded and set up as the options ask, and where and how its image goes.
+struct Prepared {
+    std::unique_ptr<Scene> scene;
+    DisplayTransform display;
+    std::string output;  ///< The image file to write.
+    Isa kernels = Isa::Auto;
+    double parseSeconds = 0;
+    bool demo = false;  ///< No scene named: the built-in demo.
+};
+
+/// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not
+/// built yet. Prints warnings and errors; returns kGoOn, or the exit code to end with.
+int prepare(const Options& opt, Prepared& out);
+
+int usageError(const std::string& message);
+double secondsSince(std::chrono::steady_clock::time_point t);
+/// "1 light", "2 lights".
+std::string count(unsigned long long n, const char* one, const char* many);
+std::string primitiveSummary(const Primitives& prims);
+void printStats(const Scene& scene, double parse, double build, const RenderResult& r,
+                double write);
+
+}  // namespace glint::cli
