@@ -12,7 +12,7 @@
 # Every wait has a deadline; the daemons run in the foreground (-D, -F) as children of this
 # shell, so their PIDs are known without trusting a PID file.
 
-LOCAL_SLURM_PIDS=()
+LOCAL_SLURM_MUNGED="" LOCAL_SLURM_CTLD="" LOCAL_SLURM_SLURMD=""
 
 # Prints N TCP ports in 20000-32767 (below Linux's ephemeral range) that no socket on this
 # machine uses now, IPv4 or IPv6, listening or connected.
@@ -83,17 +83,32 @@ _local_slurm_node_idle() {
 }
 
 local_slurm_start() {
-    local dir=$1 attempt ports
+    local dir=$1 attempt ports path munged tries
     mkdir -p "$dir/munge" "$dir/state" "$dir/spool" "$dir/log" || return 1
     chmod 711 "$dir" "$dir/munge" || return 1
+    dir=$(readlink -f "$dir")
+    # munged refuses a socket below a directory that not everyone may search (o+x).
+    path=$dir
+    while [ "$path" != / ]; do
+        if [ -z "$(find "$path" -maxdepth 0 -perm -o+x)" ]; then
+            echo "local_slurm: munged needs $path searchable by all (chmod o+x)" >&2
+            return 1
+        fi
+        path=$(dirname "$path")
+    done
     # munged: 1024 random bytes as its key (mode 400), its socket's directory mode 711.
     head -c 1024 /dev/urandom >"$dir/munge/munge.key" && chmod 400 "$dir/munge/munge.key" ||
         return 1
     munged -F --key-file="$dir/munge/munge.key" --socket="$dir/munge/munge.socket.2" \
         --pid-file="$dir/munge/munged.pid" --seed-file="$dir/munge/munged.seed" \
         --log-file="$dir/munge/munged.log" >"$dir/log/munged.out" 2>&1 &
-    LOCAL_SLURM_PIDS+=("$!")
-    if ! _local_slurm_wait_for 10 test -S "$dir/munge/munge.socket.2"; then
+    munged=$!
+    LOCAL_SLURM_MUNGED=$munged
+    for ((tries = 100; tries > 0; tries--)); do  # until its socket appears or it dies
+        [ -S "$dir/munge/munge.socket.2" ] || ! kill -0 "$munged" 2>/dev/null && break
+        sleep 0.1
+    done
+    if [ ! -S "$dir/munge/munge.socket.2" ]; then
         echo "local_slurm: munged did not start:" >&2
         cat "$dir/munge/munged.log" "$dir/log/munged.out" >&2 2>/dev/null
         return 1
@@ -103,17 +118,16 @@ local_slurm_start() {
         mapfile -t ports < <(_local_slurm_free_ports 2)
         _local_slurm_write_conf "$dir" "${ports[0]}" "${ports[1]}"
         slurmctld -D -f "$SLURM_CONF" >"$dir/log/slurmctld.out" 2>&1 &
-        local ctld=$!
-        LOCAL_SLURM_PIDS+=("$ctld")
+        LOCAL_SLURM_CTLD=$!
         slurmd -D -f "$SLURM_CONF" -N localhost >"$dir/log/slurmd.out" 2>&1 &
-        local slurmd=$!
-        LOCAL_SLURM_PIDS+=("$slurmd")
+        LOCAL_SLURM_SLURMD=$!
         if _local_slurm_wait_for 20 _local_slurm_node_idle; then
             return 0
         fi
         echo "local_slurm: attempt $attempt: the node did not come up (ports ${ports[*]})" >&2
         tail -n 5 "$dir/log/slurmctld.log" "$dir/log/slurmd.log" >&2 2>/dev/null
-        _local_slurm_kill "$slurmd" "$ctld"
+        _local_slurm_kill "$LOCAL_SLURM_SLURMD" "$LOCAL_SLURM_CTLD"
+        LOCAL_SLURM_CTLD="" LOCAL_SLURM_SLURMD=""
         rm -rf "$dir/state" "$dir/spool" && mkdir -p "$dir/state" "$dir/spool"
     done
     return 1
@@ -122,6 +136,7 @@ local_slurm_start() {
 # Sends SIGTERM to the PIDs, waits up to 10 s for them to end, then SIGKILLs what is left.
 _local_slurm_kill() {
     local pid tries alive
+    [ $# -gt 0 ] || return 0
     for pid in "$@"; do kill -TERM "$pid" 2>/dev/null; done
     for ((tries = 100; tries > 0; tries--)); do
         alive=0
@@ -138,17 +153,20 @@ _local_slurm_kill() {
     done
 }
 
+_local_slurm_queue_empty() {
+    [ -z "$(timeout 5 squeue -h -o %i 2>/dev/null)" ]
+}
+
 local_slurm_stop() {
-    [ "${#LOCAL_SLURM_PIDS[@]}" -gt 0 ] || return 0
-    if [ -n "${SLURM_CONF:-}" ] && kill -0 "${LOCAL_SLURM_PIDS[1]:-0}" 2>/dev/null; then
+    if [ -n "$LOCAL_SLURM_CTLD" ] && kill -0 "$LOCAL_SLURM_CTLD" 2>/dev/null; then
         # Jobs first, so that no slurmstepd outlives slurmd.
         timeout 5 scancel --full --quiet --user=root >/dev/null 2>&1
-        _local_slurm_wait_for 10 test -z "$(timeout 5 squeue -h -o %i 2>/dev/null)"
+        _local_slurm_wait_for 10 _local_slurm_queue_empty
     fi
-    # slurmd and slurmctld first (newest first), munged last: they talk to it on the way out.
-    local i pids=()
-    for ((i = ${#LOCAL_SLURM_PIDS[@]} - 1; i >= 0; i--)); do pids+=("${LOCAL_SLURM_PIDS[i]}"); done
-    _local_slurm_kill "${pids[@]:0:${#pids[@]}-1}"
-    _local_slurm_kill "${pids[-1]}"
-    LOCAL_SLURM_PIDS=()
+    # slurmd and slurmctld first, munged last: they talk to it on the way out.
+    # shellcheck disable=SC2086 # an empty PID is no argument
+    _local_slurm_kill $LOCAL_SLURM_SLURMD $LOCAL_SLURM_CTLD
+    # shellcheck disable=SC2086
+    _local_slurm_kill $LOCAL_SLURM_MUNGED
+    LOCAL_SLURM_MUNGED="" LOCAL_SLURM_CTLD="" LOCAL_SLURM_SLURMD=""
 }
