@@ -94,6 +94,10 @@ bg() {
 }
 # collect NAME: waits for bg NAME to end; sets RC, OUT, ERR like run does.
 collect() {
+    if [[ " ${BG[*]} " != *" $1:"* ]]; then
+        RC="(not started)" OUT="" ERR=""
+        return
+    fi
     while [ ! -f "$work/$1.time" ]; do wait -n 2>/dev/null || sleep 0.1; done
     RC=$(cat "$work/$1.rc") OUT=$(cat "$work/$1.out") ERR=$(cat "$work/$1.err")
 }
@@ -101,12 +105,13 @@ job_id() { sed -n "s/^$1 job \([0-9]*\):.*/\1/p" <<<"$OUT"; }
 jobcomp() { grep "^JobId=$1 " "$work/slurm/log/jobcomp.txt" 2>/dev/null; }
 array_task() { grep " ArrayJobId=$1 ArrayTaskId=$2 " "$work/slurm/log/jobcomp.txt" 2>/dev/null; }
 
-has_pieces() {  # glint --part and glint merge (a merge help of its own, not glint's)
-    "$glint" --help 2>/dev/null | grep -q -- '--part' &&
-        "$glint" merge --help >/dev/null 2>&1 &&
-        [ "$("$glint" merge --help 2>&1)" != "$("$glint" --help 2>&1)" ]
-}
-has_mpi() { "$glint" --help 2>/dev/null | grep -q -- '--mpi'; }
+# Whether glint has --part and merge (a merge help of its own, not glint's), and --mpi. The help
+# is read whole before grep sees it: `glint --help | grep -q` can fail under pipefail when grep
+# stops reading early.
+help=$("$glint" --help 2>&1)
+merge_help=$("$glint" merge --help 2>&1) && [ "$merge_help" != "$help" ] &&
+    grep -q -- '--part' <<<"$help" && pieces_on=1 || pieces_on=0
+grep -q -- '--mpi' <<<"$help" && mpi_on=1 || mpi_on=0
 
 ## The cluster.
 t0=$(now)
@@ -134,13 +139,20 @@ check_contains "MPI recipe --test-only: 2 processors" "$ERR" "using 2 processors
 check_eq "--test-only submitted nothing" "" "$(timeout 10 squeue -h -o %i)"
 check "--test-only made no pieces directory" test ! -e frame.pieces
 
-## The single-machine renders to compare with.
+## The single-machine renders to compare with: a course scene (Whitted), and with glint's own
+## pieces a path-traced one with many samples per pixel.
 "$glint" "$scene" "${opts[@]}" -o ref.png || check "single-machine render" false
+path_scene=$source_dir/scenes/cornell.test
+path_opts=(--integrator path --spp 16 --size 64x64 --srgb -q)
+if [ "$pieces_on" = 1 ]; then
+    "$glint" "$path_scene" "${path_opts[@]}" -o ref-path.png ||
+        check "single-machine render, path traced" false
+fi
 
 ## Everything at once (the cluster has 4 CPUs): the harness, a failing piece, the MPI recipe
 ## by both launchers, and glint's own pieces and MPI mode where glint has them.
 t1=$(now)
-mkdir harness failing mpirun srun pieces mpi
+mkdir harness failing mpirun srun pieces pieces-path mpi
 standin=(env "GLINT=$here/standin_glint.sh" "STANDIN_GLINT=$glint")
 bg harness "${standin[@]}" STANDIN_LOG="$work/harness.log" \
     "$contrib/render-array.sh" --wait "$scene" harness/frame.png 4 "${opts[@]}"
@@ -157,11 +169,13 @@ for launcher in "${launchers[@]}"; do
         GLINT_MPI_LAUNCHER="$launcher" sbatch --wait -n 2 -o "$launcher/slurm-%j.out" \
         "$contrib/glint-mpi.sbatch" "$scene" -o "$launcher/frame.png" "${opts[@]}"
 done
-if has_pieces; then
+if [ "$pieces_on" = 1 ]; then
     bg pieces env GLINT="$glint" "$contrib/render-array.sh" --wait "$scene" pieces/frame.png 4 \
         "${opts[@]}"
+    bg pieces-path env GLINT="$glint" "$contrib/render-array.sh" --wait "$path_scene" \
+        pieces-path/frame.png 4 "${path_opts[@]}"
 fi
-if has_mpi; then
+if [ "$mpi_on" = 1 ]; then
     bg mpi env GLINT="$glint" sbatch --wait -n 2 -o mpi/slurm-%j.out \
         "$contrib/glint-mpi.sbatch" "$scene" -o mpi/frame.png "${opts[@]}"
 fi
@@ -218,16 +232,20 @@ done
     echo "cluster_test: no libpmix-dev: the MPI recipe by srun --mpi=pmix was not run"
 
 ## glint's own pieces and MPI mode, byte-identical to the single-machine render.
-if has_pieces; then
+if [ "$pieces_on" = 1 ]; then
     collect pieces
     check_rc "glint pieces: render-array.sh --wait" 0
     check "glint pieces: merged image equals the single-machine render" cmp pieces/frame.png ref.png
     check_eq "glint pieces: 4 EXR pieces" 4 "$(find pieces/frame.pieces -name 'piece-*.exr' | wc -l)"
+    collect pieces-path
+    check_rc "glint pieces, path traced: render-array.sh --wait" 0
+    check "glint pieces, path traced: merged image equals the single-machine render" \
+        cmp pieces-path/frame.png ref-path.png
 else
     echo "cluster_test: glint has no --part and merge yet: the job array ran the stand-in piece" \
         "renderer only (harness part); glint's own pieces are not tested"
 fi
-if has_mpi; then
+if [ "$mpi_on" = 1 ]; then
     collect mpi
     check_rc "glint MPI mode under Slurm: sbatch --wait" 0
     check "glint MPI mode: image equals the single-machine render" cmp mpi/frame.png ref.png
