@@ -4,7 +4,7 @@
 #                           directory); exports SLURM_CONF; returns once the node is idle
 #   local_slurm_stop        cancels every job, then stops the daemons by their PIDs
 #
-# Nothing outside DIR is read or written: munged has its own key and socket there, and the
+# Nothing outside DIR is written: munged has its own key and socket there, and the
 # cluster listens on two ports chosen free at start (retried if one is taken meanwhile), so it
 # never meets a Slurm that another test or a person runs on this machine. No systemd, no
 # cgroups: proctrack/linuxproc, task/none. The node declares 4 CPUs whatever the machine has
