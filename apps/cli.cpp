@@ -399,7 +399,8 @@ void addOptions(CLI::App& app, Options& opt) {
         ->type_name("N");
 
     const char* piece =
-        "Frame pieces (docs/scale-out.md); any of these writes a piece for glint merge";
+        "Frame pieces: any of these writes an OpenEXR piece (-o FILE.exr) for glint merge; they "
+        "combine (docs/scale-out.md)";
     auto form = [](std::string (*parse)(std::string_view, int&, int&)) {
         return CLI::Validator(
             [parse](std::string& text) -> std::string {
@@ -409,8 +410,8 @@ void addOptions(CLI::App& app, Options& opt) {
             "", "");
     };
     app.add_option("--crop", opt.crop,
-                   "Render only pixels x0 to x1-1 of columns and y0 to y1-1 of rows (from the "
-                   "top-left; upper bounds excluded, as pbrt's --pixelbounds)")
+                   "Render only pixels x0 to x1-1 across and y0 to y1-1 down, from the top-left "
+                   "corner: the upper bounds excluded, as pbrt's --pixelbounds")
         ->group(piece)
         ->check(CLI::Validator(
             [](std::string& text) -> std::string {

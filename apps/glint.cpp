@@ -205,6 +205,13 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         int code = app.exit(e);
+        for (int i = 2; i < argc && code != 0; ++i)
+            if (std::string_view(argv[i]) == "merge") {
+                std::fprintf(stderr,
+                             "(to merge pieces, 'merge' comes first: glint merge -o OUT "
+                             "PIECE.exr...)\n");
+                break;
+            }
         return code == 0 ? 0 : kExitUsage;
     }
     installSignalHandlers();

@@ -69,8 +69,9 @@ int describePiece(const Options& opt, const Prepared& prepared, int spp, uint64_
             const int rows = (p.crop.y1 - 1) / p.tileSize - p.crop.y0 / p.tileSize + 1;
             return usageError("--part " + opt.part + " holds no pixel: the " +
                               (opt.crop.empty() ? "image" : "crop") + " spans " +
-                              std::to_string(rows) + " rows of " + std::to_string(p.tileSize) +
-                              "-pixel tiles, so N may be at most " + std::to_string(rows));
+                              count(static_cast<unsigned long long>(rows), "row", "rows") + " of " +
+                              std::to_string(p.tileSize) + "-pixel tiles, so N may be at most " +
+                              std::to_string(rows));
         }
     }
     p.seed = opt.seed;

@@ -17,10 +17,10 @@ namespace {
 namespace fs = std::filesystem;
 
 /// A path-traced scene with several samples: an area light, a glossy floor through a lens, a
-/// mesh (so that the scene hash covers a second file), 24 x 20 pixels (tile rows of 16: the
-/// last is 4 pixels high).
+/// mesh (so that the scene hash covers a second file), 24 x 52 pixels (4 rows of 16-pixel
+/// tiles, the last 4 pixels high).
 const char* const kPathScene =
-    "size 24 20\n"
+    "size 24 52\n"
     "integrator path\nspp 8\nmaxdepth 4\n"
     "camera 0 1 5 0 0.5 0 0 1 0 40\n"
     "lens 0.05 5\n"
@@ -47,6 +47,13 @@ const std::string kCourseScene = std::string(GLINT_TEST_DATA_DIR) + "/cse167x/sc
 void glint(const std::string& args, const std::string& dir) {
     CommandResult r = runGlint("-q " + args, dir);
     ASSERT_EQ(r.exitCode, 0) << args << ": " << r.err;
+}
+
+/// Runs glint merge and expects success.
+void merge(const std::string& args, const std::string& dir) {
+    CommandResult r = runGlint("merge -q " + args, dir);
+    ASSERT_EQ(r.exitCode, 0) << args << ": " << r.err;
+    EXPECT_EQ(r.err, "");
 }
 
 /// Renders `scene` whole and as `pieces` (each the piece options of one run), merges them to
@@ -93,9 +100,9 @@ TEST(CliPieces, FourPartsMergeToTheSameBytes) {
     std::string dir = pathSceneDir("pieces-parts");
     renderAndMerge(dir, "scene.test", {"--part 0/4", "--part 1/4", "--part 2/4", "--part 3/4"},
                    true);
-    // Each part's file covers only its tile rows' bounds: part 1/4 is rows 16-19 here.
-    CommandResult r = runGlint("scene.test --part 1/4 -o p1.exr", dir);
-    EXPECT_TRUE(contains(r.err, "glint: wrote p1.exr (part 1/4 of the 24x20 frame: 96 pixels)"))
+    // Part 3/4 is the last tile row: pixel rows 48-51.
+    CommandResult r = runGlint("scene.test --part 3/4 -o p3.exr", dir);
+    EXPECT_TRUE(contains(r.err, "glint: wrote p3.exr (part 3/4 of the 24x52 frame: 96 pixels)"))
         << r.err;
 }
 
@@ -113,8 +120,8 @@ TEST(CliPieces, TwoSampleRangesMergeWithinRounding) {
 TEST(CliPieces, PartsCropsAndSamplesCombine) {
     std::string dir = pathSceneDir("pieces-mixed");
     renderAndMerge(dir, "scene.test",
-                   {"--crop 0,24,0,16 --part 0/2", "--crop 0,24,0,16 --part 1/2 --samples 0:5",
-                    "--crop 0,24,0,16 --part 1/2 --samples 5:8", "--crop 0,24,16,20"},
+                   {"--crop 0,24,0,32 --part 0/2", "--crop 0,24,0,32 --part 1/2 --samples 0:5",
+                    "--crop 0,24,0,32 --part 1/2 --samples 5:8", "--crop 0,24,32,52"},
                    false);
 }
 
@@ -125,11 +132,11 @@ TEST(CliPieces, AModelsPiecesMergeWithItsDisplay) {
     glint("flat.obj --size 20x18 --spp 2 -o whole.png", dir);
     glint("flat.obj --size 20x18 --spp 2 --part 0/2 -o a.exr", dir);
     glint("flat.obj --size 20x18 --spp 2 --part 1/2 -o b.exr", dir);
-    glint("merge a.exr b.exr -o merged.png", dir);
+    merge("a.exr b.exr -o merged.png", dir);
     EXPECT_EQ(readBytes(dir + "/merged.png"), readBytes(dir + "/whole.png"));
     // And the merge's own display options win.
     glint("flat.obj --size 20x18 --spp 2 --no-srgb --tonemap clamp -o plain.png", dir);
-    glint("merge a.exr b.exr --no-srgb --tonemap clamp -o plain-merged.png", dir);
+    merge("a.exr b.exr --no-srgb --tonemap clamp -o plain-merged.png", dir);
     EXPECT_EQ(readBytes(dir + "/plain-merged.png"), readBytes(dir + "/plain.png"));
     EXPECT_NE(readBytes(dir + "/plain.png"), readBytes(dir + "/whole.png"));
 }
@@ -144,14 +151,17 @@ TEST(CliPieces, BadPieceOptionsAreUsageErrors) {
     usage("--part 4/4 -o a.exr", "K must be 0 to N-1");
     usage("--part 1/0 -o a.exr", "N must be 1 to 65536");
     usage("--part 2 -o a.exr", "expected K/N");
-    usage("--part 2/3 -o a.exr",
-          "--part 2/3 holds no pixel: the image spans 2 rows of 16-pixel tiles, so N may be at "
-          "most 2");
+    usage("--part 4/5 -o a.exr",
+          "--part 4/5 holds no pixel: the image spans 4 rows of 16-pixel tiles, so N may be at "
+          "most 4");
+    usage("--crop 0,24,0,10 --part 1/2 -o a.exr",
+          "--part 1/2 holds no pixel: the crop spans 1 row of 16-pixel tiles, so N may be at most "
+          "1");
     usage("--crop 0,10,0 -o a.exr", "expected x0,x1,y0,y1");
     usage("--crop 5,5,0,4 -o a.exr", "is empty");
     usage("--crop 0,25,0,20 -o a.exr",
-          "--crop 0,25,0,20 reaches beyond the 24x20 image: x1 may be at most 24 and y1 at most "
-          "20");
+          "--crop 0,25,0,20 reaches beyond the 24x52 image: x1 may be at most 24 and y1 at most "
+          "52");
     usage("--samples 0:9 -o a.exr", "the frame has 8 samples per pixel, so B may be at most 8");
     usage("--samples 3:3 -o a.exr", "A < B");
     usage("--part 0/2 -o a.png", "'a.png' is not an .exr file");
@@ -177,7 +187,7 @@ TEST(CliPieces, MergeNamesWhatIsMissingDoubledOrForeign) {
         EXPECT_FALSE(fs::exists(dir + "/out.png"));
     };
     fails("p0.exr",
-          "glint merge: error: part 1/2 is missing: no piece covers samples 0:8 of its 96 pixels");
+          "glint merge: error: part 1/2 is missing: no piece covers samples 0:8 of its 480 pixels");
     fails("p0.exr p1.exr again.exr",
           "again.exr: error: part 1/2 given twice: p1.exr and again.exr");
     fails("p0.exr seed3.exr", "seed3.exr: error: seed 3, but p0.exr has seed 0");
@@ -210,7 +220,7 @@ TEST(CliPieces, TheDemosPiecesMerge) {
     glint("--size 32x24 -o whole.png", dir);
     glint("--size 32x24 --crop 0,32,0,10 -o a.exr", dir);
     glint("--size 32x24 --crop 0,32,10,24 -o b.exr", dir);
-    glint("merge a.exr b.exr -o merged.png", dir);
+    merge("a.exr b.exr -o merged.png", dir);
     EXPECT_EQ(readBytes(dir + "/merged.png"), readBytes(dir + "/whole.png"));
 }
 

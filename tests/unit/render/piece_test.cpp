@@ -53,7 +53,12 @@ PieceInfo samples(int a, int b) {
 
 std::vector<std::string> names(size_t n) {
     std::vector<std::string> v;
-    for (size_t i = 0; i < n; ++i) v.push_back("p" + std::to_string(i) + ".exr");
+    for (size_t i = 0; i < n; ++i) {
+        std::string name = "p";  // built in steps: GCC 12 misreads "p" + std::to_string(i)
+        name += std::to_string(i);
+        name += ".exr";
+        v.push_back(name);
+    }
     return v;
 }
 
@@ -203,9 +208,9 @@ TEST(CheckPieces, NamesOverlaps) {
               "p1.exr: samples 3:5 of pixels (0,0)-(39,36) are also in p0.exr (samples 0:5)\n");
     // A whole frame and a part of it.
     problems = check({frame(), part(1, 3)});
-    EXPECT_THAT(text(problems),
-                HasSubstr("p1.exr: samples 0:8 of 440 pixels within (0,8)-(39,36) are also in "
-                          "p0.exr (the whole frame)"));
+    EXPECT_EQ(text(problems),
+              "p1.exr: samples 0:8 of pixels (0,8)-(39,15) and (0,32)-(39,36) are also in p0.exr "
+              "(the whole frame)\n");
 }
 
 TEST(CheckPieces, PiecesOfOtherFramesAreNamed) {
