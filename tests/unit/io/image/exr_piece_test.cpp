@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "glint/core/atomic_file.h"
@@ -193,6 +195,31 @@ TEST(ExrPiece, HeadersThatContradictThemselvesAreRefused) {
     bad = p;
     bad.sampleEnd = 1;
     EXPECT_THROW(encodePiece(bad, sums), RenderError);  // the writer checks too
+}
+
+/// The piece fuzzer's inputs (fuzz/corpus/piece, fuzz/regressions/piece) as the harness
+/// (fuzz/piece_fuzzer.cpp) takes them: each decodes or is a PieceError; the corpus's own
+/// pieces decode, and every cut of them is an error.
+TEST(ExrPiece, TheFuzzInputsDecodeOrFailCleanly) {
+    int files = 0;
+    for (const char* sub : {"corpus/piece", "regressions/piece"}) {
+        const fs::path dir = fs::path(GLINT_FUZZ_DIR) / sub;
+        if (!fs::exists(dir)) continue;
+        for (const auto& e : fs::directory_iterator(dir)) {
+            std::ifstream in(e.path(), std::ios::binary);
+            const std::string bytes{std::istreambuf_iterator<char>(in), {}};
+            ++files;
+            try {
+                const PieceData d = decodePiece(bytes, e.path().string());
+                EXPECT_EQ(d.window, d.info.bounds());
+            } catch (const PieceError& err) {
+                EXPECT_STREQ(sub, "regressions/piece") << e.path() << ": " << err.what();
+            }
+            for (size_t n = 0; n < bytes.size(); n += 61)
+                EXPECT_THROW(decodePiece(std::string_view(bytes).substr(0, n), "cut"), PieceError);
+        }
+    }
+    EXPECT_GE(files, 2);
 }
 
 /// The scene of film_pieces_test, smaller: path traced through a lens, random numbers in
