@@ -13,6 +13,7 @@
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
 #include "glint/render/integrator.h"
+#include "glint/render/piece.h"
 #include "glint/render/progressive.h"
 #include "glint/scene/studio_environment.h"
 
@@ -39,40 +40,6 @@ std::string parseSize(const std::string& s, int& w, int& h) {
     w = static_cast<int>(a);
     h = static_cast<int>(b);
     return {};
-}
-
-/// An integer option within [lo, hi], with plain messages for anything else.
-CLI::Validator integerIn(long long lo, long long hi) {
-    return CLI::Validator(
-        [lo, hi](std::string& text) -> std::string {
-            long long v = 0;
-            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-            if (ec != std::errc() || p != text.data() + text.size())
-                return "expected an integer, got '" + text + "'";
-            if (v < lo || v > hi)
-                return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
-                       text;
-            return {};
-        },
-        "", "");
-}
-
-/// A finite real number within [lo, hi], with plain messages for anything else.
-CLI::Validator numberIn(double lo, double hi) {
-    return CLI::Validator(
-        [lo, hi](std::string& text) -> std::string {
-            double v = 0;
-            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-            if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
-                return "expected a number, got '" + text + "'";
-            auto str = [](double d) {
-                char buf[32];
-                return std::string(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
-            };
-            if (v < lo || v > hi) return "must be " + str(lo) + " to " + str(hi) + ", got " + text;
-            return {};
-        },
-        "", "");
 }
 
 /// The environment `--environment` names: the studio's, none (a null map) or a file's.
@@ -113,6 +80,40 @@ std::string primitiveSummary(const Primitives& prims) {
     for (const auto& k : kinds)
         if (k.n > 0) s += ", " + count(k.n, k.one, k.many);
     return s;
+}
+
+/// An integer option within [lo, hi], with plain messages for anything else.
+CLI::Validator integerIn(long long lo, long long hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            long long v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size())
+                return "expected an integer, got '" + text + "'";
+            if (v < lo || v > hi)
+                return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+                       text;
+            return {};
+        },
+        "", "");
+}
+
+/// A finite real number within [lo, hi], with plain messages for anything else.
+CLI::Validator numberIn(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            double v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
+                return "expected a number, got '" + text + "'";
+            auto str = [](double d) {
+                char buf[32];
+                return std::string(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
+            };
+            if (v < lo || v > hi) return "must be " + str(lo) + " to " + str(hi) + ", got " + text;
+            return {};
+        },
+        "", "");
 }
 
 int usageError(const std::string& message) {
@@ -396,6 +397,41 @@ void addOptions(CLI::App& app, Options& opt) {
                    "glossy rays (default 0)")
         ->group(render)
         ->type_name("N");
+
+    const char* piece =
+        "Frame pieces: any of these writes an OpenEXR piece (-o FILE.exr) for glint merge; they "
+        "combine (docs/scale-out.md)";
+    auto form = [](std::string (*parse)(std::string_view, int&, int&)) {
+        return CLI::Validator(
+            [parse](std::string& text) -> std::string {
+                int a = 0, b = 0;
+                return parse(text, a, b);
+            },
+            "", "");
+    };
+    app.add_option("--crop", opt.crop,
+                   "Render only pixels x0 to x1-1 across and y0 to y1-1 down, from the top-left "
+                   "corner: the upper bounds excluded, as pbrt's --pixelbounds")
+        ->group(piece)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                PixelBounds b;
+                return parseCrop(text, b);
+            },
+            "", ""))
+        ->type_name("x0,x1,y0,y1");
+    app.add_option("--samples", opt.samples,
+                   "Render only samples A to B-1 of each pixel's spp, exactly those the whole "
+                   "render takes there (0 <= A < B <= spp)")
+        ->group(piece)
+        ->check(form(parseSampleRange))
+        ->type_name("A:B");
+    app.add_option("--part", opt.part,
+                   "Render piece K of N (0 <= K < N <= 65536): the rows of 16-pixel tiles whose "
+                   "index % N is K, so every piece gets rows from the whole height")
+        ->group(piece)
+        ->check(form(parsePart))
+        ->type_name("K/N");
 
     const char* info = "Information";
     app.add_flag("--check", opt.check,

@@ -42,6 +42,10 @@ struct Options {
     bool quiet = false;
     bool lenient = false;
     std::string camera;  ///< --camera: empty for the model's first camera.
+    // A piece of the frame for `glint merge` (apps/piece.h); empty: the whole image.
+    std::string crop;     ///< --crop x0,x1,y0,y1
+    std::string samples;  ///< --samples A:B
+    std::string part;     ///< --part K/N
 };
 
 /// Registers every option and flag of `glint` on `app`, storing into `opt`.
@@ -62,6 +66,9 @@ struct Prepared {
 int prepare(const Options& opt, Prepared& out);
 
 int usageError(const std::string& message);
+/// Option validators with plain messages: an integer, or a finite number, within [lo, hi].
+CLI::Validator integerIn(long long lo, long long hi);
+CLI::Validator numberIn(double lo, double hi);
 double secondsSince(std::chrono::steady_clock::time_point t);
 /// "1 light", "2 lights".
 std::string count(unsigned long long n, const char* one, const char* many);

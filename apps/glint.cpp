@@ -8,17 +8,24 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "cli.h"
+#include "demo_scene.h"
 #include "glint/core/atomic_file.h"
 #include "glint/core/error.h"
+#include "glint/core/input_log.h"
 #include "glint/core/parallel.h"
 #include "glint/core/system.h"
+#include "glint/io/image/exr_piece.h"
 #include "glint/io/image/image_io.h"
 #include "glint/render/progress.h"
 #include "glint/render/progressive.h"
 #include "glint/render/renderer.h"
+#include "merge.h"
+#include "piece.h"
 
 namespace {
 
@@ -52,8 +59,25 @@ const char* signalName(int sig) { return sig == SIGTERM ? "SIGTERM" : "SIGINT"; 
 
 int run(const Options& opt) {
     using Clock = std::chrono::steady_clock;
+    // A piece of the frame: its inputs are hashed as they are read, so that glint merge can
+    // tell pieces of other scenes (or other versions of its meshes and textures) apart.
+    const bool piece = wantsPiece(opt);
+    if (piece)
+        if (int code = checkPieceOptions(opt); code != kGoOn) return code;
+    std::optional<glint::InputLog> inputs;
+    if (piece) inputs.emplace();
     Prepared prepared;
     if (int code = prepare(opt, prepared); code != kGoOn) return code;
+    glint::PieceInfo pieceInfo;
+    const int spp = opt.spp > 0 ? opt.spp : (prepared.scene->spp > 0 ? prepared.scene->spp : 1);
+    if (piece) {
+        // The demo is read from no file: its text is hashed instead.
+        uint64_t hash =
+            prepared.demo ? glint::hashBytes(glint::kDemoScene, inputs->hash()) : inputs->hash();
+        inputs.reset();
+        if (int code = describePiece(opt, prepared, spp, hash, pieceInfo); code != kGoOn)
+            return code;
+    }
     std::unique_ptr<glint::Scene>& scene = prepared.scene;
     const std::string& output = prepared.output;
     const bool demo = prepared.demo;
@@ -96,9 +120,10 @@ int run(const Options& opt) {
     glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
     glint::RenderOptions ro;
     ro.pool = &pool;
-    ro.spp = opt.spp > 0 ? opt.spp : (scene->spp > 0 ? scene->spp : 1);
+    ro.spp = spp;
     ro.seed = opt.seed;
     ro.cancel = &gStop;
+    if (piece) renderPieceWith(pieceInfo, ro);
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
     glint::RenderResult result = opt.timeBudget > 0
                                      ? glint::renderForTime(*scene, ro, {opt.timeBudget, opt.spp})
@@ -107,10 +132,20 @@ int run(const Options& opt) {
         progress.finish({0, 0, result.seconds}, result.complete,
                         opt.timeBudget > 0 && result.complete ? result.samplesPerPixel : 0);
 
+    if (piece && !result.complete) {
+        // A piece is whole or not at all: glint merge would refuse a partial one.
+        std::fprintf(stderr, "glint: %s: stopped early; no piece written (%d of %d tiles done)\n",
+                     signalName(gSignal), result.tilesDone, result.tilesTotal);
+        return 128 + gSignal;
+    }
+
     // Write.
     auto t2 = Clock::now();
     try {
-        glint::writeImage(output, result.film, display);
+        if (piece)
+            glint::writeFileAtomically(output, glint::encodePiece(pieceInfo, result.sums));
+        else
+            glint::writeImage(output, result.film, display);
     } catch (const glint::RenderError& e) {
         std::fprintf(stderr, "glint: error: %s\n", e.what());
         return kExitSceneError;
@@ -132,7 +167,11 @@ int run(const Options& opt) {
                      signalName(gSignal), result.passes, result.samplesPerPixel, output.c_str());
         return 128 + gSignal;
     }
-    if (!opt.quiet)
+    if (!opt.quiet && piece)
+        std::fprintf(stderr, "glint: wrote %s (%s of the %dx%d frame: %lld pixels)\n",
+                     output.c_str(), pieceInfo.describe().c_str(), scene->width, scene->height,
+                     pieceInfo.pixelCount());
+    else if (!opt.quiet)
         std::fprintf(stderr, "glint: wrote %s (%dx%d)\n", output.c_str(), scene->width,
                      scene->height);
     if (opt.stats) printStats(*scene, parseSeconds, buildSeconds, result, writeSeconds);
@@ -143,6 +182,8 @@ int run(const Options& opt) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // `glint merge ...`: the one subcommand (a scene file named merge is ./merge).
+    if (argc > 1 && std::string_view(argv[1]) == "merge") return mergeMain(argc - 1, argv + 1);
     CLI::App app{
         "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
         "\nWithout SCENE it renders a built-in demo scene to glint.png; given a model (.obj,"
@@ -154,6 +195,9 @@ int main(int argc, char** argv) {
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
         return std::string("glint: error: ") + e.what() + "\nRun 'glint --help' for usage.\n";
     });
+    app.footer(
+        "Frame pieces rendered with --part, --crop or --samples are merged with\n"
+        "  glint merge -o OUT PIECE.exr...   (glint merge --help; docs/scale-out.md)");
     Options opt;
     addOptions(app, opt);
 
@@ -161,6 +205,13 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         int code = app.exit(e);
+        for (int i = 2; i < argc && code != 0; ++i)
+            if (std::string_view(argv[i]) == "merge") {
+                std::fprintf(stderr,
+                             "(to merge pieces, 'merge' comes first: glint merge -o OUT "
+                             "PIECE.exr...)\n");
+                break;
+            }
         return code == 0 ? 0 : kExitUsage;
     }
     installSignalHandlers();

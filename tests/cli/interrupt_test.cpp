@@ -166,5 +166,21 @@ TEST(Interrupt, ASecondSigintLeavesAtOnceAndNeverLeavesABrokenFile) {
     EXPECT_TRUE(noTemporaries(dir));
 }
 
+TEST(Interrupt, AnInterruptedPieceWritesNothing) {
+    // A piece is whole or absent: glint merge would refuse a partial one.
+    std::string dir = freshDir("interrupt-piece");
+    std::vector<std::string> args = longRender(dir + "/piece.exr");
+    args.insert(args.end(), {"--part", "0/2"});
+    Running glint(args, dir);
+    ASSERT_TRUE(glint.waitForHandler(SIGINT));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    glint.signal(SIGINT);
+    EXPECT_EQ(glint.wait(std::chrono::seconds(10)), 130) << glint.stderrText();
+    EXPECT_NE(glint.stderrText().find("stopped early; no piece written"), std::string::npos)
+        << glint.stderrText();
+    EXPECT_FALSE(fs::exists(dir + "/piece.exr"));
+    EXPECT_TRUE(noTemporaries(dir));
+}
+
 }  // namespace
 }  // namespace glint::test

@@ -1,0 +1,115 @@
+#include "piece.h"
+
+#include "glint/io/image/image_io.h"
+
+namespace glint::cli {
+
+bool wantsPiece(const Options& opt) {
+    return !opt.crop.empty() || !opt.samples.empty() || !opt.part.empty();
+}
+
+namespace {
+
+/// The option that made this a piece, for messages.
+std::string pieceOption(const Options& opt) {
+    if (!opt.part.empty()) return "--part " + opt.part;
+    if (!opt.crop.empty()) return "--crop " + opt.crop;
+    return "--samples " + opt.samples;
+}
+
+}  // namespace
+
+int checkPieceOptions(const Options& opt) {
+    const std::string what = pieceOption(opt);
+    if (opt.output.empty())
+        return usageError(what +
+                          " renders a piece of the frame for glint merge: name its OpenEXR file "
+                          "with -o FILE.exr");
+    if (imageFormatFor(opt.output) != ImageFormat::Exr)
+        return usageError(what +
+                          " renders a piece of the frame for glint merge, written as "
+                          "OpenEXR with its exact sums: '" +
+                          opt.output +
+                          "' is not an .exr file (merge the pieces into any format with glint "
+                          "merge -o OUT)");
+    if (opt.timeBudget > 0)
+        return usageError(what +
+                          ": pieces need a fixed number of samples per pixel (--spp), not --time");
+    return kGoOn;
+}
+
+int describePiece(const Options& opt, const Prepared& prepared, int spp, uint64_t sceneHash,
+                  PieceInfo& out) {
+    const Scene& scene = *prepared.scene;
+    PieceInfo p;
+    p.width = scene.width;
+    p.height = scene.height;
+    p.crop = {0, p.width, 0, p.height};
+    p.tileSize = RenderOptions{}.tileSize;
+    p.spp = spp;
+    p.sampleEnd = spp;
+    const std::string size = std::to_string(p.width) + "x" + std::to_string(p.height);
+    if (!opt.crop.empty()) {
+        parseCrop(opt.crop, p.crop);  // its form was checked with the options
+        if (p.crop.x1 > p.width || p.crop.y1 > p.height)
+            return usageError("--crop " + opt.crop + " reaches beyond the " + size +
+                              " image: x1 may be at most " + std::to_string(p.width) +
+                              " and y1 at most " + std::to_string(p.height));
+    }
+    if (!opt.samples.empty()) {
+        parseSampleRange(opt.samples, p.sampleBegin, p.sampleEnd);
+        if (p.sampleEnd > spp)
+            return usageError("--samples " + opt.samples + ": the frame has " +
+                              std::to_string(spp) + " samples per pixel, so B may be at most " +
+                              std::to_string(spp) + " (set them with --spp)");
+    }
+    if (!opt.part.empty()) {
+        parsePart(opt.part, p.part, p.parts);
+        if (p.pixelCount() == 0) {
+            const int rows = (p.crop.y1 - 1) / p.tileSize - p.crop.y0 / p.tileSize + 1;
+            return usageError("--part " + opt.part + " holds no pixel: the " +
+                              (opt.crop.empty() ? "image" : "crop") + " spans " +
+                              count(static_cast<unsigned long long>(rows), "row", "rows") + " of " +
+                              std::to_string(p.tileSize) + "-pixel tiles, so N may be at most " +
+                              std::to_string(rows));
+        }
+    }
+    p.seed = opt.seed;
+    p.sceneHash = sceneHash;
+    p.settings = pixelSettings(opt, scene);
+    p.version = GLINT_VERSION;
+    p.display = prepared.display;
+    out = p;
+    return kGoOn;
+}
+
+void renderPieceWith(const PieceInfo& piece, RenderOptions& ro) {
+    ro.crop = piece.crop;
+    ro.part = piece.part;
+    ro.parts = piece.parts;
+    ro.tileSize = piece.tileSize;
+    ro.sampleBegin = piece.sampleBegin;
+    ro.sampleEnd = piece.sampleEnd;
+    ro.keepSums = true;
+}
+
+std::string pixelSettings(const Options& opt, const Scene& scene) {
+    // The scene's own lines are in the scene hash; these are what the command line changes,
+    // with the values in force. Paths are left out (another machine may mount the files
+    // elsewhere): a file's contents are in the hash.
+    auto orDefault = [](std::string s) {
+        if (s.empty()) return std::string("default");
+        for (char& c : s)
+            if (c == ' ') c = '_';  // settings are words separated by spaces
+        return s;
+    };
+    std::string environment = opt.environment;
+    if (!environment.empty() && environment != "studio" && environment != "none")
+        environment = "file";
+    return "integrator=" + orDefault(scene.integrator) +
+           " maxdepth=" + std::to_string(scene.maxDepth) +
+           " environment=" + orDefault(environment) + " ground=" + orDefault(opt.ground) +
+           " camera=" + orDefault(opt.camera) + " lenient=" + (opt.lenient ? "yes" : "no");
+}
+
+}  // namespace glint::cli

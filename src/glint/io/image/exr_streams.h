@@ -1,0 +1,57 @@
+#pragma once
+/// OpenEXR streams over memory, shared by the image (exr.cpp) and frame-piece (exr_piece.cpp)
+/// readers and writers. Internal to io/image.
+
+#include <Iex.h>
+#include <ImfIO.h>
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+namespace glint::exr_detail {
+
+/// An OpenEXR output stream that appends to a string. The writer seeks back to fill in the
+/// table of chunk offsets, so writes may land anywhere up to the end.
+class StringOStream final : public Imf::OStream {
+  public:
+    explicit StringOStream(std::string& out) : Imf::OStream("memory"), out_(out) {}
+
+    void write(const char c[], int n) override {
+        size_t end = pos_ + static_cast<size_t>(n);
+        if (end > out_.size()) out_.resize(end);
+        std::memcpy(out_.data() + pos_, c, static_cast<size_t>(n));
+        pos_ = end;
+    }
+    uint64_t tellp() override { return pos_; }
+    void seekp(uint64_t pos) override { pos_ = static_cast<size_t>(pos); }
+
+  private:
+    std::string& out_;
+    size_t pos_ = 0;
+};
+
+/// An OpenEXR input stream over bytes in memory; reading past the end throws, as the library
+/// expects of a stream.
+class MemoryIStream final : public Imf::IStream {
+  public:
+    MemoryIStream(std::string_view bytes, const std::string& name)
+        : Imf::IStream(name.c_str()), bytes_(bytes) {}
+
+    bool read(char c[], int n) override {
+        if (n < 0 || static_cast<size_t>(n) > bytes_.size() - std::min(pos_, bytes_.size()))
+            throw Iex::InputExc("unexpected end of file");
+        std::memcpy(c, bytes_.data() + pos_, static_cast<size_t>(n));
+        pos_ += static_cast<size_t>(n);
+        return pos_ < bytes_.size();
+    }
+    uint64_t tellg() override { return pos_; }
+    void seekg(uint64_t pos) override { pos_ = static_cast<size_t>(pos); }
+
+  private:
+    std::string_view bytes_;
+    size_t pos_ = 0;
+};
+
+}  // namespace glint::exr_detail
