@@ -1,5 +1,7 @@
 #include "piece.h"
 
+#include <algorithm>
+
 #include "glint/io/image/image_io.h"
 
 namespace glint::cli {
@@ -65,14 +67,18 @@ int describePiece(const Options& opt, const Prepared& prepared, int spp, uint64_
     }
     if (!opt.part.empty()) {
         parsePart(opt.part, p.part, p.parts);
-        if (p.pixelCount() == 0) {
-            const int rows = (p.crop.y1 - 1) / p.tileSize - p.crop.y0 / p.tileSize + 1;
-            return usageError("--part " + opt.part + " holds no pixel: the " +
-                              (opt.crop.empty() ? "image" : "crop") + " spans " +
-                              count(static_cast<unsigned long long>(rows), "row", "rows") + " of " +
-                              std::to_string(p.tileSize) + "-pixel tiles, so N may be at most " +
-                              std::to_string(rows));
-        }
+        // Rows of 16-pixel tiles, or thinner bands when there are more parts than such rows
+        // (a small image on a large array): every part then still holds pixels.
+        const int height = p.crop.y1 - p.crop.y0;
+        if (p.parts > height)
+            return usageError("--part " + opt.part + ": the " +
+                              (opt.crop.empty() ? "image" : "crop") + " is " +
+                              count(static_cast<unsigned long long>(height), "pixel", "pixels") +
+                              " high, so N may be at most " + std::to_string(height));
+        p.tileSize = std::clamp(height / p.parts, 1, p.tileSize);
+        if (p.pixelCount() == 0)  // a crop off the band grid: its last bands fall short
+            return usageError("--part " + opt.part + " holds no pixel of the " +
+                              (opt.crop.empty() ? "image" : "crop") + "; use fewer parts");
     }
     p.seed = opt.seed;
     p.sceneHash = sceneHash;

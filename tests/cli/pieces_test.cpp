@@ -100,9 +100,14 @@ TEST(CliPieces, FourPartsMergeToTheSameBytes) {
     std::string dir = pathSceneDir("pieces-parts");
     renderAndMerge(dir, "scene.test", {"--part 0/4", "--part 1/4", "--part 2/4", "--part 3/4"},
                    true);
-    // Part 3/4 is the last tile row: pixel rows 48-51.
+    // 52 rows in 4 parts: bands of 52 / 4 = 13 rows (thinner than a 16-pixel tile, so that
+    // every part holds pixels and they hold as many); part 3/4 is rows 39-51.
     CommandResult r = runGlint("scene.test --part 3/4 -o p3.exr", dir);
-    EXPECT_TRUE(contains(r.err, "glint: wrote p3.exr (part 3/4 of the 24x52 frame: 96 pixels)"))
+    EXPECT_TRUE(contains(r.err, "glint: wrote p3.exr (part 3/4 of the 24x52 frame: 312 pixels)"))
+        << r.err;
+    // 3 parts keep 16-row bands (52 / 3 > 16): part 0/3 is rows 0-15 and 48-51.
+    r = runGlint("scene.test --part 0/3 -o p0.exr", dir);
+    EXPECT_TRUE(contains(r.err, "glint: wrote p0.exr (part 0/3 of the 24x52 frame: 480 pixels)"))
         << r.err;
 }
 
@@ -151,12 +156,10 @@ TEST(CliPieces, BadPieceOptionsAreUsageErrors) {
     usage("--part 4/4 -o a.exr", "K must be 0 to N-1");
     usage("--part 1/0 -o a.exr", "N must be 1 to 65536");
     usage("--part 2 -o a.exr", "expected K/N");
-    usage("--part 4/5 -o a.exr",
-          "--part 4/5 holds no pixel: the image spans 4 rows of 16-pixel tiles, so N may be at "
-          "most 4");
-    usage("--crop 0,24,0,10 --part 1/2 -o a.exr",
-          "--part 1/2 holds no pixel: the crop spans 1 row of 16-pixel tiles, so N may be at most "
-          "1");
+    usage("--part 52/53 -o a.exr",
+          "--part 52/53: the image is 52 pixels high, so N may be at most 52");
+    usage("--crop 0,24,0,10 --part 1/11 -o a.exr",
+          "--part 1/11: the crop is 10 pixels high, so N may be at most 10");
     usage("--crop 0,10,0 -o a.exr", "expected x0,x1,y0,y1");
     usage("--crop 5,5,0,4 -o a.exr", "is empty");
     usage("--crop 0,25,0,20 -o a.exr",
