@@ -1,5 +1,6 @@
 #include "glint/render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <optional>
@@ -31,8 +32,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const int tile = std::max(1, options.tileSize);
     const int tilesX = (scene.width + tile - 1) / tile;
     const int tilesY = (scene.height + tile - 1) / tile;
-    const int tilesTotal = tilesX * tilesY;
-    std::atomic<int> nextTile{0}, tilesDone{0};
+    const int firstTile = std::clamp(options.firstTile, 0, tilesX * tilesY);
+    const int tilesTotal = options.tileCount < 0
+                               ? tilesX * tilesY - firstTile
+                               : std::min(options.tileCount, tilesX * tilesY - firstTile);
+    std::atomic<int> nextTile{0}, tilesDone{0};  // counted from firstTile
 
     // Camera rays go in packets of eight: 4 x 2 pixels at one sample per pixel, or eight
     // samples of one pixel. Each pixel still sums its samples in the sampler's order. Shadow
@@ -115,6 +119,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
                 int t = nextTile.fetch_add(1, std::memory_order_relaxed);
                 if (t >= tilesTotal) break;
+                t += firstTile;
                 int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
                 int x1 = std::min(x0 + tile, scene.width), y1 = std::min(y0 + tile, scene.height);
                 bool stopped = false;

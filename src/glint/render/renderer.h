@@ -38,6 +38,11 @@ struct RenderOptions {
     std::function<void(const RenderProgress&)> onProgress;
     /// When set and it becomes true, every thread stops after its current block of pixels.
     const std::atomic<bool>* cancel = nullptr;
+    /// Only tiles [firstTile, firstTile + tileCount) of the image's, numbered row by row from
+    /// the top left (tileCount < 0: to the last tile); the film's other pixels stay black, and
+    /// progress and the result count these tiles only. For a caller that shows the image as it
+    /// forms, a few tiles per call (the web page, web/bindings/).
+    int firstTile = 0, tileCount = -1;
 };
 
 struct RenderResult {
