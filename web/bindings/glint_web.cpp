@@ -82,9 +82,9 @@ class Session {
     int threads() const { return pool_.threads(); }
 
     /// Reads the scene or model file at `path` as `glint FILE` does, with options
-    /// {integrator, lenient, prepare}: prepare (default true) builds its BVH for rendering;
-    /// false only checks it (the editor, as you type). Returns {ok, error, warnings, note, width,
-    /// height, spp, maxDepth, integrator, hasCamera}.
+    /// {integrator, lenient, width, height, prepare}: prepare (default true) builds its BVH for
+    /// rendering; false only checks it (the editor, as you type). Returns {ok, error, warnings,
+    /// note, width, height, spp, maxDepth, integrator, hasCamera}.
     val load(const std::string& path, const val& options) {
         val r = val::object();
         val warningList = val::array();
@@ -93,6 +93,8 @@ class Session {
         try {
             LoadOptions lo;
             lo.lenient = options["lenient"].isTrue();
+            lo.width = std::max(0, intOr(options, "width", 0));  // a model's framing, as --size
+            lo.height = std::max(0, intOr(options, "height", 0));
             val integrator = options["integrator"];
             if (integrator.isString()) lo.look.studio = integrator.as<std::string>() != "whitted";
             ModelScene m = loadSceneFile(path, warnings, lo);
@@ -173,6 +175,7 @@ class Session {
         seed_ = static_cast<uint64_t>(std::max(0, intOr(o, "seed", 0)));
         progressive_ = o["passes"].isTrue();
         film_ = Film(s.width, s.height);
+        passFilm_ = Film(s.width, s.height);
         rgba_.assign(static_cast<size_t>(s.width) * s.height * 4, 0);
         tilesX_ = (s.width + kTile - 1) / kTile;
         tiles_ = tilesX_ * ((s.height + kTile - 1) / kTile);
@@ -211,13 +214,14 @@ class Session {
                 ro.seed = passSeed(seed_, pass_);
                 ro.firstTile = next_;
                 ro.tileCount = batch;
+                ro.film = &passFilm_;
                 RenderResult pass = render(s, ro);
                 rays_ += pass.rays.total();
                 seconds_ += pass.seconds;
                 for (int t = next_; t < next_ + pass.tilesTotal; ++t) {
                     int tx0 = t % tilesX_ * kTile, ty0 = t / tilesX_ * kTile;
                     int tx1 = std::min(tx0 + kTile, s.width), ty1 = std::min(ty0 + kTile, s.height);
-                    merge(pass.film, passSpp, tx0, ty0, tx1, ty1);
+                    merge(passFilm_, passSpp, tx0, ty0, tx1, ty1);
                     x0 = std::min(x0, tx0), y0 = std::min(y0, ty0);
                     x1 = std::max(x1, tx1), y1 = std::max(y1, ty1);
                 }
@@ -294,7 +298,8 @@ class Session {
     ThreadPool pool_;
     std::unique_ptr<Scene> scene_;
     CameraSpec home_;
-    Film film_;
+    Film film_;      // the image so far: the average of the passes
+    Film passFilm_;  // the pass in progress, into which render() writes its tiles
     std::vector<uint8_t> rgba_;
     DisplayTransform display_;
     int spp_ = 1, tiles_ = 0, tilesX_ = 0, next_ = 0, pass_ = 0, samples_ = 0;

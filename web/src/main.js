@@ -182,7 +182,7 @@ async function startRender({ camera = null, preview = false, reload = false } = 
     setState('rendering', preview ? 'Moving: a fast preview' : 'Rendering');
     $('progress').value = 0;
     const text = model ? null : editor.state.doc.toString();
-    worker.postMessage({ type: 'render', id, path: model || scenePath, text, reload,
+    worker.postMessage({ type: 'render', id, path: model || scenePath, text, reload, preview,
                          options: o, camera: camera || orbit.camera });
 }
 

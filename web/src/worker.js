@@ -10,7 +10,7 @@
 let M = null;
 let session = null;
 let current = null;  // the render in progress: {id, cancelled}
-let loadedPath = null, loadedText = null, loadedIntegrator = null;
+let loadedPath = null, loadedText = null, loadedKey = null;
 
 const yieldToEvents = (() => {
     const channel = new MessageChannel();
@@ -73,13 +73,15 @@ function crop(image, width, x0, y0, x1, y1) {
     return out;
 }
 
-async function render({ id, path, text, reload, options, camera }) {
+async function render({ id, path, text, reload, options, camera, preview }) {
     const job = { id, cancelled: false };
     current = job;
-    if (reload || path !== loadedPath || text !== loadedText ||
-        options.integrator !== loadedIntegrator) {
+    // What the loaded scene depends on besides its text: a model's look and framing.
+    const key = JSON.stringify([options.integrator, options.width, options.height]);
+    if (reload || path !== loadedPath || text !== loadedText || (key !== loadedKey && !preview)) {
         if (text !== undefined && text !== null) writeFile(path, text);
-        const result = session.load(path, { prepare: true, integrator: options.integrator });
+        const result = session.load(path, { prepare: true, integrator: options.integrator,
+                                            width: options.width, height: options.height });
         postMessage({ type: 'loaded', id, path, result, camera: result.ok ? session.camera(true) : null });
         if (!result.ok) {
             loadedPath = null;
@@ -88,7 +90,7 @@ async function render({ id, path, text, reload, options, camera }) {
         }
         loadedPath = path;
         loadedText = text;
-        loadedIntegrator = options.integrator;
+        loadedKey = key;
     }
     if (camera) session.setCamera(camera);
     const begun = session.begin(options);

@@ -4,8 +4,10 @@
 #include <chrono>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/render/sampler.h"
 
@@ -21,7 +23,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
     RenderResult result;
-    result.film = Film(scene.width, scene.height);
+    if (options.film &&
+        (options.film->width() != scene.width || options.film->height() != scene.height))
+        throw RenderError("the film to render into is " + std::to_string(options.film->width()) +
+                          "x" + std::to_string(options.film->height()) + ", not the scene's " +
+                          std::to_string(scene.width) + "x" + std::to_string(scene.height));
+    if (!options.film) result.film = Film(scene.width, scene.height);
+    Film& film = options.film ? *options.film : result.film;
     const Camera camera(*scene.camera, scene.width, scene.height);
     const std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {options.spp});
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
@@ -101,7 +109,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const Vec3& s = sum[y * 4 + x];
-                result.film.at(bx + x, by + y) = sampler.samplesPerPixel() == 1 ? s : s * weight;
+                film.at(bx + x, by + y) = sampler.samplesPerPixel() == 1 ? s : s * weight;
             }
     };
 

@@ -43,6 +43,10 @@ struct RenderOptions {
     /// progress and the result count these tiles only. For a caller that shows the image as it
     /// forms, a few tiles per call (the web page, web/bindings/).
     int firstTile = 0, tileCount = -1;
+    /// The film to render into, of the scene's width and height, reused across calls (with
+    /// tile ranges, a new film per call would cost more than its few tiles); RenderResult::film
+    /// is then empty. Only the rendered tiles' pixels are written. Null: a new film.
+    Film* film = nullptr;
 };
 
 struct RenderResult {

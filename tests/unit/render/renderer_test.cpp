@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/math/mat4.h"
 #include "glint/render/sampler.h"
@@ -149,6 +150,20 @@ TEST(Renderer, TileRangesAddUpToTheWholeImage) {
     }
     EXPECT_TRUE(sameFilm(pieced, whole.film));
     EXPECT_EQ(rays, whole.rays.total());
+    // Into a film of the caller's, reused: the same pixels, and none outside the range.
+    Film target(scene.width, scene.height);
+    target.at(0, 0) = Vec3{7, 7, 7};  // tile 0: not rendered below, so left as it is
+    RenderOptions into = withThreads(2, 8);
+    into.firstTile = 1;
+    into.film = &target;
+    RenderResult r = render(scene, into);
+    EXPECT_EQ(r.film.width(), 0);
+    EXPECT_TRUE(target.at(0, 0) == (Vec3{7, 7, 7}));
+    EXPECT_TRUE(target.at(36, 22) == whole.film.at(36, 22));
+    EXPECT_TRUE(target.at(8, 0) == whole.film.at(8, 0));
+    Film wrong(scene.width + 1, scene.height);
+    into.film = &wrong;
+    EXPECT_THROW(render(scene, into), RenderError);
     // A range past the last tile renders nothing.
     RenderOptions o = withThreads(1, 8);
     o.firstTile = tiles + 3;
