@@ -42,6 +42,9 @@ async function init({ variant, threads, base }) {
     M = await self.GlintModule({
         glintThreads: threads,
         locateFile: (file) => base + file,
+        // Where the pthread Workers load the module from (loaded here by importScripts, it
+        // cannot tell).
+        mainScriptUrlOrBlob: base + `glint-${variant}.js`,
         print: () => {},
         printErr: (text) => console.warn('glint:', text),
     });
