@@ -11,7 +11,7 @@
 // a dropped OBJ with its MTL and texture renders as `glint model.obj` does; dragging on the
 // canvas changes the view; a long render can be cancelled; and a timer on the page's main
 // thread keeps firing while the worker renders.
-import { execFileSync, spawn } from 'node:child_process';
+import { execFileSync, spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import os from 'node:os';
@@ -127,7 +127,8 @@ try {
     if (args.screenshot) await page.screenshot({ path: args.screenshot });
 
     // 3. A typo: the CLI's error, at its line, as you type.
-    const lines = (await page.evaluate(() => document.querySelector('.cm-content').innerText)).split('\n').length;
+    const lineCount = () => page.evaluate(() => window.glintEditor.state.doc.lines);
+    const lines = await lineCount();
     await page.click('.cm-content');
     await page.keyboard.press('Control+End');
     const checks = (await glintPage()).checks;
@@ -136,20 +137,21 @@ try {
         document.getElementById('errors').textContent.includes('sphre'), checks, { timeout: 10000 });
     const shown = (await page.textContent('#errors')).trim();
     const typoFile = path.join(tmp, 'scene5.test');
-    fs.writeFileSync(typoFile, fs.readFileSync(path.join(data, 'cse167x/scene5.test'), 'utf8').replace(/\n?$/, '\nsphre 0 0 0 1'));
-    let cli = '';
-    try {
-        execFileSync(args.glint, [typoFile, '--check'], { cwd: tmp });
-    } catch (e) {
-        cli = String(e.stderr).trim();
-    }
-    const line = (await page.evaluate(() => document.querySelector('.cm-content').innerText)).split('\n').length;
+    fs.writeFileSync(typoFile, await page.evaluate(() => window.glintEditor.state.doc.toString()));
+    const cli = spawnSync(args.glint, [typoFile, '--check'], { encoding: 'utf8' }).stderr.trim();
+    const line = await lineCount();
     check(line === lines + 1 && shown.includes(`scene5.test:${line}:1: error: unknown command 'sphre'`), `the error at line ${line}: "${shown}"`);
     check(cli.length > 0 && cli.endsWith(shown.slice(shown.indexOf(':'))), `the CLI's message: "${cli}"`);
-    const marked = await page.evaluate(() => document.querySelectorAll('.cm-lintRange-error').length);
-    check(marked > 0, 'the editor marks it');
+    const marked = await page.waitForFunction(() => {
+        const range = document.querySelector('.cm-lintRange-error');
+        return range && range.closest('.cm-line').textContent;
+    }, null, { timeout: 5000 }).then((h) => h.jsonValue()).catch(() => null);
+    check(marked === 'sphre 0 0 0 1', `the editor marks it, in the line "${marked}"`);
 
     // 4. A dropped OBJ with its MTL and texture, rendered as `glint grid.obj --integrator whitted`.
+    const rendered = (await glintPage()).rendersDone;
+    await page.selectOption('#examples', 'demo');  // a scene without the typo
+    await waitFor('done', (p) => p.rendersDone > rendered);
     await page.fill('#size', '160x120');
     await page.fill('#spp', '1');
     await page.selectOption('#integrator', 'whitted');

@@ -4,7 +4,7 @@
 import { EditorView, keymap, lineNumbers } from '@codemirror/view';
 import { EditorState } from '@codemirror/state';
 import { defaultKeymap, history, historyKeymap } from '@codemirror/commands';
-import { linter, lintGutter, forceLinting } from '@codemirror/lint';
+import { lintGutter, setDiagnostics } from '@codemirror/lint';
 import { courseLanguage, setCommandNames } from './course-language.js';
 import { Orbit } from './orbit.js';
 
@@ -34,7 +34,7 @@ function request(message, transfer = []) {
 }
 
 // ---- the editor -------------------------------------------------------------------------
-let diagnostics = [];  // of the text in the editor, from the last check
+let checked = null;  // the module's last verdict on the editor's text: {error, warnings}
 let checkTimer = 0;
 let scenePath = '/examples/demo.test';  // where the editor's text lives in the virtual files
 let model = null;  // a dropped model rendered on its own (no scene text): its path
@@ -46,7 +46,6 @@ const editor = new EditorView({
         extensions: [
             lineNumbers(), history(), keymap.of([...defaultKeymap, ...historyKeymap]),
             courseLanguage(), lintGutter(),
-            linter(() => diagnostics, { delay: 0 }),
             EditorView.updateListener.of((u) => {
                 if (u.docChanged && !settingText) scheduleCheck();
             }),
@@ -54,9 +53,12 @@ const editor = new EditorView({
     }),
 });
 let settingText = false;
+window.glintEditor = editor;  // for the tests: its state holds the text
 function setText(text) {
+    checked = null;
     settingText = true;
     editor.dispatch({ changes: { from: 0, to: editor.state.doc.length, insert: text } });
+    editor.dispatch(setDiagnostics(editor.state, []));
     settingText = false;
 }
 
@@ -76,8 +78,10 @@ async function check() {
     showDiagnostics(reply.result);
 }
 
-function showDiagnostics(result) {
-    const doc = editor.state.doc;
+/// The last check's error and warnings in the editor's file, as CodeMirror diagnostics of `doc`
+/// (the line and column the parser gave, to the end of that line).
+function lintDiagnostics(doc) {
+    if (!checked) return [];
     const name = scenePath.split('/').pop();
     const mine = (d) => d.file === scenePath || d.file.endsWith('/' + name) || d.file === name;
     const list = [];
@@ -87,10 +91,14 @@ function showDiagnostics(result) {
         const from = Math.min(line.from + Math.max(0, d.column - 1), line.to);
         list.push({ from, to: Math.max(from, line.to), severity, message: d.message });
     };
-    if (result.error) toCm(result.error, 'error');
-    for (const w of result.warnings) toCm(w, 'warning');
-    diagnostics = list;
-    forceLinting(editor);
+    if (checked.error) toCm(checked.error, 'error');
+    for (const w of checked.warnings) toCm(w, 'warning');
+    return list;
+}
+
+function showDiagnostics(result) {
+    checked = { error: result.error, warnings: result.warnings };
+    editor.dispatch(setDiagnostics(editor.state, lintDiagnostics(editor.state.doc)));
     const lines = [];
     if (result.error) lines.push(result.error.text);
     for (const w of result.warnings) lines.push(w.text);
@@ -288,7 +296,6 @@ async function dropFiles(fileList) {
     const scene = names.find((n) => n.endsWith('.test'));
     const modelFile = names.find((n) => modelExtensions.some((e) => n.toLowerCase().endsWith(e)));
     $('examples').value = '';
-    $('size').value = '';
     if (scene) {
         scenePath = scene;
         model = null;
