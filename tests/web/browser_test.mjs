@@ -30,6 +30,9 @@ for (const required of ['site', 'glint', 'imgdiff', 'data', 'isolation'])
         process.exit(2);
     }
 const isolated = args.isolation === 'on';
+// A main thread that waited for the render would miss the timer for the whole render (seconds);
+// a loaded machine (the test suite runs beside it) delays it by tens of milliseconds.
+const kMaxGapMs = 400;
 const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'glint-browser-'));
 let failures = 0;
 function check(ok, what) {
@@ -111,11 +114,12 @@ try {
 
     // 2. scene5 from the examples, against the official image and the native CLI's pixels.
     const data = path.resolve(args.data);
-    await startTimer();
     await page.selectOption('#examples', 'scene5');
+    await page.waitForFunction(() => window.glintPage.state === 'rendering', null, { polling: 5 });
+    await startTimer();  // while the worker renders (opening the example's text is the page's)
     g = await waitFor('done', (p) => p.rendersDone >= 2);
     const gaps = await stopTimer();
-    check(gaps.count > 5 && gaps.max < 250, `the main thread's timer fired ${gaps.count} times during the render, at most ${Math.round(gaps.max)} ms apart`);
+    check(gaps.count > 5 && gaps.max < kMaxGapMs, `the main thread's timer fired ${gaps.count} times during the render, at most ${Math.round(gaps.max)} ms apart`);
     const scene5 = await canvasPng('scene5-canvas.png');
     const reference = path.join(data, 'cse167x/reference/scene5.png');
     check(sameImage(scene5, reference, 2, 1000), 'scene5 passes the course\'s rule against the official image (at most 1000 pixels more than 2 levels off)');
@@ -124,6 +128,10 @@ try {
     const native = path.join(tmp, 'scene5-native.png');
     execFileSync(args.glint, [path.join(data, 'cse167x/scene5.test'), '-o', native, '-q']);
     check(sameImage(scene5, native, 0, 0), 'the canvas holds the native CLI\'s pixels exactly');
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+    const downloaded = fs.readFileSync(await download.path());
+    check(download.suggestedFilename() === 'scene5.png' && downloaded.equals(fs.readFileSync(native)),
+          `Download PNG gives ${download.suggestedFilename()}, the CLI's file byte for byte`);
     if (args.screenshot) await page.screenshot({ path: args.screenshot });
 
     // 3. A typo: the CLI's error, at its line, as you type.
@@ -202,7 +210,7 @@ try {
     check(Date.now() - cancelStart < 2000, `cancelled within ${Date.now() - cancelStart} ms`);
     const progress = await page.evaluate(() => document.getElementById('progress').value);
     check(progress < 1, `before the render finished (${Math.round(progress * 100)}% done)`);
-    check(longGaps.max < 250, `the main thread's timer kept firing (at most ${Math.round(longGaps.max)} ms apart)`);
+    check(longGaps.max < kMaxGapMs, `the main thread's timer kept firing (at most ${Math.round(longGaps.max)} ms apart)`);
 } catch (e) {
     check(false, `the page works through every step: ${e.stack || e}`);
 } finally {
