@@ -239,6 +239,7 @@ worker.onmessage = (event) => {
     const m = event.data;
     if (m.type === 'ready') {
         page.threads = m.threads;
+        page.readyMs = performance.now();  // the module started (since navigation start)
         setCommandNames(m.commands);
         for (const name of m.integrators) {
             const option = document.createElement('option');
@@ -264,6 +265,8 @@ worker.onmessage = (event) => {
 
 // ---- examples and dropped files ---------------------------------------------------------
 let examples = [];
+// Fetched while the module starts.
+const examplesList = fetch('examples/examples.json').then((r) => r.json());
 
 async function openExample(name) {
     const example = examples.find((e) => e.name === name);
@@ -318,7 +321,7 @@ async function dropFiles(fileList) {
 // ---- start ------------------------------------------------------------------------------
 async function ready() {
     setState('idle', 'Ready');
-    examples = await (await fetch('examples/examples.json')).json();
+    examples = await examplesList;
     const select = $('examples');
     let group = null;
     for (const e of examples) {

@@ -102,8 +102,10 @@ async function render({ id, path, text, reload, options, camera, preview }) {
         return;
     }
     const { width, height } = begun;
-    for (;;) {
-        const r = session.step(options.stepMs || 40);
+    // The first call short, so that the first tiles show at once; then about 40 ms per call
+    // (each call's tiles are posted together; Cancel is heard between calls).
+    for (let calls = 0; ; ++calls) {
+        const r = session.step(calls === 0 ? 10 : 40);
         if (r.error) {
             postMessage({ type: 'failed', id, error: r.error });
             return;

@@ -45,7 +45,9 @@ std::from_chars_result parse(const char* first, const char* last, T& value, Read
     T v = read(text, &end);
     if (end == text) return {first, std::errc::invalid_argument};
     const char* ptr = first + (end - text);
-    if (errno == ERANGE) return {ptr, std::errc::result_out_of_range};
+    // Beyond the range: infinite, or zero for a number that is not (a denormal result is in
+    // range, as std::from_chars has it, though strtod reports ERANGE for it too).
+    if (errno == ERANGE && (v == 0 || v - v != 0)) return {ptr, std::errc::result_out_of_range};
     value = v;
     return {ptr, std::errc()};
 }
