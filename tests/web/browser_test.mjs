@@ -194,7 +194,8 @@ try {
 
     // 6. A long render is cancelled; the main thread stays responsive meanwhile.
     await page.selectOption('#examples', 'cornell-path');
-    g = await waitFor('done', (p) => p.last && p.last.width === 160, 120000);
+    await page.waitForFunction(() => window.glintPage.state === 'rendering' &&
+                               document.getElementById('examples').value === 'cornell-path');
     await page.fill('#size', '1024x1024');
     await page.fill('#spp', '256');
     await startTimer();
