@@ -107,7 +107,7 @@ try {
     // 1. The page starts the module the headers allow, and renders the demo.
     await page.goto(address);
     let g = await waitFor('done', (p) => p.rendersDone >= 1);
-    check(g.variant === (isolated ? 'mt' : 'st'), `the ${isolated ? 'threaded' : 'single-threaded'} module runs (${g.variant}, ${g.threads} threads)`);
+    check(g.variant === (isolated ? 'mt' : 'st'), `the ${isolated ? 'threaded' : 'single-threaded'} module runs (${g.variant}, ${g.threads} thread${g.threads === 1 ? "" : "s"})`);
     const mode = await page.textContent('#mode');
     check(isolated ? /Threaded/.test(mode) : /single-threaded/.test(mode), `the page says so: "${mode}"`);
     check(g.firstPixelMs !== null, `the demo's first pixels after ${Math.round(g.firstPixelMs)} ms`);
