@@ -180,6 +180,7 @@ class Session {
         tilesX_ = (s.width + kTile - 1) / kTile;
         tiles_ = tilesX_ * ((s.height + kTile - 1) / kTile);
         next_ = 0;
+        batch_ = pool_.threads() * 2;
         pass_ = 0;
         samples_ = 0;
         rays_ = 0;
@@ -202,7 +203,6 @@ class Session {
         const Scene& s = *scene_;
         auto start = Clock::now();
         int x0 = s.width, y0 = s.height, x1 = 0, y1 = 0;
-        const int batch = pool_.threads() * 2;
         try {
             while (samples_ < spp_) {
                 const int passSpp =
@@ -213,7 +213,7 @@ class Session {
                 ro.spp = passSpp;
                 ro.seed = passSeed(seed_, pass_);
                 ro.firstTile = next_;
-                ro.tileCount = batch;
+                ro.tileCount = batch_;
                 ro.film = &passFilm_;
                 RenderResult pass = render(s, ro);
                 rays_ += pass.rays.total();
@@ -226,6 +226,10 @@ class Session {
                     x1 = std::max(x1, tx1), y1 = std::max(y1, ty1);
                 }
                 next_ += pass.tilesTotal;
+                // Batches of about 10 to 40 ms: each call wakes the threads and waits for the
+                // last of them, a cost worth paying only for enough tiles.
+                if (pass.seconds < 0.01 && batch_ < tiles_) batch_ *= 2;
+                if (pass.seconds > 0.04 && batch_ > pool_.threads()) batch_ /= 2;
                 if (next_ >= tiles_) {
                     next_ = 0;
                     ++pass_;
@@ -302,7 +306,7 @@ class Session {
     Film passFilm_;  // the pass in progress, into which render() writes its tiles
     std::vector<uint8_t> rgba_;
     DisplayTransform display_;
-    int spp_ = 1, tiles_ = 0, tilesX_ = 0, next_ = 0, pass_ = 0, samples_ = 0;
+    int spp_ = 1, tiles_ = 0, tilesX_ = 0, next_ = 0, batch_ = 1, pass_ = 0, samples_ = 0;
     bool progressive_ = false;
     uint64_t seed_ = 0, rays_ = 0;
     double seconds_ = 0;
