@@ -5,6 +5,8 @@
 #   make demo    deps + build + render the built-in scene to glint.png
 #   make test    deps + build + run every test (ctest)
 #   make clean   remove the build directory
+#   make web     the library in WebAssembly and the web page, into build-web/site (docs/web.md)
+#   make serve   serve build-web/site on http://localhost:8167 with cross-origin isolation
 #   make bench   deps for the benchmarks (Embree, POV-Ray, Blender) + Release build in build-bench
 #                + run bench/run.sh: Glint against Embree, POV-Ray and Cycles (docs/performance.md)
 
@@ -32,6 +34,17 @@ BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libop
               libmeshoptimizer-dev libembree-dev povray bc blender draco gltfpack libassimp-dev \
               python3-numpy
 
+# `make web` and its tests (docs/web.md): Emscripten (Debian's 3.1.6, clang for WebAssembly),
+# dpkg-dev (apt-get source unpacks the Debian sources of zlib and libpng that the web build
+# compiles, web/tools/debian-sources.sh), the header-only libraries the library compiles against,
+# Node.js and npm (the page's npm packages from web/package-lock.json, its bundler, the tests),
+# and Chromium (the browser tests, driven by playwright-core from npm; it downloads no browser).
+# Each is installed when its command or package is missing (Node.js may come from elsewhere).
+WEB_DIR  ?= build-web
+WEB_PORT ?= 8167
+WEB_DEPS := emscripten:em++ dpkg-dev:dpkg-source nodejs:node npm:npm chromium:chromium \
+            cmake:cmake make:make libstb-dev libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev
+
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-dev libpng-dev \
@@ -39,7 +52,7 @@ FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-
              libmeshoptimizer-dev
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps build demo test test-sanitize fuzz clean bench
+.PHONY: deps build demo test test-sanitize fuzz clean bench web web-deps serve
 
 deps:
 	@missing=""; \
@@ -63,8 +76,11 @@ demo: deps
 	./$(BUILD_DIR)/glint -o glint.png
 	@echo "glint: demo render written to $(CURDIR)/glint.png"
 
-test: deps
+# The web tests run too (tests/web/): the web build first, then the native build, told where it is.
+test: deps web-deps
+	@$(MAKE) --no-print-directory web
 	@$(MAKE) --no-print-directory build
+	cmake -S . -B $(BUILD_DIR) -DGLINT_WEB_DIR=$(CURDIR)/$(WEB_DIR) >/dev/null
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
 # The unit, golden and CLI tests again, built with AddressSanitizer and UndefinedBehaviorSanitizer
@@ -88,7 +104,40 @@ fuzz:
 	fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
 
 clean:
-	rm -rf $(BUILD_DIR) build-asan build-fuzz
+	rm -rf $(BUILD_DIR) build-asan build-fuzz $(WEB_DIR)
+
+web-deps:
+	@missing=""; \
+	for d in $(WEB_DEPS); do p=$${d%%:*}; c=$${d#*:}; \
+	  if [ "$$c" != "$$d" ]; then command -v $$c >/dev/null 2>&1 && continue; \
+	  else dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'ok installed' && continue; fi; \
+	  missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "glint: installing missing Debian packages:$$missing"; \
+	  export DEBIAN_FRONTEND=noninteractive; \
+	  $(SUDO) apt-get install -y -q --no-install-recommends $$missing || \
+	  { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q --no-install-recommends $$missing; }; \
+	fi
+
+# Two builds of the module, with threads (glint-mt) and without (glint-st), then the page:
+# web/tools/build.mjs bundles it with the page's npm packages (npm ci, once per lock file) and
+# assembles $(WEB_DIR)/site. NODE_PATH: Debian's Emscripten finds its JavaScript modules there.
+web: web-deps
+	web/tools/debian-sources.sh $(WEB_DIR)/debian
+	@for v in mt st; do \
+	  t=$$([ $$v = mt ] && echo ON || echo OFF); \
+	  [ -f $(WEB_DIR)/$$v/CMakeCache.txt ] || NODE_PATH=/usr/share/nodejs emcmake cmake -S . \
+	    -B $(WEB_DIR)/$$v -DCMAKE_BUILD_TYPE=Release -DGLINT_WERROR=$(GLINT_WERROR) \
+	    -DGLINT_WEB_THREADS=$$t -DGLINT_WEB_DEBIAN_SOURCES=$(CURDIR)/$(WEB_DIR)/debian || exit 1; \
+	  NODE_PATH=/usr/share/nodejs cmake --build $(WEB_DIR)/$$v -j $(JOBS) || exit 1; \
+	done
+	@[ web/node_modules/.package-lock.json -nt web/package-lock.json ] || \
+	  (cd web && npm ci --no-audit --no-fund)
+	node web/tools/build.mjs $(WEB_DIR)
+	@echo "glint: the web page is in $(CURDIR)/$(WEB_DIR)/site; make serve serves it"
+
+serve:
+	node web/tools/serve.mjs $(WEB_DIR)/site --port $(WEB_PORT)
 
 bench:
 	@$(MAKE) --no-print-directory deps DEPS="$(BENCH_DEPS)"

@@ -41,7 +41,7 @@ inline void* allocateLarge(size_t bytes) {
     return ::operator new (bytes, std::align_val_t{64});
 }
 
-inline void freeLarge(void* p, size_t bytes) {
+inline void freeLarge(void* p, [[maybe_unused]] size_t bytes) {  // unused without madvise
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (bytes >= kHugePage) {
         munmap(p, (bytes + kHugePage - 1) / kHugePage * kHugePage);

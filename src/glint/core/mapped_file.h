@@ -1,6 +1,7 @@
 #pragma once
 /// Reading a whole file without copying it: mapped read-only into memory where the system
-/// allows, read into a buffer otherwise.
+/// allows, read into a buffer otherwise (mapped_file.cpp natively; mapped_file_web.cpp in
+/// WebAssembly, whose files are in memory already).
 
 #include <memory>
 #include <string>

@@ -1,23 +1,12 @@
 #include "glint/core/system.h"
 
-#include <unistd.h>
-
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 namespace glint {
 
-size_t availableMemoryBytes() {
-    std::ifstream in("/proc/meminfo");
-    std::string key;
-    size_t value = 0;
-    std::string unit;
-    while (in >> key >> value >> unit)
-        if (key == "MemAvailable:") return value * 1024;
-    long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page > 0 ? static_cast<size_t>(pages) * static_cast<size_t>(page) : 0;
-}
+// availableMemoryBytes() is the platform's: system_linux.cpp (natively) or system_web.cpp
+// (WebAssembly).
 
 std::string formatBytes(double bytes) {
     char buf[32];

@@ -7,11 +7,11 @@
 /// The ray's direction is mapped but not renormalised, so a ray parameter t names the same
 /// point in world and canonical space: a search returns the world ray's t directly.
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
 
 #include "glint/core/ray.h"
+#include "glint/math/bits.h"
 #include "glint/math/mat4.h"
 
 namespace glint {
@@ -49,12 +49,12 @@ struct ShapeSearch {
     /// `objectFromWorld`.
     static ShapeSearch instance(const Mat4& objectFromWorld, uint32_t mesh) {
         ShapeSearch s = from(objectFromWorld, ShapeKind::Instance);
-        s.k = std::bit_cast<float>(mesh);
+        s.k = bitCast<float>(mesh);
         return s;
     }
     /// The shared mesh an Instance record places (kept in the bits of `k`, which instances do
     /// not use otherwise).
-    uint32_t mesh() const { return std::bit_cast<uint32_t>(k); }
+    uint32_t mesh() const { return bitCast<uint32_t>(k); }
 
     /// The ray's origin and (unnormalised) direction in canonical space.
     void map(const TraversalRay& ray, Vec3f& o, Vec3f& d) const {

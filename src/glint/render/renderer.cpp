@@ -1,10 +1,13 @@
 #include "glint/render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/render/sampler.h"
 
@@ -20,7 +23,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
     RenderResult result;
-    result.film = Film(scene.width, scene.height);
+    if (options.film &&
+        (options.film->width() != scene.width || options.film->height() != scene.height))
+        throw RenderError("the film to render into is " + std::to_string(options.film->width()) +
+                          "x" + std::to_string(options.film->height()) + ", not the scene's " +
+                          std::to_string(scene.width) + "x" + std::to_string(scene.height));
+    if (!options.film) result.film = Film(scene.width, scene.height);
+    Film& film = options.film ? *options.film : result.film;
     const Camera camera(*scene.camera, scene.width, scene.height);
     const std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {options.spp});
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
@@ -48,8 +57,12 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             tiles.push_back({std::max(x0, crop.x0), std::min(x0 + tile, crop.x1),
                              std::max(y0, crop.y0), std::min(y0 + tile, crop.y1)});
     }
-    const int tilesTotal = static_cast<int>(tiles.size());
-    std::atomic<int> nextTile{0}, tilesDone{0};
+    // Of those, tiles [firstTile, firstTile + tileCount) only (the web page's calls).
+    const int firstTile = std::clamp(options.firstTile, 0, static_cast<int>(tiles.size()));
+    const int available = static_cast<int>(tiles.size()) - firstTile;
+    const int tilesTotal =
+        options.tileCount < 0 ? available : std::min(options.tileCount, available);
+    std::atomic<int> nextTile{0}, tilesDone{0};  // counted from firstTile
 
     // Camera rays go in packets of eight: 4 x 2 pixels at one sample per pixel, or eight
     // samples of one pixel. Each pixel still sums its samples in the sampler's order. Shadow
@@ -120,7 +133,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const Vec3& s = sum[y * 4 + x];
-                result.film.at(bx + x, by + y) = pixelValue(s, rendered);
+                film.at(bx + x, by + y) = pixelValue(s, rendered);
                 if (options.keepSums) {
                     result.sums.sum(bx + x, by + y) = s;
                     result.sums.weight(bx + x, by + y) = rendered;
@@ -142,7 +155,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
                 int t = nextTile.fetch_add(1, std::memory_order_relaxed);
                 if (t >= tilesTotal) break;
-                const auto [x0, x1, y0, y1] = tiles[static_cast<size_t>(t)];
+                const auto [x0, x1, y0, y1] = tiles[static_cast<size_t>(t + firstTile)];
                 bool stopped = false;
                 for (int by = y0; by < y1 && !stopped; by += 2)
                     for (int bx = x0; bx < x1; bx += 4) {

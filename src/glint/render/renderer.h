@@ -48,6 +48,15 @@ struct RenderOptions {
     int sampleBegin = 0;  ///< Samples [sampleBegin, sampleEnd) of each pixel's `spp`;
     int sampleEnd = 0;    ///< sampleEnd 0: up to spp.
     bool keepSums = false;  ///< Fill RenderResult::sums (for merging parts).
+    /// Only tiles [firstTile, firstTile + tileCount) of the part (the image, numbered row by row from
+    /// the top left (tileCount < 0: to the last tile); the film's other pixels stay black, and
+    /// progress and the result count these tiles only. For a caller that shows the image as it
+    /// forms, a few tiles per call (the web page, web/bindings/).
+    int firstTile = 0, tileCount = -1;
+    /// The film to render into, of the scene's width and height, reused across calls (with
+    /// tile ranges, a new film per call would cost more than its few tiles); RenderResult::film
+    /// is then empty. Only the rendered tiles' pixels are written. Null: a new film.
+    Film* film = nullptr;
 };
 
 struct RenderResult {

@@ -1,10 +1,10 @@
 #include "glint/scene/scene.h"
 
-#include <bit>
 #include <optional>
 
 #include "glint/core/parallel.h"
 #include "glint/core/spawn.h"
+#include "glint/math/bits.h"
 #include "glint/math/rng.h"
 
 namespace glint {
@@ -83,11 +83,11 @@ bool Scene::cutOut(const Ray& ray, const Hit& hit, bool cameraRay) const {
     if (pm.alphaMode == AlphaMode::Mask) return alpha < pm.alphaCutoff;
     // Blend: the hit counts with probability alpha, decided by a hash of the ray and the
     // primitive, so that the same ray always sees the same surfaces.
-    uint64_t h = mixBits(std::bit_cast<uint64_t>(ray.origin.x) ^ hit.primId);
-    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.origin.y) ^ (uint64_t(hit.subId) << 32));
-    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.origin.z));
-    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.dir.x));
-    h = mixBits(h ^ std::bit_cast<uint64_t>(ray.dir.y) ^ std::bit_cast<uint64_t>(ray.dir.z));
+    uint64_t h = mixBits(bitCast<uint64_t>(ray.origin.x) ^ hit.primId);
+    h = mixBits(h ^ bitCast<uint64_t>(ray.origin.y) ^ (uint64_t(hit.subId) << 32));
+    h = mixBits(h ^ bitCast<uint64_t>(ray.origin.z));
+    h = mixBits(h ^ bitCast<uint64_t>(ray.dir.x));
+    h = mixBits(h ^ bitCast<uint64_t>(ray.dir.y) ^ bitCast<uint64_t>(ray.dir.z));
     const double u = static_cast<double>(h >> 11) * 0x1p-53;
     return alpha <= u;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "glint/core/error.h"
+#include "glint/math/bits.h"
 #include "glint/math/sampling.h"
 
 namespace glint {
@@ -173,7 +174,7 @@ uint32_t weld(std::vector<Tri>& tris, const std::vector<CornerKey>& keys,
         uint32_t& at = place[positionOf[c] - first];
         if (at == kNone) {
             uint64_t h = 0;
-            for (size_t k = 0; k < 3; ++k) h = mix(h ^ std::bit_cast<uint32_t>(key.v[k]));
+            for (size_t k = 0; k < 3; ++k) h = mix(h ^ bitCast<uint32_t>(key.v[k]));
             size_t i = h & mask;
             while (slots[i] != kNone &&
                    !std::equal(key.v.begin(), key.v.begin() + 3, keys[slots[i]].v.begin()))

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <utility>
 #include <vector>
 
+#include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/math/mat4.h"
 #include "glint/render/sampler.h"
@@ -116,6 +118,58 @@ TEST(Renderer, ProgressEndsWithEveryTileDone) {
         EXPECT_GE(calls[i].tilesDone, calls[i - 1].tilesDone);
         EXPECT_EQ(calls[i].tilesTotal, tiles);
     }
+}
+
+TEST(Renderer, TileRangesAddUpToTheWholeImage) {
+    Scene scene;
+    buildScene(scene);
+    RenderResult whole = render(scene, withThreads(2, 8));
+    ASSERT_TRUE(whole.complete);
+    const int tiles = 5 * 3;  // ceil(37 / 8) x ceil(23 / 8)
+    Film pieced(scene.width, scene.height);
+    uint64_t rays = 0;
+    for (auto [first, count] : {std::pair{0, 4}, {4, 1}, {5, 7}, {12, -1}}) {
+        SCOPED_TRACE(testing::Message() << "tiles " << first << " + " << count);
+        RenderOptions o = withThreads(2, 8);
+        o.firstTile = first;
+        o.tileCount = count;
+        RenderResult r = render(scene, o);
+        const int expected = count < 0 ? tiles - first : count;
+        EXPECT_TRUE(r.complete);
+        EXPECT_EQ(r.tilesTotal, expected);
+        EXPECT_EQ(r.tilesDone, expected);
+        rays += r.rays.total();
+        for (int y = 0; y < scene.height; ++y)
+            for (int x = 0; x < scene.width; ++x) {
+                const int t = y / 8 * 5 + x / 8;
+                if (t >= first && t < first + expected)
+                    pieced.at(x, y) = r.film.at(x, y);
+                else
+                    EXPECT_TRUE(r.film.at(x, y) == Vec3{}) << x << ", " << y;
+            }
+    }
+    EXPECT_TRUE(sameFilm(pieced, whole.film));
+    EXPECT_EQ(rays, whole.rays.total());
+    // Into a film of the caller's, reused: the same pixels, and none outside the range.
+    Film target(scene.width, scene.height);
+    target.at(0, 0) = Vec3{7, 7, 7};  // tile 0: not rendered below, so left as it is
+    RenderOptions into = withThreads(2, 8);
+    into.firstTile = 1;
+    into.film = &target;
+    RenderResult r = render(scene, into);
+    EXPECT_EQ(r.film.width(), 0);
+    EXPECT_TRUE(target.at(0, 0) == (Vec3{7, 7, 7}));
+    EXPECT_TRUE(target.at(36, 22) == whole.film.at(36, 22));
+    EXPECT_TRUE(target.at(8, 0) == whole.film.at(8, 0));
+    Film wrong(scene.width + 1, scene.height);
+    into.film = &wrong;
+    EXPECT_THROW(render(scene, into), RenderError);
+    // A range past the last tile renders nothing.
+    RenderOptions o = withThreads(1, 8);
+    o.firstTile = tiles + 3;
+    RenderResult none = render(scene, o);
+    EXPECT_EQ(none.tilesTotal, 0);
+    EXPECT_EQ(none.rays.total(), 0u);
 }
 
 TEST(Renderer, CancelledBeforeStartingIsIncomplete) {

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "glint/core/mapped_file.h"
+#include "glint/core/parse_float.h"
 #include "glint/core/system.h"
 #include "glint/geometry/polygon.h"
 #include "glint/io/course/course_parser.h"
@@ -229,7 +230,7 @@ double Parser::number(int i) const {
     double v = 0;
     if (parseDecimalFast(b, e, v)) return v;
     if (b != e && *b == '+' && e - b > 1 && b[1] != '-' && b[1] != '+') ++b;  // "+1"
-    auto [p, ec] = std::from_chars(b, e, v);
+    auto [p, ec] = parseFloat(b, e, v);
     if (ec == std::errc::result_out_of_range && p == e) {
         // Overflow is an error; underflow (1e-400) reads as the nearest double, zero or tiny.
         v = std::strtod(std::string(b, e).c_str(), nullptr);

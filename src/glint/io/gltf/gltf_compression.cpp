@@ -1,7 +1,7 @@
 // Compressed glTF meshes: KHR_draco_mesh_compression through libdraco 1.5.5 (gltf_draco.cpp), and
 // EXT_meshopt_compression and KHR_meshopt_compression (its version-0 streams) through
-// libmeshoptimizer 0.18 (here), the Debian 12 packages (docs/scene-format.md, "Compressed
-// meshes").
+// libmeshoptimizer 0.18 (gltf_meshopt.cpp), the Debian 12 packages (docs/scene-format.md,
+// "Compressed meshes").
 //
 // tinygltf 2.7 as Debian builds it has no Draco, and cannot read either extension's files: it
 // rejects a primitive whose indices accessor has no bufferView (Draco's accessors have none),
@@ -13,8 +13,6 @@
 // accessor reading (gltf_meshes.cpp) works on them as on any other.
 
 #include "glint/io/gltf/gltf_compression.h"
-
-#include <meshoptimizer.h>
 
 #include <algorithm>
 #include <limits>
@@ -187,43 +185,7 @@ std::vector<unsigned char> decodeMeshopt(const Context& ctx, Compression& c, siz
     reserveDecoded(ctx, c, double(bv.byteLength), label);
 
     std::vector<unsigned char> out(bv.byteLength);
-    int status = 0;
-    const char* what = "ATTRIBUTES";
-    switch (m.mode) {
-        case MeshoptMode::Attributes:
-            if (m.byteLength > 0 && (source[0] & 0xF0) == 0xA0 && (source[0] & 0x0F) > 0)
-                ctx.fail(label + ": its data is in version " + std::to_string(source[0] & 0x0F) +
-                         " of the attribute codec, which Debian 12's libmeshoptimizer 0.18 " +
-                         "does not decode (it decodes version 0)");
-            status = meshopt_decodeVertexBuffer(out.data(), count, stride, source, m.byteLength);
-            break;
-        case MeshoptMode::Triangles:
-            what = "TRIANGLES";
-            status = meshopt_decodeIndexBuffer(out.data(), count, stride, source, m.byteLength);
-            break;
-        case MeshoptMode::Indices:
-            what = "INDICES";
-            status = meshopt_decodeIndexSequence(out.data(), count, stride, source, m.byteLength);
-            break;
-    }
-    if (status != 0)
-        ctx.fail(label + ": its " + what + " data (" + std::to_string(m.byteLength) +
-                 " bytes in buffer " + std::to_string(m.buffer) +
-                 ") is corrupt or not what count and byteStride say (libmeshoptimizer error " +
-                 std::to_string(status) + ")");
-    switch (m.filter) {
-        case MeshoptFilter::Octahedral:
-            meshopt_decodeFilterOct(out.data(), count, stride);
-            break;
-        case MeshoptFilter::Quaternion:
-            meshopt_decodeFilterQuat(out.data(), count, stride);
-            break;
-        case MeshoptFilter::Exponential:
-            meshopt_decodeFilterExp(out.data(), count, stride);
-            break;
-        default:
-            break;
-    }
+    decodeMeshoptData(ctx, m, label, source, count, stride, out);
     return out;
 }
 

@@ -70,4 +70,11 @@ void reserveDecoded(const Context& ctx, const Compression& c, double more, const
 /// (c.accessors), checked against the decoded mesh (gltf_draco.cpp).
 void decodeDraco(const Context& ctx, Compression& c, size_t which);
 
+/// Decodes the meshopt data of `m` (`source`, m.byteLength bytes, checked against the
+/// extension's rules) into `out`, sized for `count` elements of `stride` bytes, and applies its
+/// filter; fails through `ctx`, naming `label`, when the data is corrupt (gltf_meshopt.cpp).
+void decodeMeshoptData(const Context& ctx, const MeshoptView& m, const std::string& label,
+                       const unsigned char* source, size_t count, size_t stride,
+                       std::vector<unsigned char>& out);
+
 }  // namespace glint::gltf

@@ -58,7 +58,7 @@ HdrImage decodeOpenExr(std::string_view bytes, const std::string& name, const Lo
     checkSize(name, w, h, limits);
     HdrImage img{static_cast<int>(w), static_cast<int>(h), {}};
     Film film = decodeExr(bytes, name);  // throws "cannot read image 'name': why"
-    img.rgb.resize(static_cast<size_t>(w) * h * 3);
+    img.rgb.resize(static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3);
     float* p = img.rgb.data();
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x, p += 3) {

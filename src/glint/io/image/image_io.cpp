@@ -12,9 +12,10 @@
 #include <memory>
 #include <sstream>
 
-#include "glint/core/error.h"
 #include "glint/core/atomic_file.h"
+#include "glint/core/error.h"
 #include "glint/io/image/exr.h"
+#include "glint/math/bits.h"
 
 namespace glint {
 
@@ -151,8 +152,7 @@ Film readPfm(const std::string& path) {
     if (!in) throw RenderError("cannot read image '" + path + "': file is truncated");
     bool bigEndian = scale > 0;
     if (bigEndian != (std::endian::native == std::endian::big))
-        for (float& f : data)
-            f = std::bit_cast<float>(__builtin_bswap32(std::bit_cast<uint32_t>(f)));
+        for (float& f : data) f = bitCast<float>(__builtin_bswap32(bitCast<uint32_t>(f)));
     Film film(w, h);
     size_t i = 0;
     for (int y = h - 1; y >= 0; --y)
@@ -164,9 +164,13 @@ Film readPfm(const std::string& path) {
 Film readExr(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw RenderError("cannot read image '" + path + "': cannot open file");
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    return decodeExr(bytes.view(), path);
+    std::string bytes;
+    in.seekg(0, std::ios::end);
+    bytes.resize(static_cast<size_t>(std::max<std::streamoff>(0, in.tellg())));
+    in.seekg(0);
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+        throw RenderError("cannot read image '" + path + "': read failed");
+    return decodeExr(bytes, path);
 }
 
 }  // namespace glint

@@ -193,7 +193,7 @@ void Reader::readFaces(Source& s, const Element& e, const Layout& l, bool strips
             const Role role = l.roles[i];
             if (role == kIndices) {
                 uint64_t n = s.count(p.countType, p.type);
-                indices_.resize(n);
+                indices_.resize(static_cast<size_t>(n));
                 s.indices(p.type, n, indices_.data(), vertices, strips);
             } else if (role == kTexcoord && faceUvs) {
                 uint64_t n = s.count(p.countType, p.type);
@@ -354,10 +354,12 @@ MeshData Reader::run() {
     counts.withColors = vertexLayout_.colors;
     checkMeshMemory(counts, file_, options_.limits);
 
-    mesh_.positions.reserve(vertex_->count);
-    if (vertexLayout_.normals) mesh_.normals.reserve(vertex_->count);
-    if (vertexLayout_.uvs) mesh_.uvs.reserve(vertex_->count);
-    if (vertexLayout_.colors) mesh_.colors.reserve(vertex_->count);
+    // Within the memory checked above: the counts fit a size_t (also a 32-bit one, in WebAssembly).
+    const auto vertexCount = static_cast<size_t>(vertex_->count);
+    mesh_.positions.reserve(vertexCount);
+    if (vertexLayout_.normals) mesh_.normals.reserve(vertexCount);
+    if (vertexLayout_.uvs) mesh_.uvs.reserve(vertexCount);
+    if (vertexLayout_.colors) mesh_.colors.reserve(vertexCount);
     mesh_.triangles.reserve(static_cast<size_t>(triangles));
 
     size_t trailing = 0;

@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 
+#include "glint/core/parse_float.h"
 #include "glint/io/ply/ply_internal.h"
 
 namespace glint::ply {
@@ -206,7 +207,7 @@ class AsciiSource : public Place {
             }
         } else if (t == Type::Float32) {  // read as a float: rounded once
             float f = 0;
-            auto [stop, code] = std::from_chars(p_, end_, f);
+            auto [stop, code] = parseFloat(p_, end_, f);
             if (code == std::errc() && (stop == end_ || isBlank(*stop))) {
                 word_ = std::string_view(p_, static_cast<size_t>(stop - p_));
                 p_ = stop;
@@ -214,7 +215,7 @@ class AsciiSource : public Place {
             }
         } else {
             double v = 0;
-            auto [stop, code] = std::from_chars(p_, end_, v);
+            auto [stop, code] = parseFloat(p_, end_, v);
             if (code == std::errc() && (stop == end_ || isBlank(*stop))) {
                 word_ = std::string_view(p_, static_cast<size_t>(stop - p_));
                 p_ = stop;
@@ -231,7 +232,7 @@ class AsciiSource : public Place {
                 return static_cast<double>(i);
         }
         double v = 0;
-        auto [end, ec] = std::from_chars(first, last, v);
+        auto [end, ec] = parseFloat(first, last, v);
         if (end != last || (ec != std::errc() && ec != std::errc::result_out_of_range))
             fail(quoted(w) + " is not a number");
         if (ec == std::errc::result_out_of_range)  // beyond double: infinite, or 0 below it

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -15,7 +14,9 @@
 #include <system_error>
 
 #include "glint/core/mapped_file.h"
+#include "glint/core/parse_float.h"
 #include "glint/io/mesh_memory.h"
+#include "glint/math/bits.h"
 
 namespace glint {
 namespace stl {
@@ -46,7 +47,7 @@ uint32_t loadU32(const unsigned char* p) {
     return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
-float loadF32(const unsigned char* p) { return std::bit_cast<float>(loadU32(p)); }
+float loadF32(const unsigned char* p) { return bitCast<float>(loadU32(p)); }
 
 /// Whether the file is ASCII STL: it starts with the word `solid` (after blanks) and its first
 /// bytes hold no control character a text file would not.
@@ -99,8 +100,8 @@ MeshData parseBinary(std::string_view bytes, const std::string& file,
 
     MeshData mesh;
     mesh.name = file;
-    mesh.positions.reserve(3 * count);
-    mesh.triangles.reserve(count);
+    mesh.positions.reserve(static_cast<size_t>(3 * count));  // within the memory checked above
+    mesh.triangles.reserve(static_cast<size_t>(count));
     for (uint64_t i = 0; i < count; ++i) {
         const unsigned char* t = data + 84 + 50 * i + 12;  // past the facet normal
         std::array<Vec3f, 3> p;
@@ -189,7 +190,7 @@ class AsciiReader {
         wordLine_ = line_;
         wordColumn_ = static_cast<int>(p_ - lineStart_) + 1;
         float f = 0;
-        auto [stop, code] = std::from_chars(p_, end_, f);
+        auto [stop, code] = parseFloat(p_, end_, f);
         if (code == std::errc() && (stop == end_ || isBlank(*stop)) && std::isfinite(f)) {
             p_ = stop;
             return f;
@@ -199,7 +200,7 @@ class AsciiReader {
         std::string_view w = word();
         if (w.empty()) fail("the file ends where a number should be: is it complete?");
         const char* first = w.data() + (w.size() > 1 && w[0] == '+');
-        auto [end, ec] = std::from_chars(first, w.data() + w.size(), v);
+        auto [end, ec] = parseFloat(first, w.data() + w.size(), v);
         if (end != w.data() + w.size() ||
             (ec != std::errc() && ec != std::errc::result_out_of_range))
             fail(quoted(w) + " is not a number");

@@ -1,0 +1,365 @@
+// The web page's view of Glint (embind): scenes and models read from the module's virtual file
+// system by the same loaders as the command line, errors as the command line prints them, and a
+// render that advances a few tiles per call, so that the Web Worker running it returns to its
+// event loop between calls (to post the image, and to hear Cancel). web/src/worker.js drives it;
+// docs/web.md describes the whole.
+//
+// Pixels are the library's: the traversal kernels are the portable ones (bit for bit the AVX2
+// ones), and a render of one pass at the scene's samples is the command line's render, so
+// renderFile() writes the PNG file `glint SCENE -o OUT` writes (the Node test checks it byte for
+// byte).
+
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "glint/core/error.h"
+#include "glint/core/parallel.h"
+#include "glint/io/course/course_loader.h"
+#include "glint/io/image/image_io.h"
+#include "glint/io/registry.h"
+#include "glint/render/display.h"
+#include "glint/render/integrator.h"
+#include "glint/render/progressive.h"
+#include "glint/render/renderer.h"
+
+namespace glint::web {
+namespace {
+
+using emscripten::val;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kTile = 16;  // tile side, as the command line's
+
+val diagnosticValue(const Diagnostic& d, const char* kind) {
+    val o = val::object();
+    o.set("file", d.loc.file);
+    o.set("line", d.loc.line);
+    o.set("column", d.loc.column);
+    o.set("message", d.message);
+    o.set("text", d.format(kind));
+    return o;
+}
+
+val vecValue(const Vec3& v) {
+    val a = val::array();
+    a.call<void>("push", v.x, v.y, v.z);
+    return a;
+}
+
+Vec3 toVec(const val& a) { return {a[0].as<double>(), a[1].as<double>(), a[2].as<double>()}; }
+
+int intOr(const val& o, const char* key, int fallback) {
+    val v = o[key];
+    return v.isNumber() ? v.as<int>() : fallback;
+}
+
+/// The error of an exception the loaders or the renderer threw, as the page shows it.
+val errorValue(const std::exception& e) {
+    if (auto* s = dynamic_cast<const SceneError*>(&e))
+        return diagnosticValue(s->diagnostic(), "error");
+    val o = val::object();
+    o.set("file", std::string());
+    o.set("line", 0);
+    o.set("column", 0);
+    o.set("message", std::string(e.what()));
+    o.set("text", std::string("error: ") + e.what());
+    return o;
+}
+
+}  // namespace
+
+/// One scene at a time, its renders, and the threads they run on.
+class Session {
+  public:
+    explicit Session(int threads) : pool_(std::max(1, threads)) {}
+
+    int threads() const { return pool_.threads(); }
+
+    /// Reads the scene or model file at `path` as `glint FILE` does, with options
+    /// {integrator, lenient, width, height, prepare}: prepare (default true) builds its BVH for
+    /// rendering; false only checks it (the editor, as you type). Returns {ok, error, warnings,
+    /// note, width, height, spp, maxDepth, integrator, hasCamera}.
+    val load(const std::string& path, const val& options) {
+        val r = val::object();
+        val warningList = val::array();
+        std::vector<Diagnostic> warnings;
+        std::unique_ptr<Scene> scene;
+        try {
+            LoadOptions lo;
+            lo.lenient = options["lenient"].isTrue();
+            lo.width = std::max(0, intOr(options, "width", 0));  // a model's framing, as --size
+            lo.height = std::max(0, intOr(options, "height", 0));
+            val integrator = options["integrator"];
+            if (integrator.isString()) lo.look.studio = integrator.as<std::string>() != "whitted";
+            ModelScene m = loadSceneFile(path, warnings, lo);
+            scene = std::move(m.scene);
+            r.set("note", m.note);
+            if (!scene->camera) throw RenderError("the scene has no camera");
+            if (!options["prepare"].isFalse()) scene->prepare({&pool_, Isa::Portable});
+            r.set("ok", true);
+            r.set("error", val::null());
+        } catch (const std::exception& e) {
+            r.set("ok", false);
+            r.set("error", errorValue(e));
+            scene.reset();
+        }
+        for (const Diagnostic& w : warnings)
+            warningList.call<void>("push", diagnosticValue(w, "warning"));
+        r.set("warnings", warningList);
+        if (!scene) return r;
+        r.set("width", scene->width);
+        r.set("height", scene->height);
+        r.set("spp", scene->spp);
+        r.set("maxDepth", scene->maxDepth);
+        r.set("integrator", scene->integrator);
+        if (scene->prepared()) {
+            scene_ = std::move(scene);
+            home_ = *scene_->camera;
+            film_ = Film();
+        }
+        return r;
+    }
+
+    /// The loaded scene's camera {eye, center, up, fovy}; its camera as loaded with `home`.
+    val camera(bool home) const {
+        val o = val::object();
+        if (!scene_) return val::null();
+        const CameraSpec& c = home ? home_ : *scene_->camera;
+        o.set("eye", vecValue(c.eye));
+        o.set("center", vecValue(c.center));
+        o.set("up", vecValue(c.up));
+        o.set("fovy", c.fovyDegrees);
+        return o;
+    }
+
+    /// Moves the camera (the page's orbit, pan and zoom); the next render sees it.
+    void setCamera(const val& o) {
+        if (!scene_) return;
+        CameraSpec& c = *scene_->camera;
+        c.eye = toVec(o["eye"]);
+        c.center = toVec(o["center"]);
+        c.up = toVec(o["up"]);
+    }
+
+    /// Starts a render of the loaded scene with {width, height, spp, maxDepth, integrator, seed,
+    /// passes}: `spp` camera rays per pixel in all (0: the scene's), in one pass, or with
+    /// `passes` true, in passes of 1, 1, 2, 4, ... samples whose average the image shows as it
+    /// refines (the path tracer's progressive display). Returns {error (or null), width,
+    /// height}.
+    val begin(const val& o) {
+        val r = val::object();
+        r.set("error", val::null());
+        if (!scene_) {
+            r.set("error", errorValue(RenderError("no scene is loaded")));
+            return r;
+        }
+        Scene& s = *scene_;
+        s.width = std::clamp(intOr(o, "width", s.width), 1, 16384);
+        s.height = std::clamp(intOr(o, "height", s.height), 1, 16384);
+        s.maxDepth = std::max(0, intOr(o, "maxDepth", s.maxDepth));
+        if (o["integrator"].isString()) {
+            std::string name = o["integrator"].as<std::string>();
+            if (!findIntegrator(name)) {
+                r.set("error", errorValue(RenderError("no integrator '" + name + "'")));
+                return r;
+            }
+            s.integrator = name;
+        }
+        spp_ = std::max(1, intOr(o, "spp", s.spp > 0 ? s.spp : 1));
+        seed_ = static_cast<uint64_t>(std::max(0, intOr(o, "seed", 0)));
+        progressive_ = o["passes"].isTrue();
+        film_ = Film(s.width, s.height);
+        passFilm_ = Film(s.width, s.height);
+        rgba_.assign(static_cast<size_t>(s.width) * s.height * 4, 0);
+        tilesX_ = (s.width + kTile - 1) / kTile;
+        tiles_ = tilesX_ * ((s.height + kTile - 1) / kTile);
+        next_ = 0;
+        batch_ = pool_.threads() * 2;
+        pass_ = 0;
+        samples_ = 0;
+        rays_ = 0;
+        seconds_ = 0;
+        display_ = {0, s.display.srgb, s.display.toneMap};
+        r.set("width", s.width);
+        r.set("height", s.height);
+        return r;
+    }
+
+    /// Renders tiles for about `milliseconds` (at least one batch of them). Returns {done, pass,
+    /// samples, fraction, rays, seconds, x0, y0, x1, y1}: the pixels changed by this call lie in
+    /// [x0, x1) x [y0, y1). Throws nothing: an error is {error}.
+    val step(double milliseconds) {
+        val r = val::object();
+        if (!scene_ || film_.width() == 0) {
+            r.set("error", errorValue(RenderError("no render")));
+            return r;
+        }
+        const Scene& s = *scene_;
+        auto start = Clock::now();
+        int x0 = s.width, y0 = s.height, x1 = 0, y1 = 0;
+        try {
+            while (samples_ < spp_) {
+                const int passSpp =
+                    progressive_ ? std::min(spp_ - samples_, std::max(1, samples_)) : spp_;
+                RenderOptions ro;
+                ro.pool = &pool_;
+                ro.tileSize = kTile;
+                ro.spp = passSpp;
+                ro.seed = passSeed(seed_, pass_);
+                ro.firstTile = next_;
+                ro.tileCount = batch_;
+                ro.film = &passFilm_;
+                RenderResult pass = render(s, ro);
+                rays_ += pass.rays.total();
+                seconds_ += pass.seconds;
+                for (int t = next_; t < next_ + pass.tilesTotal; ++t) {
+                    int tx0 = t % tilesX_ * kTile, ty0 = t / tilesX_ * kTile;
+                    int tx1 = std::min(tx0 + kTile, s.width), ty1 = std::min(ty0 + kTile, s.height);
+                    merge(passFilm_, passSpp, tx0, ty0, tx1, ty1);
+                    x0 = std::min(x0, tx0), y0 = std::min(y0, ty0);
+                    x1 = std::max(x1, tx1), y1 = std::max(y1, ty1);
+                }
+                next_ += pass.tilesTotal;
+                // Batches of about 10 to 40 ms: each call wakes the threads and waits for the
+                // last of them, a cost worth paying only for enough tiles.
+                if (pass.seconds < 0.01 && batch_ < tiles_) batch_ *= 2;
+                if (pass.seconds > 0.04 && batch_ > pool_.threads()) batch_ /= 2;
+                if (next_ >= tiles_) {
+                    next_ = 0;
+                    ++pass_;
+                    samples_ += passSpp;
+                }
+                if (std::chrono::duration<double, std::milli>(Clock::now() - start).count() >=
+                    milliseconds)
+                    break;
+            }
+        } catch (const std::exception& e) {
+            film_ = Film();
+            r.set("error", errorValue(e));
+            return r;
+        }
+        r.set("done", samples_ >= spp_);
+        r.set("pass", pass_);
+        r.set("samples", samples_);
+        r.set("fraction",
+              std::min(1.0, (samples_ + double(next_) / tiles_ * nextPassSpp()) / spp_));
+        r.set("rays", static_cast<double>(rays_));
+        r.set("seconds", seconds_);
+        r.set("x0", x0), r.set("y0", y0), r.set("x1", std::max(x0, x1)),
+            r.set("y1", std::max(y0, y1));
+        return r;
+    }
+
+    /// The image so far as RGBA bytes, width x height, row 0 at the top: a view of the module's
+    /// memory, valid until the next call (copy it before the memory can grow).
+    val image() const { return val(emscripten::typed_memory_view(rgba_.size(), rgba_.data())); }
+
+    /// Writes the image so far to `path` (its format by extension, as -o), as the command line
+    /// writes it. Returns an error message, or an empty string.
+    std::string save(const std::string& path) const {
+        try {
+            if (film_.width() == 0) throw RenderError("nothing rendered yet");
+            writeImage(path, film_, display_);
+            return {};
+        } catch (const std::exception& e) {
+            return e.what();
+        }
+    }
+
+  private:
+    int nextPassSpp() const {
+        return progressive_ ? std::min(spp_ - samples_, std::max(1, samples_)) : spp_;
+    }
+
+    /// Folds tile [x0, x1) x [y0, y1) of a pass of `passSpp` samples into the film (the first
+    /// pass's values as they are: a one-pass render is the command line's, bit for bit), and
+    /// into the RGBA bytes through the display transform.
+    void merge(const Film& pass, int passSpp, int x0, int y0, int x1, int y1) {
+        Film tile(x1 - x0, y1 - y0);
+        const double before = samples_, total = samples_ + passSpp;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                Vec3& v = film_.at(x, y);
+                v = samples_ == 0 ? pass.at(x, y)
+                                  : (v * before + pass.at(x, y) * double(passSpp)) / total;
+                tile.at(x - x0, y - y0) = v;
+            }
+        Image8 bytes = toImage8(tile, display_);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                uint8_t* p = &rgba_[(static_cast<size_t>(y) * film_.width() + x) * 4];
+                for (int c = 0; c < 3; ++c) p[c] = bytes.at(x - x0, y - y0, c);
+                p[3] = 255;
+            }
+    }
+
+    ThreadPool pool_;
+    std::unique_ptr<Scene> scene_;
+    CameraSpec home_;
+    Film film_;      // the image so far: the average of the passes
+    Film passFilm_;  // the pass in progress, into which render() writes its tiles
+    std::vector<uint8_t> rgba_;
+    DisplayTransform display_;
+    int spp_ = 1, tiles_ = 0, tilesX_ = 0, next_ = 0, batch_ = 1, pass_ = 0, samples_ = 0;
+    bool progressive_ = false;
+    uint64_t seed_ = 0, rays_ = 0;
+    double seconds_ = 0;
+};
+
+/// What `glint SCENE -o OUTPUT -t THREADS --kernels portable` does, for the Node test: the
+/// scene's size, samples, depth and output settings. Returns an error message, or "".
+std::string renderFile(const std::string& path, const std::string& output, int threads) {
+    try {
+        std::vector<Diagnostic> warnings;
+        ModelScene m = loadSceneFile(path, warnings);
+        Scene& scene = *m.scene;
+        ThreadPool pool(std::max(1, threads));
+        scene.prepare({&pool, Isa::Portable});
+        RenderOptions ro;
+        ro.pool = &pool;
+        ro.spp = scene.spp > 0 ? scene.spp : 1;
+        RenderResult result = render(scene, ro);
+        writeImage(output, result.film, {0, scene.display.srgb, scene.display.toneMap});
+        return {};
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+}
+
+/// The integrators by name, for the page's menu.
+val integratorNames() {
+    val a = val::array();
+    for (const IntegratorInfo& i : integrators()) a.call<void>("push", std::string(i.name));
+    return a;
+}
+
+/// The scene format's command names, for the editor's highlighting.
+val commandNames() {
+    val a = val::array();
+    for (std::string_view name : courseCommandNames()) a.call<void>("push", std::string(name));
+    return a;
+}
+
+EMSCRIPTEN_BINDINGS(glint) {
+    emscripten::class_<Session>("Session")
+        .constructor<int>()
+        .function("threads", &Session::threads)
+        .function("load", &Session::load)
+        .function("camera", &Session::camera)
+        .function("setCamera", &Session::setCamera)
+        .function("begin", &Session::begin)
+        .function("step", &Session::step)
+        .function("image", &Session::image)
+        .function("save", &Session::save);
+    emscripten::function("renderFile", &renderFile);
+    emscripten::function("integratorNames", &integratorNames);
+    emscripten::function("commandNames", &commandNames);
+}
+
+}  // namespace glint::web
