@@ -99,7 +99,6 @@ test-sanitize: deps
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --output-on-failure -j $(JOBS) -E '^(slurm|mpi|web)\.'
 
-
 # Every libFuzzer harness for FUZZ_SECONDS (default 60) from the seed corpus (docs/robustness.md).
 fuzz:
 	@$(MAKE) --no-print-directory deps DEPS="$(FUZZ_DEPS)"
