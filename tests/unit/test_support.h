@@ -77,4 +77,33 @@ class TempDirTest : public ::testing::Test {
     std::filesystem::path dir_;
 };
 
+/// A diffuse sphere on a glossy floor under two lights, seen through a thin lens, with
+/// `integrator`: path traced, every sample draws random numbers (lens, lights, bounces). For
+/// tests of parts of a frame: give sides that are no multiple of the tile size.
+inline void buildLensScene(Scene& scene, int width, int height, const std::string& integrator) {
+    scene.width = width;
+    scene.height = height;
+    scene.maxDepth = 3;
+    scene.integrator = integrator;
+    CameraSpec camera{{0, 2, 6}, {0, 0.7, 0}, {0, 1, 0}, 45};
+    camera.apertureRadius = 0.05;
+    scene.camera = camera;
+    uint32_t floor =
+        scene.addMaterial(makeMaterial({0.02, 0.02, 0.02}, {0.5, 0.5, 0.5}, {0.3, 0.3, 0.3}, 30));
+    scene.primitives.addTriangle({-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, nullptr, floor);
+    scene.primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, floor);
+    uint32_t red = scene.addMaterial(makeMaterial({0, 0, 0}, {0.8, 0.1, 0.1}, {}, 1));
+    scene.primitives.addSphere(Sphere{{0, 1, 0}, 1, {}}, red);
+    Light point;
+    point.position = {3, 5, 3};
+    point.color = {8, 8, 8};
+    scene.lights.push_back(point);
+    Light sun;
+    sun.kind = Light::Kind::Directional;
+    sun.direction = normalize(Vec3{1, 1, -1});
+    sun.color = {0.3, 0.3, 0.3};
+    scene.lights.push_back(sun);
+    scene.prepare();
+}
+
 }  // namespace glint::test

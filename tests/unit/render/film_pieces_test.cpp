@@ -14,35 +14,6 @@
 namespace glint {
 namespace {
 
-/// A diffuse sphere on a glossy floor under two lights, seen through a thin lens, path traced:
-/// every sample draws random numbers (lens, lights, bounces), on an image whose sides are no
-/// multiple of the tile size.
-void buildScene(Scene& scene, const std::string& integrator) {
-    scene.width = 29;
-    scene.height = 21;
-    scene.maxDepth = 3;
-    scene.integrator = integrator;
-    CameraSpec camera{{0, 2, 6}, {0, 0.7, 0}, {0, 1, 0}, 45};
-    camera.apertureRadius = 0.05;
-    scene.camera = camera;
-    uint32_t floor = scene.addMaterial(
-        test::makeMaterial({0.02, 0.02, 0.02}, {0.5, 0.5, 0.5}, {0.3, 0.3, 0.3}, 30));
-    scene.primitives.addTriangle({-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, nullptr, floor);
-    scene.primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, floor);
-    uint32_t red = scene.addMaterial(test::makeMaterial({0, 0, 0}, {0.8, 0.1, 0.1}, {}, 1));
-    scene.primitives.addSphere(Sphere{{0, 1, 0}, 1, {}}, red);
-    Light point;
-    point.position = {3, 5, 3};
-    point.color = {8, 8, 8};
-    scene.lights.push_back(point);
-    Light sun;
-    sun.kind = Light::Kind::Directional;
-    sun.direction = normalize(Vec3{1, 1, -1});
-    sun.color = {0.3, 0.3, 0.3};
-    scene.lights.push_back(sun);
-    scene.prepare();
-}
-
 RenderOptions options(int spp) {
     RenderOptions o;
     o.threads = 2;
@@ -66,7 +37,7 @@ void expectSameFilm(const Film& a, const Film& b) {
 TEST(FilmPieces, CropPiecesMergeToTheSingleRenderBitForBit) {
     for (const char* integrator : {"path", "whitted"}) {
         Scene scene;
-        buildScene(scene, integrator);
+        test::buildLensScene(scene, 29, 21, integrator);
         const RenderResult whole = render(scene, options(6));
         // Four crops of uneven sizes that tile the frame, edges off the tile grid.
         const PixelBounds crops[] = {{0, 13, 0, 9}, {13, 29, 0, 9}, {0, 5, 9, 21}, {5, 29, 9, 21}};
@@ -87,7 +58,7 @@ TEST(FilmPieces, CropPiecesMergeToTheSingleRenderBitForBit) {
 
 TEST(FilmPieces, PartsCoverEveryPixelOnceAndMergeBitForBit) {
     Scene scene;
-    buildScene(scene, "path");
+    test::buildLensScene(scene, 29, 21, "path");
     const RenderResult whole = render(scene, options(4));
     const int parts = 3;  // 21 rows in tile rows of 8: rows 0-7, 8-15, 16-20
     FilmSums merged(scene.width, scene.height);
@@ -113,7 +84,7 @@ TEST(FilmPieces, PartsCoverEveryPixelOnceAndMergeBitForBit) {
 
 TEST(FilmPieces, SampleRangesAreTheWholeRendersSamplesAndMergeWithinRounding) {
     Scene scene;
-    buildScene(scene, "path");
+    test::buildLensScene(scene, 29, 21, "path");
     const int spp = 12;
     const RenderResult whole = render(scene, options(spp));
     FilmSums merged(scene.width, scene.height);
@@ -148,7 +119,8 @@ TEST(FilmPieces, TheSamplersRangeIsThatPartOfTheWholeSequence) {
     const PixelSampler sampler(12, 5);
     std::vector<std::pair<double, double>> all, part;
     sampler.forEachSample(3, 7, [&](double x, double y) { all.emplace_back(x, y); });
-    sampler.forEachSample(3, 7, [&](double x, double y) { part.emplace_back(x, y); }, 5, 9);
+    sampler.forEachSample(
+        3, 7, [&](double x, double y) { part.emplace_back(x, y); }, 5, 9);
     ASSERT_EQ(all.size(), 12u);
     ASSERT_EQ(part.size(), 4u);
     for (size_t i = 0; i < part.size(); ++i) EXPECT_EQ(part[i], all[5 + i]);

@@ -222,35 +222,12 @@ TEST(ExrPiece, TheFuzzInputsDecodeOrFailCleanly) {
     EXPECT_GE(files, 2);
 }
 
-/// The scene of film_pieces_test, smaller: path traced through a lens, random numbers in
-/// every sample.
-void buildScene(Scene& scene) {
-    scene.width = 21;
-    scene.height = 18;
-    scene.maxDepth = 3;
-    scene.integrator = "path";
-    CameraSpec camera{{0, 2, 6}, {0, 0.7, 0}, {0, 1, 0}, 45};
-    camera.apertureRadius = 0.05;
-    scene.camera = camera;
-    uint32_t floor = scene.addMaterial(
-        test::makeMaterial({0.02, 0.02, 0.02}, {0.5, 0.5, 0.5}, {0.3, 0.3, 0.3}, 30));
-    scene.primitives.addTriangle({-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, nullptr, floor);
-    scene.primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, floor);
-    uint32_t red = scene.addMaterial(test::makeMaterial({0, 0, 0}, {0.8, 0.1, 0.1}, {}, 1));
-    scene.primitives.addSphere(Sphere{{0, 1, 0}, 1, {}}, red);
-    Light point;
-    point.position = {3, 5, 3};
-    point.color = {8, 8, 8};
-    scene.lights.push_back(point);
-    scene.prepare();
-}
-
 class MergePieceFiles : public ::testing::Test {
   protected:
     void SetUp() override {
         dir_ = fs::temp_directory_path() / ("glint_merge_" + std::to_string(::getpid()));
         fs::create_directories(dir_);
-        buildScene(scene_);
+        test::buildLensScene(scene_, 21, 18, "path");
         whole_ = render(scene_, options());
     }
     void TearDown() override { fs::remove_all(dir_); }
