@@ -13,10 +13,11 @@ BUILD_TYPE  ?= Release
 GLINT_WERROR ?= OFF
 JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 
-# Debian packages: compiler and build tools, then libraries (see docs/dependencies in README).
+# Debian packages: compiler and build tools, then libraries (see docs/dependencies in README);
+# Open MPI (openmpi-bin, libopenmpi-dev) for glint-mpi and its tests (docs/scale-out.md).
 DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
-        libgtest-dev libgmock-dev
+        libgtest-dev libgmock-dev openmpi-bin libopenmpi-dev
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
 # the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh,

@@ -20,7 +20,6 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
     RenderResult result;
-    result.film = Film(scene.width, scene.height);
     const Camera camera(*scene.camera, scene.width, scene.height);
     const std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {options.spp});
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
@@ -31,15 +30,21 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const int sampleEnd =
         options.sampleEnd > 0 ? std::clamp(options.sampleEnd, sampleBegin, spp) : spp;
     const double rendered = sampleEnd - sampleBegin;  // samples per pixel of this part
-    if (options.keepSums) result.sums = FilmSums(scene.width, scene.height);
 
     // The tiles of the part asked for: the image's tile grid, rows of it picked by `part`,
     // each tile clipped to the crop.
     const int tile = std::max(1, options.tileSize);
-    PixelBounds crop = options.crop.empty() ? PixelBounds{0, scene.width, 0, scene.height}
-                                            : options.crop;
+    PixelBounds crop =
+        options.crop.empty() ? PixelBounds{0, scene.width, 0, scene.height} : options.crop;
     crop = {std::max(crop.x0, 0), std::min(crop.x1, scene.width), std::max(crop.y0, 0),
             std::min(crop.y1, scene.height)};
+    // The film's pixel (0, 0) is the image's (ox, oy): the crop's corner with cropFilm.
+    const bool cropped = options.cropFilm && !options.crop.empty();
+    const int ox = cropped ? crop.x0 : 0, oy = cropped ? crop.y0 : 0;
+    const int filmWidth = cropped ? std::max(crop.x1 - crop.x0, 0) : scene.width;
+    const int filmHeight = cropped ? std::max(crop.y1 - crop.y0, 0) : scene.height;
+    result.film = Film(filmWidth, filmHeight);
+    if (options.keepSums) result.sums = FilmSums(filmWidth, filmHeight);
     const int parts = std::max(options.parts, 1);
     std::vector<PixelBounds> tiles;
     for (int y0 = crop.y0 - crop.y0 % tile; y0 < crop.y1; y0 += tile) {
@@ -120,10 +125,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const Vec3& s = sum[y * 4 + x];
-                result.film.at(bx + x, by + y) = pixelValue(s, rendered);
+                const int fx = bx + x - ox, fy = by + y - oy;
+                result.film.at(fx, fy) = pixelValue(s, rendered);
                 if (options.keepSums) {
-                    result.sums.sum(bx + x, by + y) = s;
-                    result.sums.weight(bx + x, by + y) = rendered;
+                    result.sums.sum(fx, fy) = s;
+                    result.sums.weight(fx, fy) = rendered;
                 }
             }
     };

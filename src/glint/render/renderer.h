@@ -42,12 +42,16 @@ struct RenderOptions {
     // Part of a frame (docs/scale-out.md): the image keeps the scene's size; pixels outside
     // the part are black with weight 0 in RenderResult::sums. Every pixel and sample rendered
     // is exactly the one the whole render computes there.
-    PixelBounds crop;   ///< The pixels to render; empty: the whole image.
-    int part = 0;       ///< With `parts` > 1: only the rows of tiles (tileSize pixels high,
-    int parts = 1;      ///< counted from the image's top) whose index % parts == part.
-    int sampleBegin = 0;  ///< Samples [sampleBegin, sampleEnd) of each pixel's `spp`;
-    int sampleEnd = 0;    ///< sampleEnd 0: up to spp.
+    PixelBounds crop;       ///< The pixels to render; empty: the whole image.
+    int part = 0;           ///< With `parts` > 1: only the rows of tiles (tileSize pixels high,
+    int parts = 1;          ///< counted from the image's top) whose index % parts == part.
+    int sampleBegin = 0;    ///< Samples [sampleBegin, sampleEnd) of each pixel's `spp`;
+    int sampleEnd = 0;      ///< sampleEnd 0: up to spp.
     bool keepSums = false;  ///< Fill RenderResult::sums (for merging parts).
+    /// With a crop: the film (and sums) hold the crop's pixels only, pixel (0, 0) being the
+    /// crop's (x0, y0), so that rendering a small part of a large image allocates that part
+    /// only (the MPI mode renders thousands of such parts per frame, apps/mpi_*.cpp).
+    bool cropFilm = false;
 };
 
 struct RenderResult {
