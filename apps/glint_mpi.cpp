@@ -24,6 +24,7 @@
 #include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/io/image/image_io.h"
+#include "glint/render/integrator.h"
 #include "mpi_load.h"
 #include "mpi_protocol.h"
 #include "mpi_render.h"
@@ -57,7 +58,13 @@ void installSignalHandlers() {
 
 const char* signalName(int sig) { return sig == SIGTERM ? "SIGTERM" : "SIGINT"; }
 
-int run(const Options& opt, const std::string& timingsFile, Job& job) {
+/// glint-mpi's own options, beside glint's.
+struct MpiOptions {
+    int tileSide = glint::mpi::kTileSide;
+    std::string timings;
+};
+
+int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
     using Clock = std::chrono::steady_clock;
     const bool root = job.rank == 0;
     Prepared prepared;
@@ -77,6 +84,7 @@ int run(const Options& opt, const std::string& timingsFile, Job& job) {
     // Build: on every rank, on all its threads.
     glint::mpi::RankWork work;
     work.threads = job.threads;
+    work.tileSide = mpiOpt.tileSide;
     {
         auto t0 = Clock::now();
         try {
@@ -89,6 +97,16 @@ int run(const Options& opt, const std::string& timingsFile, Job& job) {
     }
     work.options.spp = opt.spp > 0 ? opt.spp : (scene.spp > 0 ? scene.spp : 1);
     work.options.seed = opt.seed;
+    // One integrator for every tile of this rank (making one scans the scene's lights).
+    std::unique_ptr<glint::Integrator> integrator;
+    if (work.buildError.empty()) {
+        try {
+            integrator = glint::makeIntegrator(scene, {work.options.spp});
+            work.options.integrator = integrator.get();
+        } catch (const std::exception& e) {
+            work.buildError = e.what();
+        }
+    }
 
     if (!root) {
         glint::mpi::serve(scene, work, job, gInterrupt);
@@ -123,9 +141,9 @@ int run(const Options& opt, const std::string& timingsFile, Job& job) {
                      scene.width, scene.height, job.size);
     if (opt.stats)
         glint::mpi::printMpiStats(scene, prepared.parseSeconds, work, job, figures, writeSeconds);
-    if (!timingsFile.empty()) {
+    if (!mpiOpt.timings.empty()) {
         try {
-            glint::mpi::writeTimings(timingsFile, scene, work, job, figures, writeSeconds);
+            glint::mpi::writeTimings(mpiOpt.timings, scene, work, job, figures, writeSeconds);
         } catch (const glint::RenderError& e) {
             std::fprintf(stderr, "glint-mpi: error: --timings: %s\n", e.what());
             return kExitSceneError;
@@ -137,7 +155,7 @@ int run(const Options& opt, const std::string& timingsFile, Job& job) {
 
 /// Parses the command line on every rank (all see the same one, so all agree); rank 0 alone
 /// prints help, the version or usage errors. Returns kGoOn or the exit code.
-int parse(int argc, char** argv, bool root, Options& opt, std::string& timingsFile) {
+int parse(int argc, char** argv, bool root, Options& opt, MpiOptions& mpiOpt) {
     CLI::App app{
         "glint-mpi renders a scene as glint does, with the ranks of an MPI job:"
         "\n  mpirun -np N glint-mpi SCENE [options]"
@@ -151,7 +169,14 @@ int parse(int argc, char** argv, bool root, Options& opt, std::string& timingsFi
                "\nRun 'glint-mpi --help' for usage.\n";
     });
     addOptions(app, opt);
-    app.add_option("--timings", timingsFile,
+    app.add_option("--tile", mpiOpt.tileSide,
+                   "Side of the square tiles rank 0 hands out, 4 to 1024 pixels (default 32): "
+                   "smaller ones balance many threads better, larger ones send fewer messages; "
+                   "the image is the same")
+        ->group("Rendering")
+        ->check(CLI::Range(4, 1024))
+        ->type_name("PIXELS");
+    app.add_option("--timings", mpiOpt.timings,
                    "Write what rank 0 measured as JSON: every tile's render time and rank, each "
                    "rank's load and build times, the bytes sent (bench/mpi_model.py)")
         ->group("Information")
@@ -168,7 +193,7 @@ int parse(int argc, char** argv, bool root, Options& opt, std::string& timingsFi
             usageError("--time is not available in glint-mpi (every rank renders a fixed --spp)");
         return kExitUsage;
     }
-    if (!timingsFile.empty() && !root) timingsFile.clear();
+    if (!root) mpiOpt.timings.clear();
     return kGoOn;
 }
 
@@ -185,13 +210,13 @@ int main(int argc, char** argv) {
     MPI_Comm_rank(MPI_COMM_WORLD, &job.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &job.size);
     Options opt;
-    std::string timingsFile;
-    int code = parse(argc, argv, job.rank == 0, opt, timingsFile);
+    MpiOptions mpiOpt;
+    int code = parse(argc, argv, job.rank == 0, opt, mpiOpt);
     if (code == kGoOn) {
         job.threads = opt.threads > 0 ? opt.threads : glint::mpi::availableCpus();
         installSignalHandlers();
         try {
-            code = run(opt, timingsFile, job);
+            code = run(opt, mpiOpt, job);
         } catch (const std::exception& e) {
             // Past the load check every rank's failures go to rank 0 as messages; this is for
             // what is left (an MPI error, memory for the image): end the job from here.

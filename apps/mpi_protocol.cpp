@@ -4,12 +4,11 @@
 
 namespace glint::mpi {
 
-std::vector<PixelBounds> frameTiles(int width, int height) {
+std::vector<PixelBounds> frameTiles(int width, int height, int side) {
     std::vector<PixelBounds> tiles;
-    for (int y0 = 0; y0 < height; y0 += kTileSide)
-        for (int x0 = 0; x0 < width; x0 += kTileSide)
-            tiles.push_back(
-                {x0, std::min(x0 + kTileSide, width), y0, std::min(y0 + kTileSide, height)});
+    for (int y0 = 0; y0 < height; y0 += side)
+        for (int x0 = 0; x0 < width; x0 += side)
+            tiles.push_back({x0, std::min(x0 + side, width), y0, std::min(y0 + side, height)});
     return tiles;
 }
 

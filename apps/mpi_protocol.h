@@ -23,14 +23,14 @@ namespace glint::mpi {
 constexpr int kTagToRoot = 1;
 constexpr int kTagToWorker = 2;
 
-/// The side of a tile, in pixels: the unit of work rank 0 hands out. A multiple of the
-/// renderer's 16-pixel tiles; small enough for thousands of them in a 4K frame (load balance),
-/// large enough that a message (24 KB of pixels) costs little next to rendering it.
+/// The side of a tile, in pixels, by default (--tile): the unit of work rank 0 hands out. Small
+/// enough for thousands of them in a 4K frame (load balance), large enough that a message (24 kB
+/// of pixels) costs little next to rendering it (docs/scale-out.md).
 constexpr int kTileSide = 32;
 
-/// The tiles of a width x height image, kTileSide square (clipped at the right and bottom
+/// The tiles of a width x height image, `side` pixels square (clipped at the right and bottom
 /// edges), in rows from the top-left corner: every pixel in exactly one.
-std::vector<PixelBounds> frameTiles(int width, int height);
+std::vector<PixelBounds> frameTiles(int width, int height, int side);
 
 /// What a worker sends rank 0.
 enum class ToRoot : int32_t {

@@ -63,7 +63,7 @@ int coordinate(const Scene& scene, const RankWork& work, const Job& job,
     const double cpu0 = threadCpuSeconds();
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-    const std::vector<PixelBounds> tiles = frameTiles(scene.width, scene.height);
+    const std::vector<PixelBounds> tiles = frameTiles(scene.width, scene.height, work.tileSide);
     const int total = static_cast<int>(tiles.size());
     figures.tiles = total;
     figures.buildSeconds.assign(static_cast<size_t>(job.size), 0);

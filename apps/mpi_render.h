@@ -36,8 +36,10 @@ struct FrameFigures {
 struct RankWork {
     RenderOptions options;
     int threads = 1;
+    int tileSide = 32;  ///< Of the tiles rank 0 hands out.
     double buildSeconds = 0;
-    std::string buildError;  ///< Non-empty: this rank's build failed; it renders nothing.
+    std::string buildError;  ///< Non-empty: this rank's build (or integrator) failed: it
+                             ///< renders nothing.
 };
 
 /// From coordinate(): a signal arrived before every tile was in.

@@ -57,16 +57,13 @@ void printMpiStats(const Scene& scene, double parseSeconds, const RankWork& work
         ++perRank[static_cast<size_t>(t.rank)];
         times.push_back(t.seconds);
     }
-    std::printf(
-        "MPI         %s, %d threads in all; %s of %dx%d pixels\n",
-        cli::count(static_cast<unsigned long long>(job.size), "rank", "ranks").c_str(),
-        [&] {
-            int n = 0;
-            for (int t : job.threadsPerRank) n += t;
-            return n;
-        }(),
-        cli::count(static_cast<unsigned long long>(figures.tiles), "tile", "tiles").c_str(),
-        kTileSide, kTileSide);
+    int allThreads = 0;
+    for (int t : job.threadsPerRank) allThreads += t;
+    std::printf("MPI         %s, %d threads in all; %s of %dx%d pixels\n",
+                cli::count(static_cast<unsigned long long>(job.size), "rank", "ranks").c_str(),
+                allThreads,
+                cli::count(static_cast<unsigned long long>(figures.tiles), "tile", "tiles").c_str(),
+                work.tileSide, work.tileSide);
     std::printf("Tiles       per rank");
     for (int k = 0; k < job.size; ++k) std::printf(" %d", perRank[static_cast<size_t>(k)]);
     std::printf("; render time per tile: median %.4f s, max %.4f s\n", quantile(times, 0.5),
@@ -91,7 +88,7 @@ void writeTimings(const std::string& path, const Scene& scene, const RankWork& w
     s += "  \"width\": " + std::to_string(scene.width) + ",\n";
     s += "  \"height\": " + std::to_string(scene.height) + ",\n";
     s += "  \"spp\": " + std::to_string(work.options.spp) + ",\n";
-    s += "  \"tile_side\": " + std::to_string(kTileSide) + ",\n";
+    s += "  \"tile_side\": " + std::to_string(work.tileSide) + ",\n";
     s += "  \"parse_seconds\": " + list(job.parseSeconds) + ",\n";
     s += "  \"build_seconds\": " + list(figures.buildSeconds) + ",\n";
     s += "  \"render_seconds\": " + number(figures.seconds) + ",\n";

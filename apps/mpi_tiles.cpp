@@ -2,8 +2,6 @@
 
 #include <chrono>
 
-#include "mpi_protocol.h"
-
 namespace glint::mpi {
 
 TileRenderers::TileRenderers(const Scene& scene, const RenderOptions& options, int threads,
@@ -45,7 +43,7 @@ void TileRenderers::loop() {
     o.pool = &one;
     o.cancel = &cancel_;
     o.cropFilm = true;
-    o.tileSize = kTileSide;
+    o.tileSize = 16;  // the renderer's; any size gives the same pixels
     o.onProgress = nullptr;
     try {
         for (;;) {

@@ -48,6 +48,8 @@ if(MPI_CXX_FOUND)
 elseif(GLINT_MPI)
     message(STATUS "MPI not found: glint-mpi and its tests are not built (Debian: apt-get install "
                    "openmpi-bin libopenmpi-dev, or `make deps`)")
+else()
+    message(STATUS "GLINT_MPI=OFF: glint-mpi and its tests are not built")
 endif()
 
 if(GLINT_BUILD_TESTS)

@@ -21,7 +21,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 
     RenderResult result;
     const Camera camera(*scene.camera, scene.width, scene.height);
-    const std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {options.spp});
+    std::unique_ptr<Integrator> ownIntegrator;
+    if (!options.integrator) ownIntegrator = makeIntegrator(scene, {options.spp});
+    const Integrator* integrator = options.integrator ? options.integrator : ownIntegrator.get();
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
     // Per-sample random numbers only where something draws them.
     const bool seeded = camera.hasLens() || integrator->usesRandomNumbers();

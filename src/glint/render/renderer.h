@@ -52,6 +52,10 @@ struct RenderOptions {
     /// crop's (x0, y0), so that rendering a small part of a large image allocates that part
     /// only (the MPI mode renders thousands of such parts per frame, apps/mpi_*.cpp).
     bool cropFilm = false;
+    /// The integrator to render with, made by makeIntegrator for this scene and `spp`, shared
+    /// by renders of many small parts (making one scans the scene's emissive primitives);
+    /// null: one made for this render.
+    const Integrator* integrator = nullptr;
 };
 
 struct RenderResult {

@@ -1,5 +1,6 @@
 // RenderOptions::cropFilm: a crop rendered into a film of the crop's size holds the whole
-// render's pixels bit for bit, shifted to the crop's corner (the MPI mode's tiles).
+// render's pixels bit for bit, shifted to the crop's corner; also with one integrator shared by
+// many such renders (RenderOptions::integrator). The MPI mode renders its tiles so.
 
 #include <gtest/gtest.h>
 
@@ -80,6 +81,26 @@ TEST(CropFilm, WithoutACropTheFilmIsTheWholeImage) {
     EXPECT_EQ(r.film.height(), scene.height);
     const RenderResult whole = render(scene, options());
     EXPECT_TRUE(r.film.at(13, 9) == whole.film.at(13, 9));
+}
+
+TEST(CropFilm, TilesSharingOneIntegratorGiveTheSamePixels) {
+    Scene scene;
+    buildScene(scene);
+    const RenderResult whole = render(scene, options());
+    const std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {options().spp});
+    RenderOptions o = options();
+    o.integrator = integrator.get();
+    o.cropFilm = true;
+    int differ = 0;
+    for (int y0 = 0; y0 < scene.height; y0 += 8)
+        for (int x0 = 0; x0 < scene.width; x0 += 8) {
+            o.crop = {x0, std::min(x0 + 8, scene.width), y0, std::min(y0 + 8, scene.height)};
+            const RenderResult tile = render(scene, o);
+            for (int y = o.crop.y0; y < o.crop.y1; ++y)
+                for (int x = o.crop.x0; x < o.crop.x1; ++x)
+                    differ += !(tile.film.at(x - x0, y - y0) == whole.film.at(x, y));
+        }
+    EXPECT_EQ(differ, 0);
 }
 
 }  // namespace
