@@ -24,8 +24,9 @@ opts=(--integrator path --spp 64 -q "$@")
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
-# One machine: shared memory only; as root if need be; more ranks than cores for -np 3.
-mpirun=(mpirun --oversubscribe --mca pml ob1 --mca btl self,vader)
+# One machine: shared memory only; as root if need be; more ranks than cores for -np 3; no
+# binding (Open MPI would bind -np 1 to one core, leaving -t 2 one core for two threads).
+mpirun=(mpirun --oversubscribe --bind-to none --mca pml ob1 --mca btl self,vader)
 [ "$(id -u)" = 0 ] && mpirun+=(--allow-run-as-root)
 
 cd "$out"

@@ -21,7 +21,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 tmp=${GLINT_BENCH_TMP:-/tmp/glint-bench}
 mkdir -p "$tmp"
 
-mpirun=(mpirun --oversubscribe --mca pml ob1 --mca btl self,vader)
+mpirun=(mpirun --oversubscribe --bind-to none --mca pml ob1 --mca btl self,vader)
 [ "$(id -u)" = 0 ] && mpirun+=(--allow-run-as-root)
 
 for spp in "$spp_a" "$spp_b"; do
