@@ -215,9 +215,12 @@ int coordinate(const Scene& scene, const RankWork& work, const Job& job,
                 for (int r = 1; r < job.size; ++r) stopWorker(r);
             }
         }
-        for (int r; (r = receive(MPI_ANY_SOURCE, kTagToRoot, buffer)) >= 0;) {
+        for (auto t0 = Clock::now();; t0 = Clock::now()) {
+            int r = receive(MPI_ANY_SOURCE, kTagToRoot, buffer);
+            if (r < 0) break;
             figures.bytesToRoot += static_cast<double>(buffer.size());
             handle(r, buffer);
+            figures.receiveSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
         }
         bool allDone = true;
         for (int r = 1; r < job.size; ++r)

@@ -27,7 +27,8 @@ struct FrameFigures {
     int tiles = 0;
     double bytesToRoot = 0, bytesFromRoot = 0;  ///< Messages during the render.
     double coordinatorCpuSeconds = 0;           ///< Of rank 0's MPI thread.
-    std::vector<double> buildSeconds;           ///< Per rank.
+    double receiveSeconds = 0;  ///< Rank 0's MPI thread receiving messages and placing pixels.
+    std::vector<double> buildSeconds;  ///< Per rank.
     std::vector<TileTime> tileTimes;
 };
 

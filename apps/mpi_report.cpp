@@ -94,6 +94,7 @@ void writeTimings(const std::string& path, const Scene& scene, const RankWork& w
     s += "  \"render_seconds\": " + number(figures.seconds) + ",\n";
     s += "  \"write_seconds\": " + number(writeSeconds) + ",\n";
     s += "  \"coordinator_cpu_seconds\": " + number(figures.coordinatorCpuSeconds) + ",\n";
+    s += "  \"receive_seconds\": " + number(figures.receiveSeconds) + ",\n";
     s += "  \"bytes_to_root\": " + number(figures.bytesToRoot) + ",\n";
     s += "  \"bytes_from_root\": " + number(figures.bytesFromRoot) + ",\n";
     s += "  \"load_check_bytes\": " + number(job.loadBytes) + ",\n";

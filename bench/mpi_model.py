@@ -4,7 +4,8 @@
 Reads two `glint-mpi --timings` files of one frame rendered at two sample counts A < B with fine
 tiles (bench/mpi_scaling.sh makes them: the path-traced Cornell box at 3840x2160, 16-pixel
 tiles). From them, per 16-pixel tile i: a fixed cost c (setting up a render of a tile, the same
-for every tile: fitted on the sums) and a cost per sample s_i, so that the tile takes
+for every tile: fitted on the sums) and a cost per sample s_i (the smaller of the two runs'
+estimates: a descheduled thread only ever slows a tile), so that the tile takes
 c + s_i * spp seconds on one thread while every thread of the node is busy. Larger tiles are
 unions of 16-pixel ones (one fixed cost each).
 
@@ -12,8 +13,8 @@ The frame on N nodes of T threads each (rank 0 renders too) is then simulated as
 it: tiles are handed out in rows from the top, each to the first thread that is free (every
 rank holds one tile more than it has threads, so a thread never waits for rank 0's answer);
 each tile's pixels (24 bytes a pixel, plus a 56-byte header) cross the network to rank 0 at
-BANDWIDTH after LATENCY, and rank 0 handles one result in HANDLE seconds (its MPI thread's CPU
-time per tile, measured). The job also pays, once: mpirun's start (STARTUP), loading the scene
+BANDWIDTH after LATENCY, and rank 0 handles one result in HANDLE seconds (measured: the time its
+MPI thread spends receiving a result and placing its pixels). The job also pays, once: mpirun's start (STARTUP), loading the scene
 and building its BVH (every rank at once: the slowest), and writing the image (rank 0, after the
 last tile). One node is glint itself: no start, no messages.
 
@@ -44,7 +45,9 @@ def fit(a, b):
     # Sums over the frame: sum t(spp) = n c + spp sum s_i, at two spp.
     sa, sb = sum(ta.values()), sum(tb.values())
     c = max((spp_b * sa - spp_a * sb) / ((spp_b - spp_a) * n), 0.0)
-    s = {k: max((tb[k] - c) / spp_b, 0.0) for k in tb}
+    # A tile's cost per sample from each run; the smaller of the two, since a thread that was
+    # descheduled for a while (a busy machine) makes a tile slower, never faster.
+    s = {k: max(min((ta[k] - c) / spp_a, (tb[k] - c) / spp_b), 0.0) for k in tb}
     return s, c, a["tile_side"]
 
 
@@ -93,7 +96,7 @@ def main():
     p.add_argument("--nodes", default="1,4,16,64")
     p.add_argument("--startup", type=float, default=2.0, help="mpirun's start on N nodes, s")
     p.add_argument("--handle", type=float, default=None,
-                   help="rank 0's CPU per tile result, s (default: measured, in timings B)")
+                   help="rank 0's time per message, s (default: measured, in timings B)")
     p.add_argument("--bandwidth", type=float, default=1.25e9, help="into rank 0, bytes/s")
     p.add_argument("--latency", type=float, default=50e-6, help="per message, s")
     p.add_argument("--load", type=float, default=None, help="scene load, s (default: measured)")
@@ -106,7 +109,9 @@ def main():
     width, height = b["width"], b["height"]
     handle = args.handle
     if handle is None:
-        handle = b["coordinator_cpu_seconds"] / max(len(b["tiles"]), 1)
+        # Rank 0's MPI thread receiving a message and placing its pixels (the other ranks' tiles).
+        remote = sum(1 for t in b["tiles"] if t[4] != 0)
+        handle = b["receive_seconds"] / max(remote, 1)
     net = {"latency": args.latency, "bandwidth": args.bandwidth, "handle": handle}
     load_s = args.load if args.load is not None else max(b["parse_seconds"])
     build_s = args.build if args.build is not None else max(b["build_seconds"])
