@@ -16,11 +16,12 @@ GLINT_WERROR ?= OFF
 JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 
 # Debian packages: compiler and build tools, then libraries (see docs/dependencies in README),
-# then what the tests run: slurm-wlm and munge for a private single-node Slurm on localhost that
-# runs contrib/slurm's scripts (tests/slurm/cluster_test.sh, about 7 s; docs/scale-out.md).
+# then what the tests run: Open MPI (openmpi-bin, libopenmpi-dev) for glint-mpi and its tests,
+# slurm-wlm and munge for a private single-node Slurm on localhost that runs contrib/slurm's
+# scripts (tests/slurm/cluster_test.sh, about 9 s; docs/scale-out.md).
 DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
-        libgtest-dev libgmock-dev slurm-wlm munge
+        libgtest-dev libgmock-dev openmpi-bin libopenmpi-dev slurm-wlm munge
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
 # the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh,

@@ -36,6 +36,22 @@ find_package(nlohmann_json 3 CONFIG REQUIRED)
 find_package(draco CONFIG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
 
+# Open MPI 4.1 (openmpi-bin, libopenmpi-dev): glint-mpi, glint across the ranks of an MPI job
+# (apps/glint_mpi.cpp, docs/scale-out.md), and its tests. Optional: without MPI the rest of
+# Glint builds as before, without glint-mpi. GLINT_MPI=OFF leaves it out even when MPI is found.
+option(GLINT_MPI "Build glint-mpi when MPI is found" ON)
+if(GLINT_MPI)
+    find_package(MPI COMPONENTS CXX)
+endif()
+if(MPI_CXX_FOUND)
+    message(STATUS "MPI ${MPI_CXX_VERSION} (${MPIEXEC_EXECUTABLE}): building glint-mpi")
+elseif(GLINT_MPI)
+    message(STATUS "MPI not found: glint-mpi and its tests are not built (Debian: apt-get install "
+                   "openmpi-bin libopenmpi-dev, or `make deps`)")
+else()
+    message(STATUS "GLINT_MPI=OFF: glint-mpi and its tests are not built")
+endif()
+
 if(GLINT_BUILD_TESTS)
     # GoogleTest (libgtest-dev, libgmock-dev).
     find_package(GTest REQUIRED)

@@ -36,7 +36,7 @@ fi
 exit 0
 EOF
 chmod +x bin/recorder
-for tool in sbatch scancel mpirun srun glint; do ln -s recorder "bin/$tool"; done
+for tool in sbatch scancel mpirun srun glint glint-mpi; do ln -s recorder "bin/$tool"; done
 export CALLS=$work/calls PATH=$work/bin:$PATH
 echo "size 8 6" >scene.test
 mkdir out
@@ -174,13 +174,13 @@ mpi=$contrib/glint-mpi.sbatch
 reset_calls
 run "$mpi" scene.test -o out/mpi.png
 check_rc "mpi by mpirun" 0
-check_eq "mpi by mpirun: arguments" "$(lines glint --mpi scene.test -o out/mpi.png)" \
+check_eq "mpi by mpirun: arguments" "$(lines glint-mpi scene.test -o out/mpi.png)" \
     "$(call_args mpirun 1)"
 SLURM_CPUS_PER_TASK=8 run "$mpi" scene.test -o out/mpi.png
-check_eq "mpi by mpirun, 8 cpus per task" "$(lines --map-by slot:PE=8 glint --mpi \
+check_eq "mpi by mpirun, 8 cpus per task" "$(lines --map-by slot:PE=8 glint-mpi \
     scene.test -o out/mpi.png --threads 8)" "$(call_args mpirun 2)"
 GLINT_MPI_LAUNCHER=srun SLURM_CPUS_PER_TASK=8 run "$mpi" scene.test -o out/mpi.png -t 2
-check_eq "mpi by srun" "$(lines --mpi=pmix --cpus-per-task=8 glint --mpi scene.test \
+check_eq "mpi by srun" "$(lines --mpi=pmix --cpus-per-task=8 glint-mpi scene.test \
     -o out/mpi.png -t 2)" "$(call_args srun 1)"
 GLINT_MPI_LAUNCHER=pmi2 run "$mpi" scene.test
 check_rc "mpi by an unknown launcher" 2

@@ -23,15 +23,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
     RenderResult result;
-    if (options.film &&
-        (options.film->width() != scene.width || options.film->height() != scene.height))
-        throw RenderError("the film to render into is " + std::to_string(options.film->width()) +
-                          "x" + std::to_string(options.film->height()) + ", not the scene's " +
-                          std::to_string(scene.width) + "x" + std::to_string(scene.height));
-    if (!options.film) result.film = Film(scene.width, scene.height);
-    Film& film = options.film ? *options.film : result.film;
     const Camera camera(*scene.camera, scene.width, scene.height);
-    const std::unique_ptr<Integrator> integrator = makeIntegrator(scene, {options.spp});
+    std::unique_ptr<Integrator> ownIntegrator;
+    if (!options.integrator) ownIntegrator = makeIntegrator(scene, {options.spp});
+    const Integrator* integrator = options.integrator ? options.integrator : ownIntegrator.get();
     const PixelSampler sampler(options.spp, options.seed, scene.filter);
     // Per-sample random numbers only where something draws them.
     const bool seeded = camera.hasLens() || integrator->usesRandomNumbers();
@@ -40,15 +35,27 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const int sampleEnd =
         options.sampleEnd > 0 ? std::clamp(options.sampleEnd, sampleBegin, spp) : spp;
     const double rendered = sampleEnd - sampleBegin;  // samples per pixel of this part
-    if (options.keepSums) result.sums = FilmSums(scene.width, scene.height);
 
     // The tiles of the part asked for: the image's tile grid, rows of it picked by `part`,
     // each tile clipped to the crop.
     const int tile = std::max(1, options.tileSize);
-    PixelBounds crop = options.crop.empty() ? PixelBounds{0, scene.width, 0, scene.height}
-                                            : options.crop;
+    PixelBounds crop =
+        options.crop.empty() ? PixelBounds{0, scene.width, 0, scene.height} : options.crop;
     crop = {std::max(crop.x0, 0), std::min(crop.x1, scene.width), std::max(crop.y0, 0),
             std::min(crop.y1, scene.height)};
+    // The film's pixel (0, 0) is the image's (ox, oy): the crop's corner with cropFilm.
+    const bool cropped = options.cropFilm && !options.crop.empty();
+    const int ox = cropped ? crop.x0 : 0, oy = cropped ? crop.y0 : 0;
+    const int filmWidth = cropped ? std::max(crop.x1 - crop.x0, 0) : scene.width;
+    const int filmHeight = cropped ? std::max(crop.y1 - crop.y0, 0) : scene.height;
+    // Or the caller's film, of that size, reused across calls (the web page's).
+    if (options.film && (options.film->width() != filmWidth || options.film->height() != filmHeight))
+        throw RenderError("the film to render into is " + std::to_string(options.film->width()) +
+                          "x" + std::to_string(options.film->height()) + ", not " +
+                          std::to_string(filmWidth) + "x" + std::to_string(filmHeight));
+    if (!options.film) result.film = Film(filmWidth, filmHeight);
+    Film& film = options.film ? *options.film : result.film;
+    if (options.keepSums) result.sums = FilmSums(filmWidth, filmHeight);
     const int parts = std::max(options.parts, 1);
     std::vector<PixelBounds> tiles;
     for (int y0 = crop.y0 - crop.y0 % tile; y0 < crop.y1; y0 += tile) {
@@ -133,10 +140,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const Vec3& s = sum[y * 4 + x];
-                film.at(bx + x, by + y) = pixelValue(s, rendered);
+                const int fx = bx + x - ox, fy = by + y - oy;
+                film.at(fx, fy) = pixelValue(s, rendered);
                 if (options.keepSums) {
-                    result.sums.sum(bx + x, by + y) = s;
-                    result.sums.weight(bx + x, by + y) = rendered;
+                    result.sums.sum(fx, fy) = s;
+                    result.sums.weight(fx, fy) = rendered;
                 }
             }
     };

@@ -42,21 +42,30 @@ struct RenderOptions {
     // Part of a frame (docs/scale-out.md): the image keeps the scene's size; pixels outside
     // the part are black with weight 0 in RenderResult::sums. Every pixel and sample rendered
     // is exactly the one the whole render computes there.
-    PixelBounds crop;   ///< The pixels to render; empty: the whole image.
-    int part = 0;       ///< With `parts` > 1: only the rows of tiles (tileSize pixels high,
-    int parts = 1;      ///< counted from the image's top) whose index % parts == part.
-    int sampleBegin = 0;  ///< Samples [sampleBegin, sampleEnd) of each pixel's `spp`;
-    int sampleEnd = 0;    ///< sampleEnd 0: up to spp.
+    PixelBounds crop;       ///< The pixels to render; empty: the whole image.
+    int part = 0;           ///< With `parts` > 1: only the rows of tiles (tileSize pixels high,
+    int parts = 1;          ///< counted from the image's top) whose index % parts == part.
+    int sampleBegin = 0;    ///< Samples [sampleBegin, sampleEnd) of each pixel's `spp`;
+    int sampleEnd = 0;      ///< sampleEnd 0: up to spp.
     bool keepSums = false;  ///< Fill RenderResult::sums (for merging parts).
     /// Only tiles [firstTile, firstTile + tileCount) of the part (the image, numbered row by row from
     /// the top left (tileCount < 0: to the last tile); the film's other pixels stay black, and
     /// progress and the result count these tiles only. For a caller that shows the image as it
     /// forms, a few tiles per call (the web page, web/bindings/).
     int firstTile = 0, tileCount = -1;
-    /// The film to render into, of the scene's width and height, reused across calls (with
+    /// The film to render into, of the scene's width and height (the crop's with cropFilm),
+    /// reused across calls (with
     /// tile ranges, a new film per call would cost more than its few tiles); RenderResult::film
     /// is then empty. Only the rendered tiles' pixels are written. Null: a new film.
     Film* film = nullptr;
+    /// With a crop: the film (and sums) hold the crop's pixels only, pixel (0, 0) being the
+    /// crop's (x0, y0), so that rendering a small part of a large image allocates that part
+    /// only (the MPI mode renders thousands of such parts per frame, apps/mpi_*.cpp).
+    bool cropFilm = false;
+    /// The integrator to render with, made by makeIntegrator for this scene and `spp`, shared
+    /// by renders of many small parts (making one scans the scene's emissive primitives);
+    /// null: one made for this render.
+    const Integrator* integrator = nullptr;
 };
 
 struct RenderResult {

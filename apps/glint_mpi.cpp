@@ -1,0 +1,229 @@
+// glint-mpi: glint across the ranks of an MPI job, `mpirun -np N glint-mpi SCENE [options]`,
+// with glint's options and the same image, byte for byte (docs/scale-out.md, "MPI").
+//
+// Every rank loads the scene itself from the filesystem they share and rank 0 checks that they
+// all hold the same one (mpi_load.cpp); rank 0 then hands out tiles on demand, every rank
+// rendering them on its own threads, rank 0 too, and gathers their pixels (mpi_render.cpp);
+// rank 0 writes the image, atomically, once every tile is in. A rank that fails ends the job
+// with one message naming it, and no image. Usage errors exit 2, scene and render errors 1, a
+// signal 128 + its number.
+
+#include <mpi.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "cli.h"
+#include "glint/core/atomic_file.h"
+#include "glint/core/error.h"
+#include "glint/core/parallel.h"
+#include "glint/io/image/image_io.h"
+#include "glint/render/integrator.h"
+#include "mpi_load.h"
+#include "mpi_protocol.h"
+#include "mpi_render.h"
+#include "mpi_report.h"
+
+namespace {
+
+using namespace glint::cli;
+using glint::mpi::Job;
+
+// Interrupts. A first SIGINT or SIGTERM (mpirun passes what it gets on to every rank as
+// SIGTERM) asks every rank to stop after its current block of pixels: nothing is written. A
+// second one leaves at once, removing any half-written temporary file.
+std::atomic<int> gInterrupt{0};
+
+extern "C" void onSignal(int sig) {
+    if (gInterrupt.load() != 0) {
+        if (const char* tmp = glint::pendingTempFile()) ::unlink(tmp);
+        ::_exit(128 + sig);
+    }
+    gInterrupt.store(sig);
+}
+
+void installSignalHandlers() {
+    struct sigaction sa {};
+    sa.sa_handler = onSignal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+const char* signalName(int sig) { return sig == SIGTERM ? "SIGTERM" : "SIGINT"; }
+
+/// glint-mpi's own options, beside glint's.
+struct MpiOptions {
+    int tileSide = glint::mpi::kTileSide;
+    std::string timings;
+};
+
+int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
+    using Clock = std::chrono::steady_clock;
+    const bool root = job.rank == 0;
+    Prepared prepared;
+    if (int code = glint::mpi::loadEverywhere(opt, prepared, job); code != kGoOn)
+        return root ? code : 0;  // rank 0 said why and ends the job with its code
+    glint::Scene& scene = *prepared.scene;
+    if (opt.check) {
+        if (root)
+            std::printf("%s: ok: %dx%d, %s, %s, maxdepth %d, output %s, %d ranks\n",
+                        prepared.demo ? "demo.test" : opt.scene.c_str(), scene.width, scene.height,
+                        primitiveSummary(scene.primitives).c_str(),
+                        count(scene.lights.size(), "light", "lights").c_str(), scene.maxDepth,
+                        prepared.output.c_str(), job.size);
+        return 0;
+    }
+
+    // Build: on every rank, on all its threads.
+    glint::mpi::RankWork work;
+    work.threads = job.threads;
+    work.tileSide = mpiOpt.tileSide;
+    {
+        auto t0 = Clock::now();
+        try {
+            glint::ThreadPool pool(job.threads);
+            scene.prepare({&pool, prepared.kernels});
+        } catch (const std::exception& e) {
+            work.buildError = e.what();
+        }
+        work.buildSeconds = secondsSince(t0);
+    }
+    work.options.spp = opt.spp > 0 ? opt.spp : (scene.spp > 0 ? scene.spp : 1);
+    work.options.seed = opt.seed;
+    // One integrator for every tile of this rank (making one scans the scene's lights).
+    std::unique_ptr<glint::Integrator> integrator;
+    if (work.buildError.empty()) {
+        try {
+            integrator = glint::makeIntegrator(scene, {work.options.spp});
+            work.options.integrator = integrator.get();
+        } catch (const std::exception& e) {
+            work.buildError = e.what();
+        }
+    }
+
+    if (!root) {
+        glint::mpi::serve(scene, work, job, gInterrupt);
+        MPI_Barrier(MPI_COMM_WORLD);
+        return 0;
+    }
+
+    // Rank 0: render with every rank, then write once every rank has come through.
+    glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
+    glint::Film film(scene.width, scene.height);
+    glint::mpi::FrameFigures figures;
+    int code = glint::mpi::coordinate(scene, work, job, gInterrupt, film, figures,
+                                      opt.quiet ? nullptr : &progress);
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (code == glint::mpi::kInterrupted) {
+        int sig = gInterrupt.load();
+        std::fprintf(stderr, "glint-mpi: %s: stopped; no image written\n", signalName(sig));
+        return 128 + sig;
+    }
+    if (code != kGoOn) return code;
+
+    auto t1 = Clock::now();
+    try {
+        glint::writeImage(prepared.output, film, prepared.display);
+    } catch (const glint::RenderError& e) {
+        std::fprintf(stderr, "glint-mpi: error: %s\n", e.what());
+        return kExitSceneError;
+    }
+    double writeSeconds = secondsSince(t1);
+    if (!opt.quiet)
+        std::fprintf(stderr, "glint-mpi: wrote %s (%dx%d, %d ranks)\n", prepared.output.c_str(),
+                     scene.width, scene.height, job.size);
+    if (opt.stats)
+        glint::mpi::printMpiStats(scene, prepared.parseSeconds, work, job, figures, writeSeconds);
+    if (!mpiOpt.timings.empty()) {
+        try {
+            glint::mpi::writeTimings(mpiOpt.timings, scene, work, job, figures, writeSeconds);
+        } catch (const glint::RenderError& e) {
+            std::fprintf(stderr, "glint-mpi: error: --timings: %s\n", e.what());
+            return kExitSceneError;
+        }
+    }
+    if (int sig = gInterrupt.load(); sig != 0) return 128 + sig;  // arrived while writing
+    return 0;
+}
+
+/// Parses the command line on every rank (all see the same one, so all agree); rank 0 alone
+/// prints help, the version or usage errors. Returns kGoOn or the exit code.
+int parse(int argc, char** argv, bool root, Options& opt, MpiOptions& mpiOpt) {
+    CLI::App app{
+        "glint-mpi renders a scene as glint does, with the ranks of an MPI job:"
+        "\n  mpirun -np N glint-mpi SCENE [options]"
+        "\nEvery rank reads the scene from a filesystem they all share; rank 0 hands out"
+        "\ntiles, renders too, and writes the image, byte for byte glint's. -t sets each"
+        "\nrank's threads (default: the CPUs mpirun gives the rank).",
+        "glint-mpi"};
+    app.get_formatter()->column_width(30);
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("glint-mpi: error: ") + e.what() +
+               "\nRun 'glint-mpi --help' for usage.\n";
+    });
+    addOptions(app, opt);
+    app.add_option("--tile", mpiOpt.tileSide,
+                   "Side of the square tiles rank 0 hands out, 4 to 1024 pixels (default 32): "
+                   "smaller ones balance many threads better, larger ones send fewer messages; "
+                   "the image is the same")
+        ->group("Rendering")
+        ->check(CLI::Range(4, 1024))
+        ->type_name("PIXELS");
+    app.add_option("--timings", mpiOpt.timings,
+                   "Write what rank 0 measured as JSON: every tile's render time and rank, each "
+                   "rank's load and build times, the bytes sent (bench/mpi_model.py)")
+        ->group("Information")
+        ->type_name("FILE");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (!root) return e.get_exit_code() == 0 ? 0 : kExitUsage;
+        int code = app.exit(e);
+        return code == 0 ? 0 : kExitUsage;
+    }
+    if (opt.timeBudget > 0) {
+        if (root)
+            usageError("--time is not available in glint-mpi (every rank renders a fixed --spp)");
+        return kExitUsage;
+    }
+    if (!root) mpiOpt.timings.clear();
+    return kGoOn;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int provided = 0;
+    // Only the main thread of each rank calls MPI; render threads do not.
+    if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+        std::fprintf(stderr, "glint-mpi: error: MPI_Init failed\n");
+        return kExitSceneError;
+    }
+    Job job;
+    MPI_Comm_rank(MPI_COMM_WORLD, &job.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &job.size);
+    Options opt;
+    MpiOptions mpiOpt;
+    int code = parse(argc, argv, job.rank == 0, opt, mpiOpt);
+    if (code == kGoOn) {
+        job.threads = opt.threads > 0 ? opt.threads : glint::mpi::availableCpus();
+        installSignalHandlers();
+        try {
+            code = run(opt, mpiOpt, job);
+        } catch (const std::exception& e) {
+            // Past the load check every rank's failures go to rank 0 as messages; this is for
+            // what is left (an MPI error, memory for the image): end the job from here.
+            std::fprintf(stderr, "glint-mpi: rank %d: error: %s\n", job.rank, e.what());
+            MPI_Abort(MPI_COMM_WORLD, kExitSceneError);
+        }
+    }
+    MPI_Finalize();
+    return code;
+}
