@@ -35,7 +35,7 @@ uint64_t hashBytes(std::string_view bytes, uint64_t seed) {
         mixBits(lane[0]) ^ mixBits(lane[1] + 1) ^ mixBits(lane[2] + 2) ^ mixBits(lane[3] + 3);
     for (; n >= 8; p += 8, n -= 8) h = (h ^ mixBits(load64(p))) * kOdd;
     uint64_t tail = 0;
-    std::memcpy(&tail, p, n);
+    if (n > 0) std::memcpy(&tail, p, n);  // an empty view may hold a null pointer
     h = (h ^ mixBits(tail ^ (uint64_t{n} << 56))) * kOdd;
     return mixBits(h ^ bytes.size());
 }
