@@ -44,7 +44,7 @@ class Rng {
     /// map's powers of two are composed for the bits of `delta` that are set.
     constexpr void advance(uint64_t delta) {
         uint64_t a = 6364136223846793005ULL, c = inc_;  // the map for 2^k steps, k = 0 first
-        uint64_t accA = 1, accC = 0;                   // the map for the bits done so far
+        uint64_t accA = 1, accC = 0;                    // the map for the bits done so far
         for (; delta; delta >>= 1) {
             if (delta & 1) {
                 accA *= a;

@@ -49,7 +49,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const int filmWidth = cropped ? std::max(crop.x1 - crop.x0, 0) : scene.width;
     const int filmHeight = cropped ? std::max(crop.y1 - crop.y0, 0) : scene.height;
     // Or the caller's film, of that size, reused across calls (the web page's).
-    if (options.film && (options.film->width() != filmWidth || options.film->height() != filmHeight))
+    if (options.film &&
+        (options.film->width() != filmWidth || options.film->height() != filmHeight))
         throw RenderError("the film to render into is " + std::to_string(options.film->width()) +
                           "x" + std::to_string(options.film->height()) + ", not " +
                           std::to_string(filmWidth) + "x" + std::to_string(filmHeight));

@@ -48,8 +48,8 @@ struct RenderOptions {
     int sampleBegin = 0;    ///< Samples [sampleBegin, sampleEnd) of each pixel's `spp`;
     int sampleEnd = 0;      ///< sampleEnd 0: up to spp.
     bool keepSums = false;  ///< Fill RenderResult::sums (for merging parts).
-    /// Only tiles [firstTile, firstTile + tileCount) of the part (the image, numbered row by row from
-    /// the top left (tileCount < 0: to the last tile); the film's other pixels stay black, and
+    /// Only tiles [firstTile, firstTile + tileCount) of the part (the image, numbered row by row
+    /// from the top left (tileCount < 0: to the last tile); the film's other pixels stay black, and
     /// progress and the result count these tiles only. For a caller that shows the image as it
     /// forms, a few tiles per call (the web page, web/bindings/).
     int firstTile = 0, tileCount = -1;
