@@ -6,9 +6,9 @@
 #   mpirun -np 2 glint-mpi -t 1       two ranks of one thread each
 #   mpirun -np 3 glint-mpi -t 1       three ranks on two cores (oversubscribed)
 # in RUNS rounds, each running every command once with hyperfine, so that the load of a shared
-# machine falls on all of them alike. Prints the medians of the wall time (mpirun's start
-# included), of the CPU time (user + system of every process: the steadier figure on a busy
-# machine) and of the render phase (--stats), their ratios to the plain render, and the bytes
+# machine falls on all of them alike (round r starts with command r mod 4). Prints the medians
+# of the wall time (mpirun's start included), of the CPU time (user + system of every process:
+# the steadier figure on a busy machine) and of the render phase (--stats), their ratios to the plain render, and the bytes
 # sent and rank 0's MPI thread's CPU time (--timings). Every image is checked to be glint's,
 # byte for byte.
 # Usage: bench/mpi_overhead.sh BUILD_DIR [RUNS] [GLINT_OPTIONS...]
@@ -44,6 +44,8 @@ mapfile -t cmds < <(commands warmup)
 for c in "${cmds[@]}"; do sh -c "$c"; done  # warm the caches once
 for ((r = 0; r < runs; r++)); do
     mapfile -t cmds < <(commands "$r")
+    k=$((r % ${#cmds[@]}))  # each round starts with the next command: no place in a round is favoured
+    cmds=("${cmds[@]:k}" "${cmds[@]:0:k}")
     hyperfine --style basic --runs 1 --export-json "round$r.json" "${cmds[@]}" >&2
 done
 hyperfine --style basic --runs "$runs" --export-json start.json \
@@ -60,7 +62,8 @@ names = ["glint -t 2", "mpirun -np 1 glint-mpi -t 2", "mpirun -np 2 glint-mpi -t
 wall = [[] for _ in names]
 cpu = [[] for _ in names]
 for r in range(runs):
-    for i, res in enumerate(json.load(open(f"round{r}.json"))["results"]):
+    for j, res in enumerate(json.load(open(f"round{r}.json"))["results"]):
+        i = (j + r) % len(names)  # round r ran the commands rotated by r
         wall[i].append(res["times"][0])
         cpu[i].append(res["user"] + res["system"])
 def render(i, r):  # the render phase, from --stats
