@@ -54,6 +54,7 @@ std::string encodeExr(const Film& film, double scale) {
                                               3 * sizeof(float), 3 * sizeof(float) * w));
         }
         StringOStream stream(out);
+        exr_detail::useAllThreads();
         Imf::OutputFile file(stream, header);
         file.setFrameBuffer(frame);
         file.writePixels(h);
@@ -81,6 +82,7 @@ Film decodeExr(std::string_view bytes, const std::string& name) {
     };
     try {
         MemoryIStream stream(bytes, name);
+        exr_detail::useAllThreads();
         Imf::InputFile file(stream);
         if (!file.isComplete()) throw fail("the file is incomplete (missing pixel data)");
         const Imf::Header& header = file.header();

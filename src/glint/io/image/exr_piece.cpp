@@ -232,6 +232,7 @@ std::string encodePiece(const PieceInfo& info, const FilmSums& sums) {
         frame.insert(kWeightChannel, Imf::Slice::Make(Imf::UINT, weight.data(), origin, w, h,
                                                       sizeof(uint32_t), sizeof(uint32_t) * w));
         StringOStream stream(out);
+        exr_detail::useAllThreads();
         Imf::OutputFile file(stream, header);
         file.setFrameBuffer(frame);
         file.writePixels(h);
@@ -252,6 +253,7 @@ PieceInfo decodePieceInfo(std::string_view bytes, const std::string& name) {
 PieceData decodePiece(std::string_view bytes, const std::string& name) {
     return reading(name, [&] {
         MemoryIStream stream(bytes, name);
+        exr_detail::useAllThreads();
         Imf::InputFile file(stream);
         PieceData piece;
         piece.info = readInfo(file.header());

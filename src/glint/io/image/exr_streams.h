@@ -4,13 +4,25 @@
 
 #include <Iex.h>
 #include <ImfIO.h>
+#include <ImfThreading.h>
 
 #include <algorithm>
 #include <cstring>
+#include <mutex>
 #include <string>
 #include <string_view>
 
+#include "glint/core/parallel.h"
+
 namespace glint::exr_detail {
+
+/// Lets OpenEXR compress and decompress a file's chunks on every hardware thread (its global
+/// pool, started by the first call; by default it uses the calling thread alone). The bytes
+/// written are the same for any count. A 3840x2160 frame's ZIP write took 2.7 s on one thread.
+inline void useAllThreads() {
+    static std::once_flag once;
+    std::call_once(once, [] { Imf::setGlobalThreadCount(hardwareThreads()); });
+}
 
 /// An OpenEXR output stream that appends to a string. The writer seeks back to fill in the
 /// table of chunk offsets, so writes may land anywhere up to the end.
