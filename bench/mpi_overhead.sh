@@ -8,9 +8,9 @@
 # in RUNS rounds, each running every command once with hyperfine, so that the load of a shared
 # machine falls on all of them alike (round r starts with command r mod 4). Prints the medians
 # of the wall time (mpirun's start included), of the CPU time (user + system of every process:
-# the steadier figure on a busy machine) and of the render phase (--stats), their ratios to the plain render, and the bytes
-# sent and rank 0's MPI thread's CPU time (--timings). Every image is checked to be glint's,
-# byte for byte.
+# the steadier figure on a busy machine) and of the render phase (--stats), their ratios to the
+# plain render, and the bytes sent and rank 0's MPI thread's CPU time (--timings). Every image
+# is checked to be glint's, byte for byte.
 # Usage: bench/mpi_overhead.sh BUILD_DIR [RUNS] [GLINT_OPTIONS...]
 # BUILD_DIR needs glint and glint-mpi (Open MPI found). Needs hyperfine and python3.
 set -euo pipefail
