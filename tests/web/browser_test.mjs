@@ -9,7 +9,7 @@
 // so); scene5 from the examples renders to the canvas and matches the official image by the
 // course's rule (and the native CLI's pixels exactly); a typo shows the CLI's error at its line;
 // a dropped OBJ with its MTL and texture renders as `glint model.obj` does; dragging on the
-// canvas changes the view; a long render can be cancelled; and a timer on the page's main
+// canvas changes the view; a dropped GLB renders as `glint model.glb` does; a long render can be cancelled; and a timer on the page's main
 // thread keeps firing while the worker renders.
 import { execFileSync, spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -192,7 +192,23 @@ try {
     const moved = await canvasPng('grid-moved.png');
     check(!sameImage(moved, dropped, 8, 160 * 120 / 20), 'the view changed after dragging (more than 5% of the pixels)');
 
-    // 6. A long render is cancelled; the main thread stays responsive meanwhile.
+    // 6. A dropped GLB (its texture in a buffer view; a camera, lights), rendered as `glint
+    //    scene.glb --integrator whitted` renders it: the file's camera, not the orbited view.
+    const beforeGlb = (await glintPage()).rendersDone;
+    const glb = fs.readFileSync(path.join(data, 'gltf', 'scene.glb')).toString('base64');
+    await page.evaluate((data) => {
+        const transfer = new DataTransfer();
+        transfer.items.add(new File([Uint8Array.from(atob(data), (c) => c.charCodeAt(0))], 'scene.glb'));
+        document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true }));
+    }, glb);
+    g = await waitFor('done', (p) => p.rendersDone > beforeGlb);
+    const droppedGlb = await canvasPng('glb-canvas.png');
+    const glbNative = path.join(tmp, 'glb-native.png');
+    execFileSync(args.glint, [path.join(data, 'gltf', 'scene.glb'), '--integrator', 'whitted',
+                              '--size', '160x120', '--spp', '1', '-o', glbNative, '-q']);
+    check(sameImage(droppedGlb, glbNative, 0, 0), 'the dropped GLB renders as the CLI renders it');
+
+    // 7. A long render is cancelled; the main thread stays responsive meanwhile.
     await page.selectOption('#examples', 'cornell-path');
     await page.waitForFunction(() => window.glintPage.state === 'rendering' &&
                                document.getElementById('examples').value === 'cornell-path');

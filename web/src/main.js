@@ -286,6 +286,7 @@ async function openExample(name) {
     $('size').value = '';
     $('maxdepth').value = '';
     $('examples').value = name;
+    orbit.reset();
     startRender({ reload: true });
 }
 
@@ -315,6 +316,7 @@ async function dropFiles(fileList) {
                                   ': files for the scene to use (mesh, texture)';
         return;
     }
+    orbit.reset();  // a new scene: its own camera, not the view orbited in the last one
     startRender({ reload: true });
 }
 
