@@ -9,6 +9,7 @@
 #include <cstring>
 #include <deque>
 #include <optional>
+#include <thread>
 
 #include "cli.h"
 #include "mpi_protocol.h"
@@ -61,10 +62,46 @@ int receive(int source, int tag, std::vector<char>& buffer) {
     return status.MPI_SOURCE;
 }
 
-void sendToRoot(const std::vector<char>& message) {
-    MPI_Send(message.data(), static_cast<int>(message.size()), MPI_BYTE, 0, kTagToRoot,
-             MPI_COMM_WORLD);
-}
+/// A worker's messages to rank 0, sent without waiting. MPI_Send of a message above the
+/// transport's eager limit (4 KB on shared memory: a 16-pixel tile is 6 KB) returns only once
+/// rank 0 has received it, spinning meanwhile; rank 0's MPI thread looks for messages once per
+/// poll interval, so in a job of two ranks on two cores that spinning cost rank 1 a third more
+/// CPU time than its rendering. MPI_Isend returns at once; the MPI thread looks again later.
+class Outbox {
+  public:
+    Outbox() = default;
+    Outbox(const Outbox&) = delete;
+    Outbox& operator=(const Outbox&) = delete;
+    ~Outbox() { drain(); }
+
+    void send(std::vector<char> message) {
+        pending_.push_back({MPI_REQUEST_NULL, std::move(message)});
+        Pending& p = pending_.back();
+        MPI_Isend(p.message.data(), static_cast<int>(p.message.size()), MPI_BYTE, 0, kTagToRoot,
+                  MPI_COMM_WORLD, &p.request);
+    }
+    /// Forgets the messages rank 0 has taken (in order: MPI delivers them so).
+    void progress() {
+        while (!pending_.empty()) {
+            int done = 0;
+            MPI_Test(&pending_.front().request, &done, MPI_STATUS_IGNORE);
+            if (!done) return;
+            pending_.pop_front();
+        }
+    }
+    /// Waits, sleeping rather than spinning, until rank 0 has taken every message.
+    void drain() {
+        for (progress(); !pending_.empty(); progress())
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+
+  private:
+    struct Pending {
+        MPI_Request request;
+        std::vector<char> message;  ///< Its bytes stay put while MPI reads them.
+    };
+    std::deque<Pending> pending_;
+};
 
 /// Rank 0's view of a worker.
 struct Worker {
@@ -287,11 +324,12 @@ int serve(const Scene& scene, const RankWork& work, const Job& job,
         mailbox.news.notify_all();
     };
 
+    Outbox outbox;
     bool reported = false;  // an Error sent: nothing more but Done
     auto report = [&](const std::string& text) {
         ToRootHeader h;
         h.type = ToRoot::Error;
-        sendToRoot(packToRoot(h, text.data(), text.size()));
+        outbox.send(packToRoot(h, text.data(), text.size()));
         reported = true;
     };
     std::optional<TileRenderers> local;
@@ -301,7 +339,7 @@ int serve(const Scene& scene, const RankWork& work, const Job& job,
         h.type = ToRoot::Request;
         h.count = work.threads + 1;  // one in hand beyond one per thread: no thread waits
         h.seconds = work.buildSeconds;
-        sendToRoot(packToRoot(h));
+        outbox.send(packToRoot(h));
     } else {
         report(work.buildError);
     }
@@ -327,8 +365,9 @@ int serve(const Scene& scene, const RankWork& work, const Job& job,
             h.tile = d.index;
             h.seconds = d.seconds;
             packRays(d.rays, h.rays);
-            sendToRoot(packToRoot(h, d.pixels.data(), d.pixels.size() * sizeof(double)));
+            outbox.send(packToRoot(h, d.pixels.data(), d.pixels.size() * sizeof(double)));
         }
+        outbox.progress();
         while (receive(0, kTagToWorker, buffer) >= 0) {
             ToWorkerMessage m;
             if (buffer.size() != sizeof m) continue;
@@ -351,7 +390,8 @@ int serve(const Scene& scene, const RankWork& work, const Job& job,
     if (local) local->wait();
     ToRootHeader h;
     h.type = ToRoot::Done;
-    sendToRoot(packToRoot(h));
+    outbox.send(packToRoot(h));
+    outbox.drain();
     return 0;
 }
 
