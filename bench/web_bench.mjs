@@ -5,12 +5,14 @@
 //        [--screenshot docs/images/web.png]
 //
 // 1. scene7 in headless Chromium, threaded build on 2 threads, against `glint -t 2`;
-// 2. scene7 single-threaded (the page served without isolation) against `glint -t 1
-//    --kernels portable`;
-// 3. the demo's first pixels on the canvas after opening the page (from navigation start);
-// 4. the size of the modules and the page's code, raw and gzipped.
+// 2. the same with the portable kernels (?kernels=portable) against `glint -t 2 --kernels
+//    portable`;
+// 3. scene7 single-threaded (the page served without isolation) against `glint -t 1`;
+// 4. the demo's first pixels on the canvas after opening the page (from navigation start);
+// 5. the size of the modules and the page's code, raw and gzipped.
 // Render times are medians of --runs; the module's is the time in render() summed over its
 // tile batches, as --stats times the CLI's render (parse and BVH build excluded on both sides).
+// A native render follows each web render, so that the ratio compares like with like.
 import { execFileSync, spawn } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -30,14 +32,11 @@ const runs = Number(args.runs);
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 const scene7 = path.join(root, 'tests/data/cse167x/scene7.test');
 
+/// One native render of scene7: its render time (--stats).
 function nativeRender(extra) {
-    const times = [];
-    for (let i = 0; i < runs; ++i) {
-        const out = execFileSync(args.glint, [scene7, '-o', '/tmp/glint-bench.png', '-q', '--stats',
-                                              ...extra]).toString();
-        times.push(Number(/render ([\d.]+) s/.exec(out)[1]));
-    }
-    return median(times);
+    const out = execFileSync(args.glint, [scene7, '-o', '/tmp/glint-bench.png', '-q', '--stats',
+                                          ...extra]).toString();
+    return Number(/render ([\d.]+) s/.exec(out)[1]);
 }
 
 async function serve(isolated) {
@@ -59,13 +58,21 @@ async function waitDone(page, count) {
 const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true,
                                         args: ['--no-sandbox', '--disable-dev-shm-usage'] });
 const rows = [];
-for (const isolated of [true, false]) {
+// Threaded with the module's default kernels (SIMD128), threaded with the portable ones (what
+// SIMD128 bought), single-threaded: each against the native CLI with the kernels named, one
+// native render after each web render, so that both see the same load on a shared machine.
+const configs = [
+    { isolated: true, kernels: 'auto', native: ['-t', '2'] },
+    { isolated: true, kernels: 'portable', native: ['-t', '2', '--kernels', 'portable'] },
+    { isolated: false, kernels: 'auto', native: ['-t', '1'] },
+];
+for (const { isolated, kernels, native: nativeArgs } of configs) {
     const { server, address } = await serve(isolated);
     const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
-    await page.goto(`${address}?threads=2&example=scene7`);
+    await page.goto(`${address}?threads=2&example=scene7&kernels=${kernels}`);
     // The first render runs on the browser's baseline WebAssembly code (Liftoff) while the
     // optimised code (TurboFan) is compiled: reported alone; the median is of the runs after.
-    const times = [], walls = [];
+    const times = [], walls = [], natives = [];
     let first = 0;
     for (let i = 1; i <= runs + 1; ++i) {
         if (i > 1) await page.click('#render');
@@ -74,14 +81,15 @@ for (const isolated of [true, false]) {
         else {
             times.push(g.last.seconds);
             walls.push(g.last.wallMs / 1000);
+            natives.push(nativeRender(nativeArgs));
         }
     }
     const g = await page.evaluate(() => window.glintPage);
-    const native = isolated ? nativeRender(['-t', '2']) : nativeRender(['-t', '1', '--kernels', 'portable']);
+    const native = median(natives);
     const web = median(times);
-    rows.push([`scene7, ${isolated ? `threaded build, ${g.threads} threads` : 'single-threaded build'}`,
-               `${web.toFixed(2)} s (first run ${first.toFixed(2)} s; with parse and build ${median(walls).toFixed(2)} s)`,
-               `${native.toFixed(2)} s (${isolated ? '-t 2' : '-t 1 --kernels portable'})`,
+    rows.push([`scene7, ${isolated ? `threaded build, ${g.threads} threads` : 'single-threaded build'}, ${g.kernels} kernels`,
+               `${web.toFixed(3)} s (first run ${first.toFixed(2)} s; with parse and build ${median(walls).toFixed(2)} s)`,
+               `${native.toFixed(3)} s (\`${nativeArgs.join(' ')}\`)`,
                `${(web / native).toFixed(2)}x`]);
     await page.close();
     server.kill();

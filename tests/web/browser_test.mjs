@@ -110,6 +110,7 @@ try {
     check(g.variant === (isolated ? 'mt' : 'st'), `the ${isolated ? 'threaded' : 'single-threaded'} module runs (${g.variant}, ${g.threads} thread${g.threads === 1 ? "" : "s"})`);
     const mode = await page.textContent('#mode');
     check(isolated ? /Threaded/.test(mode) : /single-threaded/.test(mode), `the page says so: "${mode}"`);
+    check(g.kernels === 'simd128', `the module traverses with the SIMD128 kernels (${g.kernels})`);
     check(g.firstPixelMs !== null, `the demo's first pixels after ${Math.round(g.firstPixelMs)} ms`);
 
     // 2. scene5 from the examples, against the official image and the native CLI's pixels.

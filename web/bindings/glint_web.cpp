@@ -4,10 +4,10 @@
 // event loop between calls (to post the image, and to hear Cancel). web/src/worker.js drives it;
 // docs/web.md describes the whole.
 //
-// Pixels are the library's: the traversal kernels are the portable ones (bit for bit the AVX2
-// ones), and a render of one pass at the scene's samples is the command line's render, so
-// renderFile() writes the PNG file `glint SCENE -o OUT` writes (the Node test checks it byte for
-// byte).
+// Pixels are the library's: the traversal kernels are the SIMD128 ones (bit for bit the portable
+// and the AVX2 ones), and a render of one pass at the scene's samples is the command line's
+// render, so renderFile() writes the PNG file `glint SCENE -o OUT` writes (the Node test checks
+// it byte for byte).
 
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
@@ -59,6 +59,14 @@ int intOr(const val& o, const char* key, int fallback) {
     return v.isNumber() ? v.as<int>() : fallback;
 }
 
+/// Traversal kernels by their CLI name (`--kernels`): "portable", "simd128", or anything else
+/// (empty, "auto") for the default, the SIMD128 ones.
+Isa kernelsNamed(const std::string& name) {
+    if (name == "portable") return Isa::Portable;
+    if (name == "simd128") return Isa::Simd128;
+    return Isa::Auto;
+}
+
 /// The error of an exception the loaders or the renderer threw, as the page shows it.
 val errorValue(const std::exception& e) {
     if (auto* s = dynamic_cast<const SceneError*>(&e))
@@ -101,7 +109,10 @@ class Session {
             scene = std::move(m.scene);
             r.set("note", m.note);
             if (!scene->camera) throw RenderError("the scene has no camera");
-            if (!options["prepare"].isFalse()) scene->prepare({&pool_, Isa::Portable});
+            if (!options["prepare"].isFalse())
+                scene->prepare({&pool_, kernelsNamed(options["kernels"].isString()
+                                                         ? options["kernels"].as<std::string>()
+                                                         : "")});
             r.set("ok", true);
             r.set("error", val::null());
         } catch (const std::exception& e) {
@@ -312,15 +323,16 @@ class Session {
     double seconds_ = 0;
 };
 
-/// What `glint SCENE -o OUTPUT -t THREADS --kernels portable` does, for the Node test: the
+/// What `glint SCENE -o OUTPUT -t THREADS --kernels KERNELS` does, for the Node tests: the
 /// scene's size, samples, depth and output settings. Returns an error message, or "".
-std::string renderFile(const std::string& path, const std::string& output, int threads) {
+std::string renderFile(const std::string& path, const std::string& output, int threads,
+                       const std::string& kernels) {
     try {
         std::vector<Diagnostic> warnings;
         ModelScene m = loadSceneFile(path, warnings);
         Scene& scene = *m.scene;
         ThreadPool pool(std::max(1, threads));
-        scene.prepare({&pool, Isa::Portable});
+        scene.prepare({&pool, kernelsNamed(kernels)});
         RenderOptions ro;
         ro.pool = &pool;
         ro.spp = scene.spp > 0 ? scene.spp : 1;
@@ -331,6 +343,9 @@ std::string renderFile(const std::string& path, const std::string& output, int t
         return e.what();
     }
 }
+
+/// The default traversal kernels ("simd128"), as `glint --help` names them natively.
+std::string kernels() { return Bvh::isa(); }
 
 /// The integrators by name, for the page's menu.
 val integratorNames() {
@@ -358,6 +373,7 @@ EMSCRIPTEN_BINDINGS(glint) {
         .function("image", &Session::image)
         .function("save", &Session::save);
     emscripten::function("renderFile", &renderFile);
+    emscripten::function("kernels", &kernels);
     emscripten::function("integratorNames", &integratorNames);
     emscripten::function("commandNames", &commandNames);
 }

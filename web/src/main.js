@@ -14,10 +14,13 @@ const params = new URLSearchParams(location.search);
 const variant = isolated ? 'mt' : 'st';
 const threads = Math.max(1, Math.min(Number(params.get('threads')) ||
                                      navigator.hardwareConcurrency || 2, 16));
+// Traversal kernels, as glint --kernels: the module's default (simd128) unless ?kernels=portable
+// (the benchmark compares them).
+const kernels = params.get('kernels') || 'auto';
 
 // What the tests and the benchmarks read (tests/web/browser_test.mjs, bench/web_bench.mjs).
 const page = (window.glintPage = {
-    variant, threads: 1, opened: performance.now(), firstPixelMs: null, rendersDone: 0,
+    variant, threads: 1, kernels: null, opened: performance.now(), firstPixelMs: null, rendersDone: 0,
     rendersCancelled: 0, last: null, state: 'starting', checks: 0,
 });
 
@@ -239,6 +242,7 @@ worker.onmessage = (event) => {
     const m = event.data;
     if (m.type === 'ready') {
         page.threads = m.threads;
+        page.kernels = m.kernels;
         page.readyMs = performance.now();  // the module started (since navigation start)
         setCommandNames(m.commands);
         for (const name of m.integrators) {
@@ -247,7 +251,7 @@ worker.onmessage = (event) => {
             $('integrator').appendChild(option);
         }
         $('mode').textContent = variant === 'mt'
-            ? `Threaded build, ${m.threads} render threads`
+            ? `Threaded build, ${m.threads} render threads, ${m.kernels} kernels`
             : 'Not cross-origin isolated: running the single-threaded build (serve the page ' +
               'with the headers of docs/web.md for threads)';
         $('mode').className = variant === 'mt' ? '' : 'warn';
@@ -379,4 +383,4 @@ drop.addEventListener('drop', (e) => {
 $('open').onchange = (e) => dropFiles(e.target.files);
 
 setState('starting', 'Starting the renderer');
-worker.postMessage({ type: 'init', variant, threads, base: new URL('.', location.href).href });
+worker.postMessage({ type: 'init', variant, threads, kernels, base: new URL('.', location.href).href });

@@ -9,6 +9,7 @@
 
 let M = null;
 let session = null;
+let kernels = null;  // the traversal kernels scenes are prepared for (init)
 let current = null;  // the render in progress: {id, cancelled}
 let loadedPath = null, loadedText = null, loadedKey = null;
 
@@ -36,7 +37,7 @@ function writeFile(path, data) {
     M.FS.writeFile(path, typeof data === 'string' ? data : new Uint8Array(data));
 }
 
-async function init({ variant, threads, base }) {
+async function init({ variant, threads, kernels: kernelsAsked, base }) {
     const started = performance.now();
     importScripts(base + `glint-${variant}.js`);
     M = await self.GlintModule({
@@ -49,10 +50,12 @@ async function init({ variant, threads, base }) {
         printErr: (text) => console.warn('glint:', text),
     });
     session = new M.Session(variant === 'mt' ? threads : 1);
+    kernels = kernelsAsked === 'portable' ? 'portable' : M.kernels();
     postMessage({
         type: 'ready',
         variant,
         threads: session.threads(),
+        kernels,
         commands: M.commandNames(),
         integrators: M.integratorNames(),
         ms: performance.now() - started,
@@ -84,7 +87,8 @@ async function render({ id, path, text, reload, options, camera, preview }) {
     if (reload || path !== loadedPath || text !== loadedText || (key !== loadedKey && !preview)) {
         if (text !== undefined && text !== null) writeFile(path, text);
         const result = session.load(path, { prepare: true, integrator: options.integrator,
-                                            width: options.width, height: options.height });
+                                            width: options.width, height: options.height,
+                                            kernels });
         postMessage({ type: 'loaded', id, path, result, camera: result.ok ? session.camera(true) : null });
         if (!result.ok) {
             loadedPath = null;

@@ -48,6 +48,9 @@ Isa Bvh::bestIsa() {
 #if GLINT_HAVE_AVX2
         if (__builtin_cpu_supports("avx2")) return Isa::Avx2;
 #endif
+#if GLINT_HAVE_SIMD128
+        return Isa::Simd128;  // compiled with -msimd128: every engine that loads it runs it
+#endif
         return Isa::Portable;
     }();
     return best;
@@ -57,6 +60,8 @@ const char* Bvh::name(Isa isa) {
     switch (isa) {
         case Isa::Avx2:
             return "avx2";
+        case Isa::Simd128:
+            return "simd128";
         case Isa::Portable:
             return "portable";
         case Isa::Auto:
@@ -73,6 +78,8 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
     if (isa_ == Isa::Avx2 && bestIsa() != Isa::Avx2)
         throw std::invalid_argument(
             "the AVX2 kernels need a CPU with AVX2 (and a build with them)");
+    if (isa_ == Isa::Simd128 && bestIsa() != Isa::Simd128)
+        throw std::invalid_argument("the SIMD128 kernels exist in the WebAssembly build only");
     if (options.sharedMeshes.size() != prims.sharedMeshCount())
         throw std::invalid_argument("a BVH is needed for every shared mesh");
     std::optional<ThreadPool> ownPool;
@@ -106,6 +113,9 @@ bool Bvh::intersect(const TraversalRay& ray, Hit& hit) const {
 #if GLINT_HAVE_AVX2
     if (route_ == Isa::Avx2) return bvh::avx2::intersect(data_, ray, hit);
 #endif
+#if GLINT_HAVE_SIMD128
+    if (route_ == Isa::Simd128) return bvh::simd128::intersect(data_, ray, hit);
+#endif
     if (route_ == Isa::Portable) return bvh::portable::intersect(data_, ray, hit);
     return intersectWithPlanes(ray, hit);
 }
@@ -113,6 +123,9 @@ bool Bvh::intersect(const TraversalRay& ray, Hit& hit) const {
 bool Bvh::occluded(const TraversalRay& ray) const {
 #if GLINT_HAVE_AVX2
     if (route_ == Isa::Avx2) return bvh::avx2::occluded(data_, ray);
+#endif
+#if GLINT_HAVE_SIMD128
+    if (route_ == Isa::Simd128) return bvh::simd128::occluded(data_, ray);
 #endif
     if (route_ == Isa::Portable) return bvh::portable::occluded(data_, ray);
     return occludedWithPlanes(ray);
@@ -123,6 +136,9 @@ void Bvh::intersect8(const RayPacket8& rays, HitPacket8& hits) const {
 #if GLINT_HAVE_AVX2
     if (isa_ == Isa::Avx2) return bvh::avx2::intersect8(data_, rays, hits);
 #endif
+#if GLINT_HAVE_SIMD128
+    if (isa_ == Isa::Simd128) return bvh::simd128::intersect8(data_, rays, hits);
+#endif
     bvh::portable::intersect8(data_, rays, hits);
 }
 
@@ -132,6 +148,9 @@ bool Bvh::intersectWithPlanes(const TraversalRay& ray, Hit& hit) const {
 #if GLINT_HAVE_AVX2
     if (isa_ == Isa::Avx2) return bvh::avx2::intersect(data_, ray, hit) || found;
 #endif
+#if GLINT_HAVE_SIMD128
+    if (isa_ == Isa::Simd128) return bvh::simd128::intersect(data_, ray, hit) || found;
+#endif
     return bvh::portable::intersect(data_, ray, hit) || found;
 }
 
@@ -139,6 +158,9 @@ bool Bvh::occludedWithPlanes(const TraversalRay& ray) const {
     if (planeOccludes(data_, ray)) return true;
 #if GLINT_HAVE_AVX2
     if (isa_ == Isa::Avx2) return bvh::avx2::occluded(data_, ray);
+#endif
+#if GLINT_HAVE_SIMD128
+    if (isa_ == Isa::Simd128) return bvh::simd128::occluded(data_, ray);
 #endif
     return bvh::portable::occluded(data_, ray);
 }

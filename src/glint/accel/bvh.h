@@ -19,7 +19,7 @@
 namespace glint {
 
 /// Instruction sets the traversal kernels exist for.
-enum class Isa { Auto, Portable, Avx2 };
+enum class Isa { Auto, Portable, Avx2, Simd128 };
 
 class Bvh;
 class ThreadPool;
@@ -70,9 +70,9 @@ class Bvh {
     /// The kernels this BVH traverses with.
     Isa kernels() const { return isa_; }
 
-    /// The best kernels this CPU runs.
+    /// The best kernels this CPU runs (in WebAssembly: the SIMD128 ones, always).
     static Isa bestIsa();
-    /// "avx2" or "portable": the kernels a default-built BVH uses on this machine.
+    /// "avx2", "simd128" or "portable": the kernels a default-built BVH uses on this machine.
     static const char* isa();
     static const char* name(Isa isa);
 

@@ -22,4 +22,13 @@ void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits);
 }  // namespace avx2
 #endif
 
+#if GLINT_HAVE_SIMD128
+/// WebAssembly SIMD128: eight boxes as two halves of four, four triangles per instruction.
+namespace simd128 {
+bool intersect(const BvhData& d, const TraversalRay& ray, Hit& hit);
+bool occluded(const BvhData& d, const TraversalRay& ray);
+void intersect8(const BvhData& d, const RayPacket8& rays, HitPacket8& hits);
+}  // namespace simd128
+#endif
+
 }  // namespace glint::bvh
