@@ -21,35 +21,16 @@ endif()
 
 # Both builds use WebAssembly SIMD (every current browser has it); the threaded one also
 # pthreads, which every object of the program must be compiled for (shared memory, atomics).
-# C++ exceptions are WebAssembly's own (-fwasm-exceptions: Chrome 95, Firefox 100, Safari 15.2,
-# Node 17 and later), with the libc++, libc++abi and libunwind variants Debian's frozen cache
-# has ("-except"); Emscripten's JavaScript-based ones (GLINT_WEB_WASM_EXCEPTIONS=OFF) route every
-# call that may throw through a JavaScript trampoline. setjmp and longjmp (libpng's errors) then
-# go through WebAssembly exceptions too (SUPPORT_LONGJMP=wasm, compiler-rt's "wasm-sjlj" variant
-# in the cache): Emscripten's JavaScript-based ones cannot share a function with them.
-option(GLINT_WEB_WASM_EXCEPTIONS "Web build with WebAssembly exceptions (else JavaScript-based)" ON)
-if(GLINT_WEB_WASM_EXCEPTIONS)
-    add_compile_options(-msimd128 -fwasm-exceptions -sSUPPORT_LONGJMP=wasm)
-    add_link_options(-fwasm-exceptions -sSUPPORT_LONGJMP=wasm)
-else()
-    add_compile_options(-msimd128 -fexceptions)
-    add_link_options(-fexceptions)
-endif()
+# C++ exceptions are Emscripten's JavaScript-based ones. WebAssembly's own (-fwasm-exceptions)
+# measured 5-10% faster in Node and within the noise in Chromium, but clang 14's catch clauses
+# with threads address libunwind's thread-local landing-pad context as a plain global, so they
+# would need libunwind's glue replaced (docs/performance.md): not worth it.
+add_compile_options(-msimd128 -fexceptions)
+add_link_options(-fexceptions)
 add_library(Threads::Threads INTERFACE IMPORTED)
 if(GLINT_WEB_THREADS)
     add_compile_options(-pthread)
     add_link_options(-pthread)
-endif()
-# With threads, clang 14's catch clauses need libunwind's landing-pad glue replaced
-# (web/bindings/wasm_eh_threads.c says why): every program of the threaded build links
-# web_eh_glue (web/CMakeLists.txt).
-add_library(web_eh_glue INTERFACE)
-if(GLINT_WEB_WASM_EXCEPTIONS AND GLINT_WEB_THREADS)
-    add_library(web_eh_threads OBJECT ${PROJECT_SOURCE_DIR}/web/bindings/wasm_eh_threads.c)
-    target_link_libraries(web_eh_threads PRIVATE glint_options)
-    target_link_libraries(web_eh_glue INTERFACE web_eh_threads
-                          $<TARGET_OBJECTS:web_eh_threads>)
-    target_link_options(web_eh_glue INTERFACE -Wl,--wrap=__cxa_begin_catch)
 endif()
 message(STATUS "Glint web build: ${CMAKE_CXX_COMPILER}, threads ${GLINT_WEB_THREADS}")
 
