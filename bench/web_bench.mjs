@@ -59,12 +59,13 @@ const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', hea
                                         args: ['--no-sandbox', '--disable-dev-shm-usage'] });
 const rows = [];
 // Threaded with the module's default kernels (SIMD128), threaded with the portable ones (what
-// SIMD128 bought), single-threaded: each against the native CLI with the kernels named, one
+// SIMD128 bought), single-threaded with each: each against the native CLI with the kernels named, one
 // native render after each web render, so that both see the same load on a shared machine.
 const configs = [
     { isolated: true, kernels: 'auto', native: ['-t', '2'] },
     { isolated: true, kernels: 'portable', native: ['-t', '2', '--kernels', 'portable'] },
     { isolated: false, kernels: 'auto', native: ['-t', '1'] },
+    { isolated: false, kernels: 'portable', native: ['-t', '1', '--kernels', 'portable'] },
 ];
 for (const { isolated, kernels, native: nativeArgs } of configs) {
     const { server, address } = await serve(isolated);
