@@ -117,10 +117,12 @@ try {
     const data = path.resolve(args.data);
     await page.selectOption('#examples', 'scene5');
     await page.waitForFunction(() => window.glintPage.state === 'rendering', null, { polling: 5 });
-    await startTimer();  // while the worker renders (opening the example's text is the page's)
+    // While the worker renders (opening the example's text is the page's). With the SIMD128
+    // kernels scene5 takes about 0.1 s, a few of the timer's 20 ms; step 7 watches a long render.
+    await startTimer();
     g = await waitFor('done', (p) => p.rendersDone >= 2);
     const gaps = await stopTimer();
-    check(gaps.count > 5 && gaps.max < kMaxGapMs, `the main thread's timer fired ${gaps.count} times during the render, at most ${Math.round(gaps.max)} ms apart`);
+    check(gaps.count >= 2 && gaps.max < kMaxGapMs, `the main thread's timer fired ${gaps.count} times during the render, at most ${Math.round(gaps.max)} ms apart`);
     const scene5 = await canvasPng('scene5-canvas.png');
     const reference = path.join(data, 'cse167x/reference/scene5.png');
     check(sameImage(scene5, reference, 2, 1000), 'scene5 passes the course\'s rule against the official image (at most 1000 pixels more than 2 levels off)');
