@@ -16,29 +16,12 @@
 #include "glint/core/parallel.h"
 #include "glint/math/mat4.h"
 #include "glint/math/rng.h"
+#include "unit/random_geometry.h"
 
 namespace glint {
 namespace {
 
-class Random {
-  public:
-    explicit Random(uint64_t seed) : rng_(seed) {}
-    double uni(double lo, double hi) {
-        return lo + (hi - lo) * static_cast<double>(rng_.uniform());
-    }
-    Vec3 point(double lo, double hi) { return {uni(lo, hi), uni(lo, hi), uni(lo, hi)}; }
-    Vec3 direction() {
-        for (;;) {
-            Vec3 v = point(-1, 1);
-            double l2 = dot(v, v);
-            if (l2 > 1e-4 && l2 <= 1) return v / std::sqrt(l2);
-        }
-    }
-    uint32_t below(uint32_t n) { return rng_.next() % n; }
-
-  private:
-    Rng rng_;
-};
+using test::Random;
 
 /// Random triangles of sizes from 0.01 to 10, spheres, and rotated, scaled ellipsoids, all
 /// within about [-12, 12]^3.
