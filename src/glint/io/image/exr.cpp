@@ -66,8 +66,9 @@ std::string encodeExr(const Film& film, double scale) {
 
 std::pair<long long, long long> exrImageSize(std::string_view bytes, const std::string& name) {
     try {
+        exr_detail::checkAttributeSizes(bytes);
         MemoryIStream stream(bytes, name);
-        Imf::InputFile file(stream);
+        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
         const Imath::Box2i window = file.header().dataWindow();
         return {static_cast<long long>(window.max.x) - window.min.x + 1,
                 static_cast<long long>(window.max.y) - window.min.y + 1};
@@ -81,9 +82,9 @@ Film decodeExr(std::string_view bytes, const std::string& name) {
         return RenderError("cannot read image '" + name + "': " + why);
     };
     try {
+        exr_detail::checkAttributeSizes(bytes);
         MemoryIStream stream(bytes, name);
-        exr_detail::useAllThreads();
-        Imf::InputFile file(stream);
+        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
         if (!file.isComplete()) throw fail("the file is incomplete (missing pixel data)");
         const Imf::Header& header = file.header();
         const Imath::Box2i window = header.dataWindow();

@@ -244,17 +244,18 @@ std::string encodePiece(const PieceInfo& info, const FilmSums& sums) {
 
 PieceInfo decodePieceInfo(std::string_view bytes, const std::string& name) {
     return reading(name, [&] {
+        exr_detail::checkAttributeSizes(bytes);
         MemoryIStream stream(bytes, name);
-        Imf::InputFile file(stream);
+        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
         return readInfo(file.header());
     });
 }
 
 PieceData decodePiece(std::string_view bytes, const std::string& name) {
     return reading(name, [&] {
+        exr_detail::checkAttributeSizes(bytes);
         MemoryIStream stream(bytes, name);
-        exr_detail::useAllThreads();
-        Imf::InputFile file(stream);
+        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
         PieceData piece;
         piece.info = readInfo(file.header());
         if (!file.isComplete()) throw Bad{"the file is incomplete (missing pixel data)"};

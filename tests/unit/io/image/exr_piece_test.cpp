@@ -222,6 +222,21 @@ TEST(ExrPiece, TheFuzzInputsDecodeOrFailCleanly) {
     EXPECT_GE(files, 2);
 }
 
+/// A fuzzed piece of 904 bytes whose `glint.part` attribute claims 1.8 GB: OpenEXR would
+/// allocate that before finding the file short (15 s and 2 GB under the fuzzer).
+TEST(ExrPiece, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrReadsIt) {
+    const fs::path file = fs::path(GLINT_FUZZ_DIR) / "regressions/piece/attribute-claims-1.8gb.exr";
+    std::ifstream in(file, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), {}};
+    ASSERT_EQ(bytes.size(), 904u);
+    try {
+        decodePiece(bytes, "p.exr");
+        FAIL() << "decoded";
+    } catch (const PieceError& e) {
+        EXPECT_THAT(e.what(), ::testing::HasSubstr("'glint.part' claims 1818703182 bytes"));
+    }
+}
+
 class MergePieceFiles : public ::testing::Test {
   protected:
     void SetUp() override {
