@@ -67,6 +67,28 @@ struct Isa {
         return boxHalf(n.lo[0], 0, r, tm, tNear) | boxHalf(n.lo[0], 4, r, tm, tNear) << 4;
     }
 
+    /// The watertight test after the shear, on four lanes (intersectTriangle()'s operations in
+    /// its order): the lanes whose edge functions share a sign and sum to nonzero, and their t,
+    /// not yet checked against any interval.
+    static v128_t edges(v128_t ax, v128_t ay, v128_t az, v128_t bx, v128_t by, v128_t bz, v128_t cx,
+                        v128_t cy, v128_t cz, v128_t sz, v128_t& t) {
+        v128_t u = wasm_f32x4_sub(wasm_f32x4_mul(cx, by), wasm_f32x4_mul(cy, bx));
+        v128_t v = wasm_f32x4_sub(wasm_f32x4_mul(ax, cy), wasm_f32x4_mul(ay, cx));
+        v128_t w = wasm_f32x4_sub(wasm_f32x4_mul(bx, ay), wasm_f32x4_mul(by, ax));
+        const v128_t zero = wasm_f32x4_splat(0);
+        v128_t anyNeg = wasm_v128_or(wasm_v128_or(wasm_f32x4_lt(u, zero), wasm_f32x4_lt(v, zero)),
+                                     wasm_f32x4_lt(w, zero));
+        v128_t anyPos = wasm_v128_or(wasm_v128_or(wasm_f32x4_gt(u, zero), wasm_f32x4_gt(v, zero)),
+                                     wasm_f32x4_gt(w, zero));
+        v128_t det = wasm_f32x4_add(wasm_f32x4_add(u, v), w);
+        v128_t tScaled = wasm_f32x4_add(wasm_f32x4_add(wasm_f32x4_mul(u, wasm_f32x4_mul(sz, az)),
+                                                       wasm_f32x4_mul(v, wasm_f32x4_mul(sz, bz))),
+                                        wasm_f32x4_mul(w, wasm_f32x4_mul(sz, cz)));
+        t = wasm_f32x4_div(tScaled, det);
+        // andnot(a, b) is a & ~b.
+        return wasm_v128_andnot(wasm_f32x4_ne(det, zero), wasm_v128_and(anyNeg, anyPos));
+    }
+
     static uint32_t triangles(const Tri4& b, const TraversalRay& ray, float tBest, float* t) {
         // The operations of intersectTriangle(), in the same order, four lanes at a time.
         const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
@@ -85,21 +107,8 @@ struct Isa {
         shear(b.v0, ax, ay, az);
         shear(b.v1, bx, by, bz);
         shear(b.v2, cx, cy, cz);
-        v128_t u = wasm_f32x4_sub(wasm_f32x4_mul(cx, by), wasm_f32x4_mul(cy, bx));
-        v128_t v = wasm_f32x4_sub(wasm_f32x4_mul(ax, cy), wasm_f32x4_mul(ay, cx));
-        v128_t w = wasm_f32x4_sub(wasm_f32x4_mul(bx, ay), wasm_f32x4_mul(by, ax));
-        const v128_t zero = wasm_f32x4_splat(0);
-        v128_t anyNeg = wasm_v128_or(wasm_v128_or(wasm_f32x4_lt(u, zero), wasm_f32x4_lt(v, zero)),
-                                     wasm_f32x4_lt(w, zero));
-        v128_t anyPos = wasm_v128_or(wasm_v128_or(wasm_f32x4_gt(u, zero), wasm_f32x4_gt(v, zero)),
-                                     wasm_f32x4_gt(w, zero));
-        v128_t det = wasm_f32x4_add(wasm_f32x4_add(u, v), w);
-        v128_t tScaled = wasm_f32x4_add(wasm_f32x4_add(wasm_f32x4_mul(u, wasm_f32x4_mul(sz, az)),
-                                                       wasm_f32x4_mul(v, wasm_f32x4_mul(sz, bz))),
-                                        wasm_f32x4_mul(w, wasm_f32x4_mul(sz, cz)));
-        v128_t tHit = wasm_f32x4_div(tScaled, det);
-        // andnot(a, b) is a & ~b.
-        v128_t ok = wasm_v128_andnot(wasm_f32x4_ne(det, zero), wasm_v128_and(anyNeg, anyPos));
+        v128_t tHit;
+        v128_t ok = edges(ax, ay, az, bx, by, bz, cx, cy, cz, sz, tHit);
         ok = wasm_v128_and(ok, wasm_f32x4_gt(tHit, wasm_f32x4_splat(ray.tMin)));
         ok = wasm_v128_and(ok, wasm_f32x4_lt(tHit, wasm_f32x4_splat(ray.tMax)));
         ok = wasm_v128_and(ok, wasm_f32x4_le(tHit, wasm_f32x4_splat(tBest)));
@@ -176,7 +185,6 @@ struct Isa {
     /// Returns the lanes hit within their range; `t` receives the distances.
     static v128_t laneHits(const Tri4& b, int k, const PacketLanes& l, int h, v128_t& t) {
         const int kx = l.kx, ky = l.ky, kz = l.kz;
-        const v128_t zero = wasm_f32x4_splat(0);
         auto shear = [&](const float(&v)[3][kLanes], v128_t& x, v128_t& y, v128_t& z) {
             v128_t px = wasm_f32x4_sub(wasm_f32x4_splat(v[kx][k]), l.ox[h]);
             v128_t py = wasm_f32x4_sub(wasm_f32x4_splat(v[ky][k]), l.oy[h]);
@@ -188,20 +196,7 @@ struct Isa {
         shear(b.v0, ax, ay, az);
         shear(b.v1, bx, by, bz);
         shear(b.v2, cx, cy, cz);
-        v128_t u = wasm_f32x4_sub(wasm_f32x4_mul(cx, by), wasm_f32x4_mul(cy, bx));
-        v128_t v = wasm_f32x4_sub(wasm_f32x4_mul(ax, cy), wasm_f32x4_mul(ay, cx));
-        v128_t w = wasm_f32x4_sub(wasm_f32x4_mul(bx, ay), wasm_f32x4_mul(by, ax));
-        v128_t anyNeg = wasm_v128_or(wasm_v128_or(wasm_f32x4_lt(u, zero), wasm_f32x4_lt(v, zero)),
-                                     wasm_f32x4_lt(w, zero));
-        v128_t anyPos = wasm_v128_or(wasm_v128_or(wasm_f32x4_gt(u, zero), wasm_f32x4_gt(v, zero)),
-                                     wasm_f32x4_gt(w, zero));
-        v128_t det = wasm_f32x4_add(wasm_f32x4_add(u, v), w);
-        v128_t sz = l.sz[h];
-        v128_t tScaled = wasm_f32x4_add(wasm_f32x4_add(wasm_f32x4_mul(u, wasm_f32x4_mul(sz, az)),
-                                                       wasm_f32x4_mul(v, wasm_f32x4_mul(sz, bz))),
-                                        wasm_f32x4_mul(w, wasm_f32x4_mul(sz, cz)));
-        t = wasm_f32x4_div(tScaled, det);
-        v128_t ok = wasm_v128_andnot(wasm_f32x4_ne(det, zero), wasm_v128_and(anyNeg, anyPos));
+        v128_t ok = edges(ax, ay, az, bx, by, bz, cx, cy, cz, l.sz[h], t);
         ok = wasm_v128_and(ok, wasm_f32x4_gt(t, l.tMin[h]));
         return wasm_v128_and(ok, wasm_f32x4_lt(t, l.tMax[h]));
     }
