@@ -9,7 +9,10 @@
 #include <ImfOutputFile.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "glint/core/error.h"
@@ -28,6 +31,96 @@ using exr_detail::StringOStream;
 constexpr int kRowsPerBatch = 64;
 
 }  // namespace
+
+namespace exr_detail {
+
+namespace {
+
+constexpr size_t npos = std::string_view::npos;
+
+/// The null ending a name (of an attribute, its type or a channel) that starts at `at`, or npos
+/// where OpenEXR refuses it: it reads at most 255 characters and the null.
+size_t nameEnd(std::string_view bytes, size_t at) {
+    const size_t end = bytes.find('\0', at);
+    return end == npos || end - at > 255 ? npos : end;
+}
+
+/// Where OpenEXR 3.1 stops reading a value of `type` that starts at `at` and claims `size` bytes
+/// (the readValueFrom of each attribute type), or npos where OpenEXR refuses the value first.
+size_t valueEnd(std::string_view bytes, std::string_view type, size_t at, size_t size) {
+    static constexpr std::pair<std::string_view, size_t> kFixedSize[] = {{"box2f", 16},
+                                                                         {"box2i", 16},
+                                                                         {"chromaticities", 32},
+                                                                         {"compression", 1},
+                                                                         {"deepImageState", 1},
+                                                                         {"double", 8},
+                                                                         {"envmap", 1},
+                                                                         {"float", 4},
+                                                                         {"int", 4},
+                                                                         {"keycode", 28},
+                                                                         {"lineOrder", 1},
+                                                                         {"m33d", 72},
+                                                                         {"m33f", 36},
+                                                                         {"m44d", 128},
+                                                                         {"m44f", 64},
+                                                                         {"rational", 8},
+                                                                         {"tiledesc", 9},
+                                                                         {"timecode", 8},
+                                                                         {"v2d", 16},
+                                                                         {"v2f", 8},
+                                                                         {"v2i", 8},
+                                                                         {"v3d", 24},
+                                                                         {"v3f", 12},
+                                                                         {"v3i", 12}};
+    for (auto [name, n] : kFixedSize)
+        if (type == name) return at + n;
+    if (type == "chlist") {  // channels up to an empty name, each a name and 16 bytes
+        size_t i = at;
+        while (i < bytes.size() && bytes[i] != 0) {
+            const size_t name = nameEnd(bytes, i);
+            if (name == npos) return npos;
+            i = name + 1 + 16;
+        }
+        return i + 1;
+    }
+    if (type == "floatvector") return at + size / 4 * 4;
+    if (type == "idmanifest") return size < 4 ? npos : at + 8 + (size - 4);
+    return at + size;  // string, stringvector, preview and types OpenEXR keeps opaque
+}
+
+}  // namespace
+
+void checkAttributeSizes(std::string_view bytes) {
+    auto int32At = [&](size_t at) {
+        uint32_t v = 0;
+        for (int k = 3; k >= 0; --k) v = v << 8 | static_cast<unsigned char>(bytes[at + k]);
+        return static_cast<int32_t>(v);
+    };
+    if (bytes.size() < 8) return;
+    const bool multipart = (int32At(4) & 0x1000) != 0;
+    size_t i = 8;
+    for (;;) {                                       // headers
+        while (i < bytes.size() && bytes[i] != 0) {  // attributes: name, type, size, value
+            const size_t name = nameEnd(bytes, i);
+            const size_t type = name == npos ? npos : nameEnd(bytes, name + 1);
+            if (type == npos || type + 5 > bytes.size()) return;
+            const int32_t size = int32At(type + 1);
+            const size_t value = type + 5;
+            if (size < 0 || static_cast<size_t>(size) > bytes.size() - value)
+                throw Iex::InputExc("attribute '" + std::string(bytes.substr(i, name - i)) +
+                                    "' claims " + std::to_string(size) +
+                                    " bytes, more than the file holds");
+            i = valueEnd(bytes, bytes.substr(name + 1, type - name - 1), value,
+                         static_cast<size_t>(size));
+            if (i == npos) return;
+        }
+        // A header ends with a null byte; a multi-part file's headers end with an empty one.
+        if (!multipart || i + 1 >= bytes.size() || bytes[i + 1] == 0) return;
+        ++i;
+    }
+}
+
+}  // namespace exr_detail
 
 std::string encodeExr(const Film& film, double scale) {
     const int w = film.width(), h = film.height();
