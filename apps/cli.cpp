@@ -161,9 +161,7 @@ int prepare(const Options& opt, Prepared& out) {
         if (std::string problem = parseSize(opt.size, width, height); !problem.empty())
             return usageError(problem);
     }
-    Isa kernels = opt.kernels == "avx2"       ? Isa::Avx2
-                  : opt.kernels == "portable" ? Isa::Portable
-                                              : Isa::Auto;
+    Isa kernels = Bvh::named(opt.kernels);
     if (kernels == Isa::Avx2 && Bvh::bestIsa() != Isa::Avx2)
         return usageError(
             "--kernels avx2: this CPU (or this build of glint) has no AVX2; use "

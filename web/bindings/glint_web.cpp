@@ -59,14 +59,6 @@ int intOr(const val& o, const char* key, int fallback) {
     return v.isNumber() ? v.as<int>() : fallback;
 }
 
-/// Traversal kernels by their CLI name (`--kernels`): "portable", "simd128", or anything else
-/// (empty, "auto") for the default, the SIMD128 ones.
-Isa kernelsNamed(const std::string& name) {
-    if (name == "portable") return Isa::Portable;
-    if (name == "simd128") return Isa::Simd128;
-    return Isa::Auto;
-}
-
 /// The error of an exception the loaders or the renderer threw, as the page shows it.
 val errorValue(const std::exception& e) {
     if (auto* s = dynamic_cast<const SceneError*>(&e))
@@ -110,9 +102,9 @@ class Session {
             r.set("note", m.note);
             if (!scene->camera) throw RenderError("the scene has no camera");
             if (!options["prepare"].isFalse())
-                scene->prepare({&pool_, kernelsNamed(options["kernels"].isString()
-                                                         ? options["kernels"].as<std::string>()
-                                                         : "")});
+                scene->prepare({&pool_, Bvh::named(options["kernels"].isString()
+                                                       ? options["kernels"].as<std::string>()
+                                                       : "")});
             r.set("ok", true);
             r.set("error", val::null());
         } catch (const std::exception& e) {
@@ -332,7 +324,7 @@ std::string renderFile(const std::string& path, const std::string& output, int t
         ModelScene m = loadSceneFile(path, warnings);
         Scene& scene = *m.scene;
         ThreadPool pool(std::max(1, threads));
-        scene.prepare({&pool, kernelsNamed(kernels)});
+        scene.prepare({&pool, Bvh::named(kernels)});
         RenderOptions ro;
         ro.pool = &pool;
         ro.spp = scene.spp > 0 ? scene.spp : 1;

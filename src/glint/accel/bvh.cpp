@@ -70,6 +70,12 @@ const char* Bvh::name(Isa isa) {
     return name(bestIsa());
 }
 
+Isa Bvh::named(std::string_view name) {
+    for (Isa isa : {Isa::Portable, Isa::Avx2, Isa::Simd128})
+        if (name == Bvh::name(isa)) return isa;
+    return Isa::Auto;
+}
+
 const char* Bvh::isa() { return name(bestIsa()); }
 
 void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {

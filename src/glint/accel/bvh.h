@@ -11,6 +11,7 @@
 /// bvh_traverse.inl.
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "glint/accel/bvh_layout.h"
@@ -75,6 +76,8 @@ class Bvh {
     /// "avx2", "simd128" or "portable": the kernels a default-built BVH uses on this machine.
     static const char* isa();
     static const char* name(Isa isa);
+    /// The kernels called `name` (as name() spells them), Auto for anything else ("auto").
+    static Isa named(std::string_view name);
 
   private:
     /// intersect and occluded for scenes with planes, out of line: the plane-free calls stay
