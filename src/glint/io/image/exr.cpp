@@ -48,30 +48,14 @@ size_t nameEnd(std::string_view bytes, size_t at) {
 /// Where OpenEXR 3.1 stops reading a value of `type` that starts at `at` and claims `size` bytes
 /// (the readValueFrom of each attribute type), or npos where OpenEXR refuses the value first.
 size_t valueEnd(std::string_view bytes, std::string_view type, size_t at, size_t size) {
-    static constexpr std::pair<std::string_view, size_t> kFixedSize[] = {{"box2f", 16},
-                                                                         {"box2i", 16},
-                                                                         {"chromaticities", 32},
-                                                                         {"compression", 1},
-                                                                         {"deepImageState", 1},
-                                                                         {"double", 8},
-                                                                         {"envmap", 1},
-                                                                         {"float", 4},
-                                                                         {"int", 4},
-                                                                         {"keycode", 28},
-                                                                         {"lineOrder", 1},
-                                                                         {"m33d", 72},
-                                                                         {"m33f", 36},
-                                                                         {"m44d", 128},
-                                                                         {"m44f", 64},
-                                                                         {"rational", 8},
-                                                                         {"tiledesc", 9},
-                                                                         {"timecode", 8},
-                                                                         {"v2d", 16},
-                                                                         {"v2f", 8},
-                                                                         {"v2i", 8},
-                                                                         {"v3d", 24},
-                                                                         {"v3f", 12},
-                                                                         {"v3i", 12}};
+    // clang-format off
+    static constexpr std::pair<std::string_view, size_t> kFixedSize[] = {
+        {"box2f", 16}, {"box2i", 16}, {"chromaticities", 32}, {"compression", 1},
+        {"deepImageState", 1}, {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4},
+        {"keycode", 28}, {"lineOrder", 1}, {"m33d", 72}, {"m33f", 36}, {"m44d", 128},
+        {"m44f", 64}, {"rational", 8}, {"tiledesc", 9}, {"timecode", 8}, {"v2d", 16},
+        {"v2f", 8}, {"v2i", 8}, {"v3d", 24}, {"v3f", 12}, {"v3i", 12}};
+    // clang-format on
     for (auto [name, n] : kFixedSize)
         if (type == name) return at + n;
     if (type == "chlist") {  // channels up to an empty name, each a name and 16 bytes
