@@ -24,7 +24,7 @@ namespace glint {
 
 namespace {
 
-using exr_detail::MemoryIStream;
+using exr_detail::MemoryInputFile;
 using exr_detail::StringOStream;
 
 /// Rows converted per batch when reading: bounds the float buffer whatever the image size.
@@ -143,9 +143,8 @@ std::string encodeExr(const Film& film, double scale) {
 
 std::pair<long long, long long> exrImageSize(std::string_view bytes, const std::string& name) {
     try {
-        exr_detail::checkAttributeSizes(bytes);
-        MemoryIStream stream(bytes, name);
-        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
+        MemoryInputFile input(bytes, name);
+        Imf::InputFile& file = input.file();
         const Imath::Box2i window = file.header().dataWindow();
         return {static_cast<long long>(window.max.x) - window.min.x + 1,
                 static_cast<long long>(window.max.y) - window.min.y + 1};
@@ -159,9 +158,8 @@ Film decodeExr(std::string_view bytes, const std::string& name) {
         return RenderError("cannot read image '" + name + "': " + why);
     };
     try {
-        exr_detail::checkAttributeSizes(bytes);
-        MemoryIStream stream(bytes, name);
-        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
+        MemoryInputFile input(bytes, name);
+        Imf::InputFile& file = input.file();
         if (!file.isComplete()) throw fail("the file is incomplete (missing pixel data)");
         const Imf::Header& header = file.header();
         const Imath::Box2i window = header.dataWindow();

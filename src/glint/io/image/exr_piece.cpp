@@ -24,7 +24,7 @@ namespace glint {
 
 namespace {
 
-using exr_detail::MemoryIStream;
+using exr_detail::MemoryInputFile;
 using exr_detail::StringOStream;
 
 /// The layout of the pixels and attributes; a reader refuses other versions.
@@ -244,18 +244,16 @@ std::string encodePiece(const PieceInfo& info, const FilmSums& sums) {
 
 PieceInfo decodePieceInfo(std::string_view bytes, const std::string& name) {
     return reading(name, [&] {
-        exr_detail::checkAttributeSizes(bytes);
-        MemoryIStream stream(bytes, name);
-        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
+        MemoryInputFile input(bytes, name);
+        Imf::InputFile& file = input.file();
         return readInfo(file.header());
     });
 }
 
 PieceData decodePiece(std::string_view bytes, const std::string& name) {
     return reading(name, [&] {
-        exr_detail::checkAttributeSizes(bytes);
-        MemoryIStream stream(bytes, name);
-        Imf::InputFile file(stream, 0);  // one thread: see exr_detail::useAllThreads
+        MemoryInputFile input(bytes, name);
+        Imf::InputFile& file = input.file();
         PieceData piece;
         piece.info = readInfo(file.header());
         if (!file.isComplete()) throw Bad{"the file is incomplete (missing pixel data)"};

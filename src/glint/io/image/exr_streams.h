@@ -4,6 +4,7 @@
 
 #include <Iex.h>
 #include <ImfIO.h>
+#include <ImfInputFile.h>
 #include <ImfThreading.h>
 
 #include <algorithm>
@@ -76,6 +77,20 @@ class MemoryIStream final : public Imf::IStream {
   private:
     std::string_view bytes_;
     size_t pos_ = 0;
+};
+
+/// An OpenEXR file opened from bytes in memory, as every reader opens one: the header's
+/// attribute sizes checked first (checkAttributeSizes), then read on the calling thread alone
+/// (see useAllThreads).
+class MemoryInputFile {
+  public:
+    MemoryInputFile(std::string_view bytes, const std::string& name)
+        : stream_((checkAttributeSizes(bytes), bytes), name), file_(stream_, 0) {}
+    Imf::InputFile& file() { return file_; }
+
+  private:
+    MemoryIStream stream_;
+    Imf::InputFile file_;
 };
 
 }  // namespace glint::exr_detail
