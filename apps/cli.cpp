@@ -53,6 +53,34 @@ std::shared_ptr<const EnvironmentMap> environmentNamed(const std::string& name) 
 
 }  // namespace
 
+std::string parseAovList(const std::string& text, AovSelection& out) {
+    AovSelection sel;
+    if (text == "all") {
+        out = AovSelection::all();
+        return {};
+    }
+    size_t at = 0;
+    for (;;) {
+        const size_t comma = text.find(',', at);
+        const std::string name = text.substr(at, comma == std::string::npos ? comma : comma - at);
+        if (name == "albedo")
+            sel.albedo = true;
+        else if (name == "normal")
+            sel.normal = true;
+        else if (name == "depth")
+            sel.depth = true;
+        else if (name == "variance")
+            sel.variance = true;
+        else
+            return "unknown pass '" + name +
+                   "' (Glint has albedo, normal, depth, variance; or all)";
+        if (comma == std::string::npos) break;
+        at = comma + 1;
+    }
+    out = sel;
+    return {};
+}
+
 double secondsSince(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -275,6 +303,7 @@ int prepare(const Options& opt, Prepared& out) {
     out.kernels = kernels;
     out.parseSeconds = parseSeconds;
     out.demo = demo;
+    out.model = framed;
     return kGoOn;
 }
 
@@ -394,6 +423,40 @@ void addOptions(CLI::App& app, Options& opt) {
                    "Seed of every random choice: sub-pixel jitter, lens, area lights, "
                    "glossy rays (default 0)")
         ->group(render)
+        ->type_name("N");
+
+    const char* clean = "Clean images (docs/denoising.md)";
+    app.add_option("--aov", opt.aov,
+                   "Render passes to write as layers of the .exr output: albedo, normal, depth, "
+                   "variance, comma-separated, or all")
+        ->group(clean)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                AovSelection sel;
+                return parseAovList(text, sel);
+            },
+            "", ""))
+        ->type_name("LIST");
+    app.add_flag_callback(
+           "--denoise", [&opt] { opt.denoise = 1; },
+           "Denoise the image with Glint's feature-guided denoiser (default for models)")
+        ->group(clean);
+    app.add_flag_callback(
+           "--no-denoise", [&opt] { opt.denoise = -1; },
+           "Write the image as rendered, with its noise (default for scenes)")
+        ->group(clean);
+    app.add_option("--noise-threshold", opt.noiseThreshold,
+                   "Adaptive sampling: stop sampling a pixel once its relative error is below "
+                   "T, 0.0001 to 1 (Cycles' meaning), with --spp as the most and --time as the "
+                   "budget (default for models: 0.02, at most 1024 spp and 3 s)")
+        ->group(clean)
+        ->check(numberIn(1e-4, 1))
+        ->type_name("T");
+    app.add_option("--min-spp", opt.minSpp,
+                   "With --noise-threshold: samples every pixel takes first, 2 to 65536 "
+                   "(default 16, at most --spp)")
+        ->group(clean)
+        ->check(integerIn(2, 65536))
         ->type_name("N");
 
     const char* piece =

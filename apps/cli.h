@@ -20,6 +20,13 @@ constexpr int kExitSceneError = 1;
 constexpr int kExitUsage = 2;
 constexpr int kGoOn = -1;  ///< From prepare(): no error, go on.
 
+/// A model's default sampling (docs/denoising.md): adaptive to this noise threshold, within
+/// this many seconds of rendering; and the most samples per pixel of an adaptive render when
+/// --spp does not say.
+constexpr double kModelNoiseThreshold = 0.02;
+constexpr double kModelSeconds = 3;
+constexpr int kAdaptiveMaxSpp = 1024;
+
 /// The command line, as parsed.
 struct Options {
     std::string scene;
@@ -46,7 +53,16 @@ struct Options {
     std::string crop;     ///< --crop x0,x1,y0,y1
     std::string samples;  ///< --samples A:B
     std::string part;     ///< --part K/N
+    // Clean images (docs/denoising.md).
+    std::string aov;            ///< --aov: passes to write as layers of the EXR output.
+    int denoise = 0;            ///< 1 --denoise, -1 --no-denoise, 0 the default (on for models).
+    double noiseThreshold = 0;  ///< --noise-threshold; 0: a fixed number of samples.
+    int minSpp = 0;             ///< --min-spp; 0: the default.
 };
+
+/// The passes `text` names ("albedo,normal,depth,variance" in any order, or "all"), or what is
+/// wrong with it.
+std::string parseAovList(const std::string& text, AovSelection& out);
 
 /// Registers every option and flag of `glint` on `app`, storing into `opt`.
 void addOptions(CLI::App& app, Options& opt);
@@ -58,7 +74,8 @@ struct Prepared {
     std::string output;  ///< The image file to write.
     Isa kernels = Isa::Auto;
     double parseSeconds = 0;
-    bool demo = false;  ///< No scene named: the built-in demo.
+    bool demo = false;   ///< No scene named: the built-in demo.
+    bool model = false;  ///< A model file framed in the studio (not a scene).
 };
 
 /// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not

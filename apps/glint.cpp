@@ -21,6 +21,7 @@
 #include "glint/core/system.h"
 #include "glint/io/image/exr_piece.h"
 #include "glint/io/image/image_io.h"
+#include "glint/render/adaptive.h"
 #include "glint/render/progress.h"
 #include "glint/render/progressive.h"
 #include "glint/render/renderer.h"
@@ -110,6 +111,24 @@ int run(const Options& opt) {
         return kExitSceneError;
     }
 
+    // Passes, denoising and adaptive sampling (docs/denoising.md). A model, given no sample
+    // count, time or threshold, samples until clean or kModelSeconds, then is denoised.
+    glint::AovSelection aovs;
+    if (!opt.aov.empty()) parseAovList(opt.aov, aovs);  // checked with the options
+    if (aovs.any() && !piece && glint::imageFormatFor(output) != glint::ImageFormat::Exr)
+        return usageError("--aov writes the passes as layers of an OpenEXR file: '" + output +
+                          "' is not an .exr file");
+    const bool modelDefaults =
+        prepared.model && !piece && opt.spp == 0 && opt.timeBudget == 0 && opt.noiseThreshold == 0;
+    const double threshold = modelDefaults ? kModelNoiseThreshold : opt.noiseThreshold;
+    const double budget = modelDefaults ? kModelSeconds : opt.timeBudget;
+    const int maxSpp = opt.spp > 0 ? opt.spp : kAdaptiveMaxSpp;
+    const bool denoise = false;  // DENOISE-WIRING
+    if (piece && (opt.noiseThreshold > 0 || opt.denoise > 0))
+        return usageError(std::string(opt.denoise > 0 ? "--denoise" : "--noise-threshold") +
+                          ": frame pieces hold a fixed number of samples, raw; denoise the "
+                          "merged image (glint denoise MERGED.exr -o OUT)");
+
     // Build, then render, on one pool of threads (-t 1: the calling thread alone).
     glint::ThreadPool pool(opt.threads);
     auto t1 = Clock::now();
@@ -125,12 +144,22 @@ int run(const Options& opt) {
     ro.cancel = &gStop;
     if (piece) renderPieceWith(pieceInfo, ro);
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
-    glint::RenderResult result = opt.timeBudget > 0
-                                     ? glint::renderForTime(*scene, ro, {opt.timeBudget, opt.spp})
-                                     : glint::render(*scene, ro);
+    ro.aovs = aovs.any() || denoise;
+    glint::RenderResult result =
+        threshold > 0 ? glint::renderAdaptive(*scene, ro, {threshold, opt.minSpp, maxSpp, budget})
+        : opt.timeBudget > 0 ? glint::renderForTime(*scene, ro, {opt.timeBudget, opt.spp})
+                             : glint::render(*scene, ro);
     if (!opt.quiet)
-        progress.finish({0, 0, result.seconds}, result.complete,
-                        opt.timeBudget > 0 && result.complete ? result.samplesPerPixel : 0);
+        progress.finish(
+            {0, 0, result.seconds}, result.complete,
+            (opt.timeBudget > 0 || threshold > 0) && result.complete ? result.samplesPerPixel : 0);
+    if (!opt.quiet && threshold > 0 && result.complete)
+        std::fprintf(stderr,
+                     "glint: adaptive sampling%s: %.0f samples per pixel on average (most %d of "
+                     "%d), %.0f%% of pixels below noise %g%s\n",
+                     modelDefaults ? " (a model's default)" : "", result.meanSamplesPerPixel,
+                     result.samplesPerPixel, maxSpp, 100 * result.converged, threshold,
+                     budget > 0 ? (", within " + glint::formatSeconds(budget)).c_str() : "");
 
     if (piece && !result.complete) {
         // A piece is whole or not at all: glint merge would refuse a partial one.
@@ -145,7 +174,7 @@ int run(const Options& opt) {
         if (piece)
             glint::writeFileAtomically(output, glint::encodePiece(pieceInfo, result.sums));
         else
-            glint::writeImage(output, result.film, display);
+            glint::writeImage(output, result.film, display, &result.aovs, aovs);
     } catch (const glint::RenderError& e) {
         std::fprintf(stderr, "glint: error: %s\n", e.what());
         return kExitSceneError;

@@ -193,6 +193,13 @@ int parse(int argc, char** argv, bool root, Options& opt, MpiOptions& mpiOpt) {
             usageError("--time is not available in glint-mpi (every rank renders a fixed --spp)");
         return kExitUsage;
     }
+    if (opt.noiseThreshold > 0 || !opt.aov.empty() || opt.denoise > 0) {
+        if (root)
+            usageError(
+                "--noise-threshold, --aov and --denoise are not available in glint-mpi yet (render "
+                "pieces with glint --part and merge them, then glint denoise)");
+        return kExitUsage;
+    }
     if (!root) mpiOpt.timings.clear();
     return kGoOn;
 }

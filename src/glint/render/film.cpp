@@ -9,6 +9,42 @@ void FilmSums::add(const FilmSums& other) {
         sums_[i] += other.sums_[i];
         weights_[i] += other.weights_[i];
     }
+    for (size_t i = 0; i < passes_.size() && i < other.passes_.size(); ++i)
+        passes_[i] += other.passes_[i];
+}
+
+void resolvePassesAt(const Vec3& sum, double n, const PassSums& p, RenderPasses& out, size_t i) {
+    if (!(n > 0)) {
+        out.albedo[i] = out.normal[i] = out.variance[i] = Vec3(0);
+        out.depth[i] = 0;
+        return;
+    }
+    const double inv = 1.0 / n;
+    out.albedo[i] = p.albedo * inv;
+    out.normal[i] = p.normal * inv;
+    out.depth[i] = p.hits > 0 ? p.depth / p.hits : 0;
+    if (n < 2) {
+        out.variance[i] = Vec3(0);
+        return;
+    }
+    // The sample variance (n / (n - 1)) (E[x^2] - E[x]^2), over n for the mean's.
+    const Vec3 mean = sum * inv;
+    Vec3 v = (p.squares * inv - mean * mean) * (1.0 / (n - 1));
+    for (int c = 0; c < 3; ++c) v[c] = v[c] > 0 ? v[c] : 0;
+    out.variance[i] = v;
+}
+
+RenderPasses FilmSums::resolvePasses() const {
+    RenderPasses out;
+    if (passes_.empty()) return out;
+    out.width = width_;
+    out.height = height_;
+    out.albedo.resize(size());
+    out.normal.resize(size());
+    out.variance.resize(size());
+    out.depth.resize(size());
+    for (size_t i = 0; i < size(); ++i) resolvePassesAt(sums_[i], weights_[i], passes_[i], out, i);
+    return out;
 }
 
 Film FilmSums::resolve() const {

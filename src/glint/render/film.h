@@ -36,6 +36,65 @@ struct PixelBounds {
     bool operator==(const PixelBounds&) const = default;
 };
 
+/// Render passes (AOVs) of an image, resolved, row 0 at the top, width x height each (all empty
+/// when the render kept none). Of each pixel's camera samples, averaged over them:
+///  - albedo: the reflectance of the first surface the path meets that is not a perfect mirror
+///    or smooth glass (chains of those are followed, as denoisers expect), times the chain's
+///    tint; 0 where the path leaves the scene;
+///  - normal: that surface's shading normal in world space, turned to face the ray (averaged,
+///    so of length 1 or less; 0 where there is no surface);
+///  - depth: the distance from the camera to the first surface hit, averaged over the samples
+///    that hit one; 0 where none did;
+///  - variance: per channel, the variance of the pixel's value as an estimate (the sample
+///    variance over the samples, divided by their number); 0 with fewer than two samples.
+struct RenderPasses {
+    int width = 0, height = 0;
+    std::vector<Vec3> albedo, normal, variance;
+    std::vector<double> depth;
+
+    bool empty() const { return albedo.empty(); }
+    size_t index(int x, int y) const { return static_cast<size_t>(y) * width + x; }
+};
+
+/// Which render passes to write beside the beauty image (`--aov albedo,normal,depth,variance`).
+struct AovSelection {
+    bool albedo = false, normal = false, depth = false, variance = false;
+
+    bool any() const { return albedo || normal || depth || variance; }
+    static AovSelection all() { return {true, true, true, true}; }
+};
+
+/// What one camera sample reports for the passes (see RenderPasses): the integrator fills it.
+struct SamplePasses {
+    Vec3 albedo{0}, normal{0};
+    double depth = 0;  ///< 0: the camera ray hit nothing.
+};
+
+/// The per-pixel sums behind the passes: added over samples (and over pieces) like the beauty's.
+struct PassSums {
+    Vec3 squares{0};  ///< Of the samples' radiance, per channel (for the variance).
+    Vec3 albedo{0}, normal{0};
+    double depth = 0, hits = 0;  ///< Depths of the samples that hit something, and their number.
+
+    void addSample(const Vec3& radiance, const SamplePasses& s) {
+        squares += radiance * radiance;
+        albedo += s.albedo;
+        normal += s.normal;
+        if (s.depth > 0) {
+            depth += s.depth;
+            hits += 1;
+        }
+    }
+    PassSums& operator+=(const PassSums& o) {
+        squares += o.squares;
+        albedo += o.albedo;
+        normal += o.normal;
+        depth += o.depth;
+        hits += o.hits;
+        return *this;
+    }
+};
+
 /// What a render of part of a frame keeps so that parts add up to the whole image: per pixel
 /// the sum of its samples' values and their weight, the number of samples (each weighs 1: the
 /// reconstruction filter is importance-sampled, render/sampler.h). Pixels a part did not render
@@ -53,8 +112,16 @@ class FilmSums {
     double& weight(int x, int y) { return weights_[index(x, y)]; }
     double weight(int x, int y) const { return weights_[index(x, y)]; }
 
+    /// Whether the sums behind the render passes are kept too (a render that makes passes).
+    bool hasPasses() const { return !passes_.empty(); }
+    /// Keeps them from now on (all zero).
+    void keepPasses() { passes_.assign(size(), PassSums{}); }
+    PassSums& passes(int x, int y) { return passes_[index(x, y)]; }
+    const PassSums& passes(int x, int y) const { return passes_[index(x, y)]; }
+
     /// Adds `other` (the same size) pixel by pixel: the sums of pieces that cover disjoint
-    /// pixels are those pieces' own, exactly (x + 0 = x).
+    /// pixels are those pieces' own, exactly (x + 0 = x). The passes' sums are added where both
+    /// have them.
     void add(const FilmSums& other);
 
     /// The image: sum / weight per pixel, computed as the renderer computes it (the sum times
@@ -62,13 +129,21 @@ class FilmSums {
     /// rendered whole pixels is the single render's bit for bit. Weight 0 gives black.
     Film resolve() const;
 
+    /// The render passes of these sums (empty if they have none).
+    RenderPasses resolvePasses() const;
+
   private:
     size_t size() const { return static_cast<size_t>(width_) * static_cast<size_t>(height_); }
     size_t index(int x, int y) const { return static_cast<size_t>(y) * width_ + x; }
     int width_ = 0, height_ = 0;
     std::vector<Vec3> sums_;
     std::vector<double> weights_;
+    std::vector<PassSums> passes_;  ///< Empty: none kept.
 };
+
+/// The resolved passes of a pixel of `n` samples summing to `sum` with pass sums `p`, written
+/// into `out` at index i.
+void resolvePassesAt(const Vec3& sum, double n, const PassSums& p, RenderPasses& out, size_t i);
 
 /// The value of a pixel whose `n` samples sum to `sum`: the renderer's rule, shared with
 /// FilmSums::resolve so that merged pieces reproduce it exactly.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "glint/math/rng.h"
+#include "glint/render/film.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
@@ -43,6 +44,9 @@ struct PathContext {
     /// low-discrepancy sample values (math/sobol.h) rather than take ctx.rng's.
     uint64_t pixelSeed = 0;
     uint32_t sampleIndex = 0;
+    /// Where the integrator reports the sample's render passes (film.h: albedo, normal and
+    /// depth); null when no pass is asked for.
+    SamplePasses* passes = nullptr;
 };
 
 /// `c` if every channel is finite and within +-kMaxRadiance (scene/light.h); otherwise `c`

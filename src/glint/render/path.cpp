@@ -48,6 +48,35 @@ Vec3 facingViewer(const Vec3& n, const Vec3& ng, const Vec3& wo) {
     return wo * kLift + across * (std::sqrt(1 - kLift * kLift) / len);
 }
 
+/// GGX alpha below which a mirror-like or glass-like glTF surface counts as smooth for the
+/// render passes (perceptual roughness 0.1): they follow it to what is seen in it.
+constexpr double kPassSmoothAlpha = 0.01;
+
+/// The albedo the render passes give a surface of `bsdf` (film.h), or none for a perfect
+/// mirror or smooth glass (or a glTF surface nearly so), whose continuation they follow.
+std::optional<Vec3> passAlbedo(const Bsdf& bsdf) {
+    using Albedo = std::optional<Vec3>;
+    struct Visitor {
+        Albedo operator()(const Lambertian& l) const { return l.albedo; }
+        Albedo operator()(const Conductor& c) const {
+            return c.alpha == 0 ? Albedo() : Albedo(c.f0);
+        }
+        Albedo operator()(const Dielectric& d) const {
+            return d.rough() ? Albedo(d.tint) : Albedo();
+        }
+        Albedo operator()(const DiffuseSpecular& d) const {
+            if (d.alpha == 0 && d.diffuse == Vec3(0)) return Albedo();
+            return min(d.diffuse + d.specular, Vec3(1));
+        }
+        Albedo operator()(const MetallicRoughness& m) const {
+            const double clear = m.metallic + (1 - m.metallic) * m.transmission;
+            if (m.alpha < kPassSmoothAlpha && clear > 0.99) return Albedo();
+            return m.baseColor;
+        }
+    };
+    return std::visit(Visitor{}, bsdf.lobe);
+}
+
 }  // namespace
 
 PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
@@ -79,12 +108,21 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     Hit hit;
     bool found = cameraHit != nullptr;
     if (found) hit = *cameraHit;
+    // The render passes (film.h): filled at the first surface that is not a perfect mirror or
+    // glass, through the tint of those before it.
+    SamplePasses* passes = ctx.passes;
+    Vec3 passTint(1);
 
     for (int depth = 0;; ++depth) {
         // A shadow catcher is seen by camera rays and their specular continuations only.
         if (catcher_ && (depth == 0 || specularBounce)) [[unlikely]] {
             std::optional<double> t = catcher_->intersect(ray);
             if (t && (!found || *t < hit.t)) {
+                if (passes) {  // the plane shows the background: an upward "surface" of albedo 1
+                    passes->albedo = passTint;
+                    passes->normal = Vec3(0, 1, 0);
+                    if (depth == 0) passes->depth = *t * length(ray.dir);
+                }
                 const Point2 uEnvironment = sampler.get2D();
                 const double uLight = sampler.get2D().x;
                 L += beta * catcher_->radiance(ray.origin + ray.dir * *t, normalize(ray.dir),
@@ -137,6 +175,14 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             bsdf = bsdfFromMaterial(textured);
         } else {
             bsdf = bsdfs_[si.material];
+        }
+        if (passes) [[unlikely]] {
+            if (depth == 0) passes->depth = length(si.p - ray.origin);
+            if (std::optional<Vec3> albedo = passAlbedo(bsdf)) {
+                passes->albedo = passTint * *albedo;
+                passes->normal = dot(shadingNormal, ray.dir) > 0 ? -shadingNormal : shadingNormal;
+                passes = nullptr;  // filled
+            }
         }
 
         // Light the surface emits towards the path.
@@ -196,6 +242,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const Vec3 next = normalize(frame.toWorld(bs->wi));
         if (!consistent(next, bs->wi)) break;
         beta = beta * bs->weight();
+        if (passes) passTint = passTint * min(bs->weight(), Vec3(1));
         if (beta == Vec3(0)) break;
         specularBounce = bs->isSpecular();
         bsdfPdf = bs->pdf;

@@ -22,11 +22,17 @@ RenderResult renderForTime(const Scene& scene, const RenderOptions& options,
 
     RenderResult result;
     Film sum(scene.width, scene.height);
+    FilmSums passSums;  // with passes: every pass's sums, for them (beauty stays as below)
+    if (options.aovs) {
+        passSums = FilmSums(scene.width, scene.height);
+        passSums.keepPasses();
+    }
     int spp = 0, passSpp = std::min(kFirstPassSpp, maxSpp);
     for (int pass = 0;; ++pass) {
         RenderOptions o = options;
         o.spp = passSpp;
         o.seed = passSeed(options.seed, pass);
+        if (options.aovs) o.keepSums = true;
         const double before = elapsed();
         if (options.onProgress)
             o.onProgress = [&](const RenderProgress& p) {
@@ -46,6 +52,7 @@ RenderResult renderForTime(const Scene& scene, const RenderOptions& options,
             result.stoppedEarly = true;
             break;
         }
+        if (options.aovs) passSums.add(r.sums);
         // Sum the pass, weighted by its samples.
         for (int y = 0; y < scene.height; ++y)
             for (int x = 0; x < scene.width; ++x) sum.at(x, y) += r.film.at(x, y) * double(passSpp);
@@ -69,6 +76,7 @@ RenderResult renderForTime(const Scene& scene, const RenderOptions& options,
     for (int y = 0; y < scene.height; ++y)
         for (int x = 0; x < scene.width; ++x) sum.at(x, y) = sum.at(x, y) * weight;
     result.film = std::move(sum);
+    if (options.aovs) result.aovs = passSums.resolvePasses();
     result.samplesPerPixel = spp;
     result.seconds = elapsed();
     result.complete = true;

@@ -27,7 +27,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     std::unique_ptr<Integrator> ownIntegrator;
     if (!options.integrator) ownIntegrator = makeIntegrator(scene, {options.spp});
     const Integrator* integrator = options.integrator ? options.integrator : ownIntegrator.get();
-    const PixelSampler sampler(options.spp, options.seed, scene.filter);
+    const PixelSampler sampler(options.spp, options.seed, scene.filter,
+                               options.progressivePositions);
     // Per-sample random numbers only where something draws them.
     const bool seeded = camera.hasLens() || integrator->usesRandomNumbers();
     const int spp = sampler.samplesPerPixel();
@@ -54,9 +55,27 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         throw RenderError("the film to render into is " + std::to_string(options.film->width()) +
                           "x" + std::to_string(options.film->height()) + ", not " +
                           std::to_string(filmWidth) + "x" + std::to_string(filmHeight));
-    if (!options.film) result.film = Film(filmWidth, filmHeight);
+    FilmSums* const accumulate = options.accumulate;
+    if (accumulate && (accumulate->width() != filmWidth || accumulate->height() != filmHeight))
+        throw RenderError("the sums to add into are not the film's size");
+    const std::vector<uint8_t>* const active = accumulate ? options.active : nullptr;
+    if (active && active->size() != static_cast<size_t>(filmWidth) * filmHeight)
+        throw RenderError("the mask of pixels to render is not the film's size");
+    if (!options.film && !accumulate) result.film = Film(filmWidth, filmHeight);
     Film& film = options.film ? *options.film : result.film;
     if (options.keepSums) result.sums = FilmSums(filmWidth, filmHeight);
+    const bool passes = options.aovs || (accumulate && accumulate->hasPasses());
+    if (options.aovs && !accumulate) {
+        RenderPasses& p = result.aovs;
+        p.width = filmWidth;
+        p.height = filmHeight;
+        const size_t n = static_cast<size_t>(filmWidth) * filmHeight;
+        p.albedo.assign(n, Vec3(0));
+        p.normal.assign(n, Vec3(0));
+        p.variance.assign(n, Vec3(0));
+        p.depth.assign(n, 0.0);
+        if (options.keepSums) result.sums.keepPasses();
+    }
     const int parts = std::max(options.parts, 1);
     std::vector<PixelBounds> tiles;
     for (int y0 = crop.y0 - crop.y0 % tile; y0 < crop.y1; y0 += tile) {
@@ -90,6 +109,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         static constexpr Rng kUnseeded{};
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
+                if (active &&
+                    !(*active)[static_cast<size_t>(by + y - oy) * filmWidth + bx + x - ox])
+                    continue;
                 if (!seeded) {
                     sampler.forEachSample(
                         bx + x, by + y,
@@ -113,7 +135,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                     },
                     sampleBegin, sampleEnd);
             }
+        if (active && samples.empty()) return;
         Vec3 sum[8];
+        PassSums passSums[8];
         for (size_t i = 0; i < samples.size(); i += 8) {
             int n = static_cast<int>(std::min<size_t>(8, samples.size() - i));
             RayPacket8 packet;
@@ -135,17 +159,37 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 PathContext ctx{s.rng, counts};
                 ctx.pixelSeed = s.pixelSeed;
                 ctx.sampleIndex = s.index;
-                sum[s.pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
+                if (!passes) {
+                    sum[s.pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
+                    continue;
+                }
+                SamplePasses sp;
+                ctx.passes = &sp;
+                const Vec3 v = integrator->li(rays[k], found ? &hit : nullptr, ctx);
+                sum[s.pixel] += v;
+                passSums[s.pixel].addSample(v, sp);
             }
         }
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const Vec3& s = sum[y * 4 + x];
                 const int fx = bx + x - ox, fy = by + y - oy;
+                if (accumulate) {
+                    const size_t i = static_cast<size_t>(fy) * filmWidth + fx;
+                    if (active && !(*active)[i]) continue;
+                    accumulate->sum(fx, fy) += s;
+                    accumulate->weight(fx, fy) += rendered;
+                    if (passes) accumulate->passes(fx, fy) += passSums[y * 4 + x];
+                    continue;
+                }
                 film.at(fx, fy) = pixelValue(s, rendered);
+                if (passes)
+                    resolvePassesAt(s, rendered, passSums[y * 4 + x], result.aovs,
+                                    result.aovs.index(fx, fy));
                 if (options.keepSums) {
                     result.sums.sum(fx, fy) = s;
                     result.sums.weight(fx, fy) = rendered;
+                    if (passes) result.sums.passes(fx, fy) = passSums[y * 4 + x];
                 }
             }
     };

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "glint/render/film.h"
 #include "glint/render/integrator.h"
@@ -62,6 +63,18 @@ struct RenderOptions {
     /// crop's (x0, y0), so that rendering a small part of a large image allocates that part
     /// only (the MPI mode renders thousands of such parts per frame, apps/mpi_*.cpp).
     bool cropFilm = false;
+    /// Also make the render passes (AOVs; film.h: albedo, normal, depth, variance): into
+    /// RenderResult::aovs, and into RenderResult::sums with keepSums.
+    bool aovs = false;
+    /// Add what each rendered pixel's samples sum to (and their pass sums, if it keeps them)
+    /// into these sums, of the film's size, instead of filling RenderResult::film (left empty)
+    /// and RenderResult::aovs: how a render in rounds collects its samples (adaptive.h).
+    FilmSums* accumulate = nullptr;
+    /// With `accumulate`: the film's pixels to render (non-zero), row by row; null: all.
+    const std::vector<uint8_t>* active = nullptr;
+    /// Sub-pixel positions that are spread in every prefix of a pixel's samples (sampler.h),
+    /// for a render that may stop a pixel after any of them; false: the stratified grid.
+    bool progressivePositions = false;
     /// The integrator to render with, made by makeIntegrator for this scene and `spp`, shared
     /// by renders of many small parts (making one scans the scene's emissive primitives);
     /// null: one made for this render.
@@ -71,6 +84,7 @@ struct RenderOptions {
 struct RenderResult {
     Film film;
     FilmSums sums;  ///< With RenderOptions::keepSums: the sums and weights behind `film`.
+    RenderPasses aovs;  ///< With RenderOptions::aovs: the film's render passes.
     RayCounts rays;
     double seconds = 0;
     bool complete = true;  ///< False if cancelled before every tile was rendered.
@@ -78,6 +92,9 @@ struct RenderResult {
     /// Camera samples per pixel in the image, and the passes they were rendered in (more than
     /// one only for a render to a time budget, render/progressive.h).
     int samplesPerPixel = 0, passes = 1;
+    /// An adaptive render's (adaptive.h): the mean samples per pixel, and the share of pixels
+    /// that stopped below the noise threshold (the rest reached the cap or the time).
+    double meanSamplesPerPixel = 0, converged = 0;
     /// A render to a time budget that was cancelled: the image is whole (every pass in it was
     /// finished) but has fewer samples than there was time for.
     bool stoppedEarly = false;

@@ -9,19 +9,29 @@
 /// With a reconstruction filter other than the one-pixel box, each jittered position u in the
 /// pixel's unit square is mapped through the filter's inverse CDF per axis (filter.h), so the
 /// samples spread over the filter's support, still stratified.
+///
+/// Progressive positions (for adaptive sampling, render/adaptive.h): sample k of a pixel is
+/// point k of a 2D Owen-scrambled Sobol sequence seeded by the pixel, so that every prefix of a
+/// pixel's samples is spread over it (the first 2^m in one elementary interval each), wherever
+/// the pixel stops; the grid above spreads only the whole set.
 
 #include <cmath>
 #include <cstdint>
 
 #include "glint/math/rng.h"
+#include "glint/math/sobol.h"
 #include "glint/render/filter.h"
 
 namespace glint {
 
 class PixelSampler {
   public:
-    PixelSampler(int spp, uint64_t seed, const FilterSpec& filter = {})
-        : spp_(spp < 1 ? 1 : spp), seed_(seed), pixelBox_(filter == FilterSpec{}), filter_(filter) {
+    PixelSampler(int spp, uint64_t seed, const FilterSpec& filter = {}, bool progressive = false)
+        : spp_(spp < 1 ? 1 : spp),
+          seed_(seed),
+          pixelBox_(filter == FilterSpec{}),
+          progressive_(progressive),
+          filter_(filter) {
         cols_ = 1;
         for (int a = 1; a * a <= spp_; ++a)
             if (spp_ % a == 0) cols_ = a;
@@ -38,6 +48,17 @@ class PixelSampler {
         if (end < 0 || end > spp_) end = spp_;
         if (spp_ == 1) {
             if (begin < end) f(x + 0.5, y + 0.5);
+            return;
+        }
+        if (progressive_) {
+            const uint64_t positionSeed = mixBits(pixelSeed(x, y) ^ 0x2545f4914f6cdd1dULL);
+            for (int k = begin; k < end; ++k) {
+                const Point2 u = SobolSampler(positionSeed, static_cast<uint32_t>(k)).get2D();
+                if (pixelBox_)
+                    f(x + u.x, y + u.y);
+                else
+                    f(x + 0.5 + filter_.sample(u.x), y + 0.5 + filter_.sample(u.y));
+            }
             return;
         }
         Rng rng(
@@ -71,7 +92,8 @@ class PixelSampler {
   private:
     int spp_, cols_ = 1, rows_ = 1;
     uint64_t seed_;
-    bool pixelBox_;  ///< The one-pixel box filter: positions stay in the pixel.
+    bool pixelBox_;     ///< The one-pixel box filter: positions stay in the pixel.
+    bool progressive_;  ///< Sobol positions, spread in every prefix (see above).
     FilterSampler filter_;
 };
 

@@ -269,6 +269,17 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, c
 }
 
 Vec3 WhittedIntegrator::li(const Ray& ray, const Hit* hit, PathContext& ctx) const {
+    if (ctx.passes && hit) [[unlikely]] {
+        // The first surface's: the course's shading has no chains for passes to follow.
+        const SurfaceInteraction si = scene_.primitives.interaction(ray, *hit);
+        const Material& m = scene_.materials[si.material];
+        Vec3 diffuse = m.diffuse;
+        if (m.texture != 0)
+            diffuse = scene_.texture(m.texture).eval(si.hasUv, si.u, si.v, si.p, m.diffuse);
+        ctx.passes->albedo = max(min(diffuse + m.specular, Vec3(1)), Vec3(0));
+        ctx.passes->normal = dot(si.n, ray.dir) > 0 ? -si.n : si.n;
+        ctx.passes->depth = length(si.p - ray.origin);
+    }
     return shade(ray, hit, 0, 1, ctx);
 }
 

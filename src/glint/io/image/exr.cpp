@@ -27,9 +27,6 @@ namespace {
 using exr_detail::MemoryInputFile;
 using exr_detail::StringOStream;
 
-/// Rows converted per batch when reading: bounds the float buffer whatever the image size.
-constexpr int kRowsPerBatch = 64;
-
 }  // namespace
 
 namespace exr_detail {
@@ -106,29 +103,56 @@ void checkAttributeSizes(std::string_view bytes) {
 
 }  // namespace exr_detail
 
-std::string encodeExr(const Film& film, double scale) {
+namespace {
+
+/// The layers of the render passes: each pass's channel names, in the order written.
+struct PassLayer {
+    const char* channels[3];
+    int count;
+};
+constexpr PassLayer kAlbedo{{"albedo.R", "albedo.G", "albedo.B"}, 3};
+constexpr PassLayer kNormal{{"normal.X", "normal.Y", "normal.Z"}, 3};
+constexpr PassLayer kDepth{{"depth.Z", nullptr, nullptr}, 1};
+constexpr PassLayer kVariance{{"variance.R", "variance.G", "variance.B"}, 3};
+
+}  // namespace
+
+std::string encodeExr(const Film& film, double scale, const RenderPasses* aovs,
+                      AovSelection which) {
     const int w = film.width(), h = film.height();
-    // Doubles beyond the float range become +-inf here (IEEE conversion), as in PFM output.
-    std::vector<float> rgb(static_cast<size_t>(w) * h * 3);
-    size_t i = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const Vec3& c = film.at(x, y);
-            rgb[i++] = static_cast<float>(scale * c.x);
-            rgb[i++] = static_cast<float>(scale * c.y);
-            rgb[i++] = static_cast<float>(scale * c.z);
-        }
+    const size_t n = static_cast<size_t>(w) * h;
+    if (aovs && !aovs->empty() && (aovs->width != w || aovs->height != h))
+        throw RenderError("EXR encoding failed: the passes are not the image's size");
+    if (!aovs || aovs->empty()) which = {};
+    // Channel planes, row by row: doubles beyond the float range become +-inf here (IEEE
+    // conversion), as in PFM output.
+    std::vector<std::pair<const char*, std::vector<float>>> planes;
+    auto plane = [&](const char* name, auto value) {
+        std::vector<float> v(n);
+        for (size_t i = 0; i < n; ++i) v[i] = static_cast<float>(value(i));
+        planes.emplace_back(name, std::move(v));
+    };
+    const char* rgb[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c)
+        plane(rgb[c], [&](size_t i) { return scale * film.at(int(i % w), int(i / w))[c]; });
+    auto layer = [&](const PassLayer& l, const std::vector<Vec3>& values, double k) {
+        for (int c = 0; c < l.count; ++c)
+            plane(l.channels[c], [&](size_t i) { return k * values[i][c]; });
+    };
+    if (which.albedo) layer(kAlbedo, aovs->albedo, 1);
+    if (which.normal) layer(kNormal, aovs->normal, 1);
+    if (which.depth) plane(kDepth.channels[0], [&](size_t i) { return aovs->depth[i]; });
+    if (which.variance) layer(kVariance, aovs->variance, scale * scale);
 
     std::string out;
     try {
         Imf::Header header(w, h);
         header.compression() = Imf::ZIP_COMPRESSION;
-        const char* names[3] = {"R", "G", "B"};
         Imf::FrameBuffer frame;
-        for (int c = 0; c < 3; ++c) {
-            header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
-            frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(rgb.data() + c),
-                                              3 * sizeof(float), 3 * sizeof(float) * w));
+        for (auto& [name, values] : planes) {
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(values.data()),
+                                          sizeof(float), sizeof(float) * w));
         }
         StringOStream stream(out);
         exr_detail::useAllThreads();
@@ -153,68 +177,128 @@ std::pair<long long, long long> exrImageSize(std::string_view bytes, const std::
     }
 }
 
-Film decodeExr(std::string_view bytes, const std::string& name) {
+namespace {
+
+/// The channels `names` of the file in `bytes` (full-size), each a plane of the data window,
+/// row by row; a name that is null or absent gives an empty plane. Checks the image's size
+/// against Glint's limits and the memory, for `planes` planes of doubles.
+std::vector<std::vector<float>> readChannels(std::string_view bytes, const std::string& name,
+                                             const std::vector<const char*>& names, int& width,
+                                             int& height) {
     auto fail = [&](const std::string& why) -> RenderError {
         return RenderError("cannot read image '" + name + "': " + why);
     };
+    MemoryInputFile input(bytes, name);
+    Imf::InputFile& file = input.file();
+    if (!file.isComplete()) throw fail("the file is incomplete (missing pixel data)");
+    const Imf::Header& header = file.header();
+    const Imath::Box2i window = header.dataWindow();
+    const long long w = static_cast<long long>(window.max.x) - window.min.x + 1;
+    const long long h = static_cast<long long>(window.max.y) - window.min.y + 1;
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels)
+        throw fail("the image size " + std::to_string(w) + "x" + std::to_string(h) +
+                   " is beyond Glint's limits");
+    const Imf::ChannelList& channels = header.channels();
+    size_t present = 0;
+    for (const char* n : names)
+        if (n && channels.findChannel(n)) ++present;
+    const double bytesNeeded =
+        static_cast<double>(w * h) * (sizeof(Vec3) + static_cast<double>(present) * 4.0);
+    if (size_t available = availableMemoryBytes();
+        available > 0 && bytesNeeded > static_cast<double>(available))
+        throw fail("a " + std::to_string(w) + "x" + std::to_string(h) + " image needs " +
+                   formatBytes(bytesNeeded) + " of memory, more than the " +
+                   formatBytes(static_cast<double>(available)) + " available");
+    for (const char* n : names)
+        if (const Imf::Channel* ch = n ? channels.findChannel(n) : nullptr;
+            ch && (ch->xSampling != 1 || ch->ySampling != 1))
+            throw fail(std::string("channel ") + n +
+                       " is subsampled; Glint reads full-size channels only");
+    width = static_cast<int>(w);
+    height = static_cast<int>(h);
+    std::vector<std::vector<float>> planes(names.size());
+    Imf::FrameBuffer frame;
+    for (size_t c = 0; c < names.size(); ++c) {
+        if (!names[c] || !channels.findChannel(names[c])) continue;
+        planes[c].resize(static_cast<size_t>(width) * height);
+        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, planes[c].data(),
+                                                Imath::V2i(window.min.x, window.min.y), width,
+                                                height, sizeof(float), sizeof(float) * width));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    return planes;
+}
+
+/// R, G and B, else Y (for all three); throws if neither is there.
+std::vector<const char*> colourChannels(std::string_view bytes, const std::string& name) {
+    MemoryInputFile input(bytes, name);
+    const Imf::ChannelList& channels = input.file().header().channels();
+    if (channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B"))
+        return {"R", "G", "B"};
+    if (channels.findChannel("Y")) return {"Y", nullptr, nullptr};
+    throw RenderError("cannot read image '" + name + "': no R, G, B or Y channels");
+}
+
+template <typename F>
+auto decoding(const std::string& name, F&& f) {
     try {
-        MemoryInputFile input(bytes, name);
-        Imf::InputFile& file = input.file();
-        if (!file.isComplete()) throw fail("the file is incomplete (missing pixel data)");
-        const Imf::Header& header = file.header();
-        const Imath::Box2i window = header.dataWindow();
-        const long long w = static_cast<long long>(window.max.x) - window.min.x + 1;
-        const long long h = static_cast<long long>(window.max.y) - window.min.y + 1;
-        if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxImagePixels)
-            throw fail("the image size " + std::to_string(w) + "x" + std::to_string(h) +
-                       " is beyond Glint's limits");
-        const double filmBytes = static_cast<double>(w * h) * sizeof(Vec3);
-        if (size_t available = availableMemoryBytes();
-            available > 0 && filmBytes > static_cast<double>(available))
-            throw fail("a " + std::to_string(w) + "x" + std::to_string(h) + " image needs " +
-                       formatBytes(filmBytes) + " of memory, more than the " +
-                       formatBytes(static_cast<double>(available)) + " available");
-
-        // R, G and B, else Y for all three.
-        const Imf::ChannelList& channels = header.channels();
-        std::vector<const char*> names;
-        if (channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B"))
-            names = {"R", "G", "B"};
-        else if (channels.findChannel("Y"))
-            names = {"Y"};
-        else
-            throw fail("no R, G, B or Y channels");
-        for (const char* n : names)
-            if (const Imf::Channel* ch = channels.findChannel(n);
-                ch->xSampling != 1 || ch->ySampling != 1)
-                throw fail(std::string("channel ") + n +
-                           " is subsampled; Glint reads full-size channels only");
-
-        const int width = static_cast<int>(w), height = static_cast<int>(h);
-        const size_t n = names.size();
-        Film film(width, height);
-        std::vector<float> rows(static_cast<size_t>(width) * n * kRowsPerBatch);
-        for (int y0 = 0; y0 < height; y0 += kRowsPerBatch) {
-            const int count = std::min(kRowsPerBatch, height - y0);
-            Imf::FrameBuffer frame;
-            for (size_t c = 0; c < n; ++c)
-                frame.insert(names[c],
-                             Imf::Slice::Make(Imf::FLOAT, rows.data() + c,
-                                              Imath::V2i(window.min.x, window.min.y + y0), width,
-                                              count, n * sizeof(float), n * sizeof(float) * width));
-            file.setFrameBuffer(frame);
-            file.readPixels(window.min.y + y0, window.min.y + y0 + count - 1);
-            const float* p = rows.data();
-            for (int y = y0; y < y0 + count; ++y)
-                for (int x = 0; x < width; ++x, p += n)
-                    film.at(x, y) = n == 3 ? Vec3(p[0], p[1], p[2]) : Vec3(p[0]);
-        }
-        return film;
+        return f();
     } catch (const RenderError&) {
         throw;
     } catch (const std::exception& e) {
-        throw fail(e.what());
+        throw RenderError("cannot read image '" + name + "': " + e.what());
     }
+}
+
+}  // namespace
+
+Film decodeExr(std::string_view bytes, const std::string& name) {
+    return decodeExrLayers(bytes, name).color;
+}
+
+ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name) {
+    return decoding(name, [&] {
+        std::vector<const char*> names = colourChannels(bytes, name);
+        for (const PassLayer* l : {&kAlbedo, &kNormal, &kDepth, &kVariance})
+            for (int c = 0; c < 3; ++c) names.push_back(c < l->count ? l->channels[c] : nullptr);
+        int w = 0, h = 0;
+        const auto planes = readChannels(bytes, name, names, w, h);
+        ExrLayers out;
+        out.color = Film(w, h);
+        const size_t n = static_cast<size_t>(w) * h;
+        const bool grey = planes[1].empty();
+        for (size_t i = 0; i < n; ++i)
+            out.color.at(int(i % w), int(i / w)) =
+                grey ? Vec3(planes[0][i]) : Vec3(planes[0][i], planes[1][i], planes[2][i]);
+        // A layer counts when all its channels are there.
+        auto has = [&](int layer) {
+            const int first = 3 + 3 * layer;
+            const int count = layer == 2 ? 1 : 3;
+            for (int c = 0; c < count; ++c)
+                if (planes[first + c].empty()) return false;
+            return true;
+        };
+        out.found = {has(0), has(1), has(2), has(3)};
+        if (!out.found.any()) return out;
+        RenderPasses& p = out.aovs;
+        p.width = w;
+        p.height = h;
+        auto fill = [&](int layer, std::vector<Vec3>& to) {
+            to.assign(n, Vec3(0));
+            if (!has(layer)) return;
+            const int f = 3 + 3 * layer;
+            for (size_t i = 0; i < n; ++i)
+                to[i] = Vec3(planes[f][i], planes[f + 1][i], planes[f + 2][i]);
+        };
+        fill(0, p.albedo);
+        fill(1, p.normal);
+        fill(3, p.variance);
+        p.depth.assign(n, 0.0);
+        if (has(2))
+            for (size_t i = 0; i < n; ++i) p.depth[i] = planes[9][i];
+        return out;
+    });
 }
 
 }  // namespace glint

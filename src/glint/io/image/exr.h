@@ -12,7 +12,23 @@ namespace glint {
 /// Encodes `film` in memory as a scanline OpenEXR file: channels R, G, B as 32-bit floats,
 /// ZIP compressed (lossless), row 0 at the top, every value multiplied by `scale` first.
 /// Values are kept as they are, negative ones too; beyond the float range they become +-inf.
-std::string encodeExr(const Film& film, double scale = 1);
+///
+/// With `aovs` (the film's size), the passes `which` selects are layers of the same file, named
+/// as Blender and Nuke show them: albedo.R/G/B, normal.X/Y/Z, depth.Z, variance.R/G/B (the
+/// variance times scale^2, so it stays the variance of the scaled colour).
+std::string encodeExr(const Film& film, double scale = 1, const RenderPasses* aovs = nullptr,
+                      AovSelection which = {});
+
+/// An OpenEXR image with the render passes it holds (empty ones are absent from the file).
+struct ExrLayers {
+    Film color;
+    RenderPasses aovs;   ///< Sized when any pass is there; a missing one is left empty.
+    AovSelection found;  ///< Which passes the file held.
+};
+
+/// Decodes the beauty image as decodeExr() does, and the layers encodeExr() writes where the
+/// file has them (each layer's channels all present, or it counts as absent). Throws RenderError.
+ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name);
 
 /// Decodes an OpenEXR file held in `bytes` (scanline or tiled, half, float or uint channels):
 /// R, G and B, or Y alone for a grey image. The data window becomes the film, its top-left

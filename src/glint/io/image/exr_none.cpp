@@ -15,7 +15,13 @@ namespace {
 
 }  // namespace
 
-std::string encodeExr(const Film&, double) { unavailable("cannot write EXR"); }
+std::string encodeExr(const Film&, double, const RenderPasses*, AovSelection) {
+    unavailable("cannot write EXR");
+}
+
+ExrLayers decodeExrLayers(std::string_view, const std::string& name) {
+    unavailable("cannot read '" + name + "'");
+}
 
 Film decodeExr(std::string_view, const std::string& name) {
     unavailable("cannot read '" + name + "'");

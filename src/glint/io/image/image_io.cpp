@@ -76,11 +76,14 @@ std::string encodePng(const Image8& img) {
     return out;
 }
 
-std::string encodeImage(const Film& film, ImageFormat format, const DisplayTransform& display) {
+std::string encodeImage(const Film& film, ImageFormat format, const DisplayTransform& display,
+                        const RenderPasses* aovs, AovSelection which) {
     const int w = film.width(), h = film.height();
     const double scale = display.scale();
     std::string out;
-    if (format == ImageFormat::Exr) return encodeExr(film, scale);
+    if (format == ImageFormat::Exr) return encodeExr(film, scale, aovs, which);
+    if (aovs && which.any())
+        throw RenderError("render passes (--aov) are layers of an OpenEXR file: write .exr");
     if (format == ImageFormat::Pfm) {
         // Little-endian floats (negative scale), rows from the bottom of the image up.
         out = header("PF", w, h, "-1.0");
@@ -107,12 +110,13 @@ std::string encodeImage(const Film& film, ImageFormat format, const DisplayTrans
     return encodePng(img);
 }
 
-void writeImage(const std::string& path, const Film& film, const DisplayTransform& display) {
+void writeImage(const std::string& path, const Film& film, const DisplayTransform& display,
+                const RenderPasses* aovs, AovSelection which) {
     std::optional<ImageFormat> format = imageFormatFor(path);
     if (!format)
         throw RenderError("cannot write '" + path + "': unknown image format (use " +
                           kImageExtensions + ")");
-    writeFileAtomically(path, encodeImage(film, *format, display));
+    writeFileAtomically(path, encodeImage(film, *format, display, aovs, which));
 }
 
 Image8 readImage8(const std::string& path, int channels) {
@@ -161,7 +165,9 @@ Film readPfm(const std::string& path) {
     return film;
 }
 
-Film readExr(const std::string& path) {
+namespace {
+
+std::string readExrBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw RenderError("cannot read image '" + path + "': cannot open file");
     std::string bytes;
@@ -170,7 +176,15 @@ Film readExr(const std::string& path) {
     in.seekg(0);
     if (!in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
         throw RenderError("cannot read image '" + path + "': read failed");
-    return decodeExr(bytes, path);
+    return bytes;
+}
+
+}  // namespace
+
+Film readExr(const std::string& path) { return decodeExr(readExrBytes(path), path); }
+
+ExrLayers readExrLayers(const std::string& path) {
+    return decodeExrLayers(readExrBytes(path), path);
 }
 
 }  // namespace glint
