@@ -8,13 +8,13 @@
 //       the same on a synthetic scene (a textured floor, spheres, a hard shadow, a sky) with
 //       heavy-tailed per-sample noise; also prints the raw error at 32x the samples.
 //
-// Keys: threads=N (2), runs=N (timing runs, the median is printed; 1), out=PATH|none, and the
-// parameters of denoise_detail::DenoiseTuning: r1 p1 k1 al1 n1 a1 d1 (first pass: radius, patch,
-// k, alpha, normal, albedo, depth weights), r2 p2 k2 al2 n2 a2 d2 (second; r2=0: one pass),
-// gvs (second guide's variance scale), vr (variance smoothing radius), ov (outlier variance ratio),
-// evs (estimated variance scale), af (albedo floor), fire=P (synthetic: the probability of a
-// firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1 to leave a buffer out.
-// relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
+// Keys: ref=PATH (another reference), threads=N (2), runs=N (timing runs, the median is printed;
+// 1), out=PATH|none, and the parameters of denoise_detail::DenoiseTuning: r1 p1 k1 al1 n1 a1 d1
+// (first pass: radius, patch, k, alpha, normal, albedo, depth weights), r2 p2 k2 al2 n2 a2 d2
+// (second; r2=0: one pass), gvs (second guide's variance scale), vr (variance smoothing radius), ov
+// (outlier variance ratio), evs (estimated variance scale), af (albedo floor), fire=P (synthetic:
+// the probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1 to
+// leave a buffer out. relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
 
 #include <algorithm>
 #include <chrono>
@@ -186,7 +186,8 @@ Buffers synthetic(int width, int height, int spp) {
     return b;
 }
 
-Buffers load(const std::string& dir, const std::string& name, const std::string& spp) {
+Buffers load(const std::string& dir, const std::string& name, const std::string& spp,
+             const std::string& reference) {
     Buffers b;
     const std::string base = dir + "/" + name + "_" + spp;
     Film color = readPfm(base + ".pfm");
@@ -200,7 +201,7 @@ Buffers load(const std::string& dir, const std::string& name, const std::string&
     b.normal = optional("normal");
     b.variance = optional("variance");
     for (const Vec3& d : optional("depth")) b.depth.push_back(d.x);
-    b.reference = pixels(readPfm(dir + "/" + name + "_ref.pfm"));
+    b.reference = pixels(readPfm(reference.empty() ? dir + "/" + name + "_ref.pfm" : reference));
     return b;
 }
 
@@ -255,7 +256,7 @@ int main(int argc, char** argv) {
             b = synthetic(std::atoi(argv[2]), std::atoi(argv[3]), std::atoi(argv[4]));
             out = "/tmp/denoise_synth_" + std::string(argv[4]) + ".pfm";
         } else {
-            b = load(argv[1], argv[2], argv[3]);
+            b = load(argv[1], argv[2], argv[3], keys.count("ref") ? keys["ref"] : "");
             out = std::string(argv[1]) + "/" + argv[2] + "_" + argv[3] + ".denoised.pfm";
         }
     } catch (const RenderError& e) {
