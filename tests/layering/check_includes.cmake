@@ -1,8 +1,8 @@
 # Checks that no file under src/glint includes upward: a file in one layer may include only its
 # own layer and the ones below, in this order (docs/design.md, "Layers"):
-#   math < core < geometry < accel < scene < render < io
+#   math < core < geometry < accel < scene < render < denoise < io
 # Run as: cmake -DSRC=<repo>/src/glint -P check_includes.cmake (CTest does, as layering.includes).
-set(layers math core geometry accel scene render io)
+set(layers math core geometry accel scene render denoise io)
 file(GLOB_RECURSE files RELATIVE ${SRC} ${SRC}/*.h ${SRC}/*.cpp ${SRC}/*.inl)
 set(problems "")
 foreach(f IN LISTS files)

@@ -1,0 +1,50 @@
+#pragma once
+/// Joint non-local means (Rousselle, Knaus and Zwicker 2012 and 2013): every pixel p becomes the
+/// weighted mean of the pixels q in a square window around it, each weighted by
+///   exp(-(max(0, d_colour(p, q)) + d_features(p, q)))
+/// where d_colour is the mean, over a small patch and the three channels, of the
+/// variance-cancelled, variance-normalised squared difference of a guide image
+///   ((g_p - g_q)^2 - alpha (v_p + min(v_p, v_q))) / (eps + k^2 (v_p + v_q)),
+/// and d_features the squared differences of normal, albedo and depth (the latter from the
+/// plane through p: the depth p's gradient predicts at q), each times its weight. Internal to
+/// denoise/.
+
+#include <array>
+
+#include "glint/core/parallel.h"
+#include "glint/denoise/plane.h"
+
+namespace glint::denoise_detail {
+
+/// The buffers that guide the weights. Colour planes need a border of at least `patch` pixels;
+/// a null feature plane is left out of the distance.
+struct NlMeansGuide {
+    std::array<const Plane*, 3> color{};     // the guide colour g
+    std::array<const Plane*, 3> variance{};  // the variance v of g
+    std::array<const Plane*, 3> normal{};
+    std::array<const Plane*, 3> albedo{};
+    const Plane* depth = nullptr;
+    const Plane* depthDx = nullptr;  // the depth's one-sided gradient (the smaller one), per pixel
+    const Plane* depthDy = nullptr;
+};
+
+/// The filter's parameters.
+struct NlMeansParams {
+    int radius = 8;             // the window: (2 radius + 1)^2 pixels
+    int patch = 1;              // the patch: (2 patch + 1)^2 pixels
+    float k = 0.45f;            // colour sensitivity: larger blurs more
+    float alpha = 1.0f;         // variance cancellation
+    float normalWeight = 0.0f;  // times |n_p - n_q|^2
+    float albedoWeight = 0.0f;  // times |a_p - a_q|^2
+    float depthWeight = 0.0f;   // times (depth residual / depth_p)^2
+};
+
+/// Filters `values` (three unpadded-or-padded planes of the guide's size) into `out`; with
+/// `outVariance`, also writes the variance of each result from the variances `valueVariance`
+/// of the values, as if they were independent. Deterministic for any pool.
+void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& values,
+             const NlMeansParams& params, std::array<Plane*, 3> out,
+             const std::array<const Plane*, 3>* valueVariance, std::array<Plane*, 3>* outVariance,
+             ThreadPool& pool);
+
+}  // namespace glint::denoise_detail
