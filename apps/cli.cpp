@@ -448,7 +448,7 @@ void addOptions(CLI::App& app, Options& opt) {
     app.add_option("--noise-threshold", opt.noiseThreshold,
                    "Adaptive sampling: stop sampling a pixel once its relative error is below "
                    "T, 0.0001 to 1 (Cycles' meaning), with --spp as the most and --time as the "
-                   "budget (default for models: 0.02, at most 1024 spp and 3 s)")
+                   "budget (default for models: 0.02, at most 1024 spp and 2.5 s)")
         ->group(clean)
         ->check(numberIn(1e-4, 1))
         ->type_name("T");

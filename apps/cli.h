@@ -24,7 +24,7 @@ constexpr int kGoOn = -1;  ///< From prepare(): no error, go on.
 /// this many seconds of rendering; and the most samples per pixel of an adaptive render when
 /// --spp does not say.
 constexpr double kModelNoiseThreshold = 0.02;
-constexpr double kModelSeconds = 3;
+constexpr double kModelSeconds = 2.5;
 constexpr int kAdaptiveMaxSpp = 1024;
 
 /// The command line, as parsed.

@@ -14,11 +14,13 @@
 
 #include "cli.h"
 #include "demo_scene.h"
+#include "denoise.h"
 #include "glint/core/atomic_file.h"
 #include "glint/core/error.h"
 #include "glint/core/input_log.h"
 #include "glint/core/parallel.h"
 #include "glint/core/system.h"
+#include "glint/denoise/film_denoise.h"
 #include "glint/io/image/exr_piece.h"
 #include "glint/io/image/image_io.h"
 #include "glint/render/adaptive.h"
@@ -118,12 +120,14 @@ int run(const Options& opt) {
     if (aovs.any() && !piece && glint::imageFormatFor(output) != glint::ImageFormat::Exr)
         return usageError("--aov writes the passes as layers of an OpenEXR file: '" + output +
                           "' is not an .exr file");
+    // The studio look only: the classic one (--integrator whitted) renders as it always did.
+    const bool studio = prepared.model && scene->integrator != "whitted";
     const bool modelDefaults =
-        prepared.model && !piece && opt.spp == 0 && opt.timeBudget == 0 && opt.noiseThreshold == 0;
+        studio && !piece && opt.spp == 0 && opt.timeBudget == 0 && opt.noiseThreshold == 0;
     const double threshold = modelDefaults ? kModelNoiseThreshold : opt.noiseThreshold;
     const double budget = modelDefaults ? kModelSeconds : opt.timeBudget;
     const int maxSpp = opt.spp > 0 ? opt.spp : kAdaptiveMaxSpp;
-    const bool denoise = false;  // DENOISE-WIRING
+    const bool denoise = !piece && (opt.denoise != 0 ? opt.denoise > 0 : studio);
     if (piece && (opt.noiseThreshold > 0 || opt.denoise > 0))
         return usageError(std::string(opt.denoise > 0 ? "--denoise" : "--noise-threshold") +
                           ": frame pieces hold a fixed number of samples, raw; denoise the "
@@ -166,6 +170,18 @@ int run(const Options& opt) {
         std::fprintf(stderr, "glint: %s: stopped early; no piece written (%d of %d tiles done)\n",
                      signalName(gSignal), result.tilesDone, result.tilesTotal);
         return 128 + gSignal;
+    }
+
+    double denoiseSeconds = 0;
+    if (denoise && result.complete) {
+        auto t = Clock::now();
+        result.film = glint::denoiseFilm(result.film, result.aovs, pool);
+        denoiseSeconds = secondsSince(t);
+        if (!opt.quiet)
+            std::fprintf(stderr, "glint: denoised in %.2f s%s\n", denoiseSeconds,
+                         studio && opt.denoise == 0
+                             ? " (a model's default; --no-denoise for the raw image)"
+                             : "");
     }
 
     // Write.
@@ -213,6 +229,7 @@ int run(const Options& opt) {
 int main(int argc, char** argv) {
     // `glint merge ...`: the one subcommand (a scene file named merge is ./merge).
     if (argc > 1 && std::string_view(argv[1]) == "merge") return mergeMain(argc - 1, argv + 1);
+    if (argc > 1 && std::string_view(argv[1]) == "denoise") return denoiseMain(argc - 1, argv + 1);
     CLI::App app{
         "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
         "\nWithout SCENE it renders a built-in demo scene to glint.png; given a model (.obj,"

@@ -1,6 +1,7 @@
 // The model mode's defaults (`glint model.obj`): a studio render (the path tracer, the studio
-// environment, a ground shadow, PBR Neutral and sRGB, 64 samples) that each option turns off or
-// changes; the classic look with --integrator whitted; scene files keep the course's output;
+// environment, a ground shadow, PBR Neutral and sRGB, adaptive sampling and the denoiser) that each
+// option turns off or changes; the classic look with --integrator whitted; scene files keep the
+// course's output;
 // --environment, --tonemap, --srgb/--no-srgb, --ground and --time as a user meets them.
 
 #include <gtest/gtest.h>
@@ -49,14 +50,19 @@ TEST(CliModelMode, IsAStudioRenderByDefault) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "showing it in the studio environment with a ground shadow"))
         << r.err;
-    // Every default, spelled out, gives the same bytes: the path tracer, 64 samples, PBR
-    // Neutral, sRGB, the studio environment and the ground shadow.
+    // Sampled until clean (or the time cap), then denoised (tests/cli/clean_images_test.cpp).
+    EXPECT_TRUE(contains(r.err, "glint: adaptive sampling (a model's default)")) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: denoised in ")) << r.err;
+    // Every other default, spelled out, gives the same bytes: the path tracer, PBR Neutral,
+    // sRGB, the studio environment and the ground shadow.
+    r = runGlint("-q flat.obj --size 24x18 --spp 64 --no-denoise -o fixed.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
     r = runGlint(
-        "-q flat.obj --size 24x18 --integrator path --spp 64 --tonemap neutral --srgb "
-        "--environment studio --ground shadow -o explicit.png",
+        "-q flat.obj --size 24x18 --integrator path --spp 64 --no-denoise --tonemap neutral "
+        "--srgb --environment studio --ground shadow -o explicit.png",
         dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(readBytes(dir + "/default.png"), readBytes(dir + "/explicit.png"));
+    EXPECT_EQ(readBytes(dir + "/fixed.png"), readBytes(dir + "/explicit.png"));
     // The ground in the corner is a light, neutral grey.
     Image8 img = readImage8(dir + "/default.png", 3);
     EXPECT_EQ(img.at(0, 17, 0), img.at(0, 17, 1));

@@ -1,0 +1,125 @@
+// Clean images from the command line (docs/denoising.md): render passes as EXR layers,
+// --denoise, glint denoise, adaptive sampling and the model mode's defaults.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli/cli_support.h"
+#include "glint/io/image/image_io.h"
+
+namespace glint::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A path-traced course scene: a diffuse sphere on a checkered floor under a sky.
+const char* kScene =
+    "size 40 30\nintegrator path\ncamera 0 1 4 0 0.5 0 0 1 0 45\nbackground 0.6 0.7 1\n"
+    "ambient 0 0 0\ndiffuse 0.8 0.8 0.8\nchecker 0.8 0.8 0.8 0.2 0.2 0.2 0.5\n"
+    "plane 0 0 0 0 1 0\ntexture none\ndiffuse 0.7 0.3 0.2\nsphere 0 0.6 0 0.6\n";
+
+std::string withScene(const std::string& name) {
+    const std::string dir = freshDir(name);
+    writeFile(dir + "/s.test", kScene);
+    return dir;
+}
+
+TEST(CliCleanImages, AovsAreLayersOfTheExrOutput) {
+    const std::string dir = withScene("clean-aov");
+    CommandResult r = runGlint("-q s.test --spp 4 --aov albedo,depth -o out.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const ExrLayers l = readExrLayers(dir + "/out.exr");
+    EXPECT_TRUE(l.found.albedo && l.found.depth);
+    EXPECT_FALSE(l.found.normal || l.found.variance);
+    // The sphere's red albedo in the middle of the image; the beauty is the same as without
+    // passes.
+    EXPECT_NEAR(l.aovs.albedo[l.aovs.index(20, 12)].x, 0.7, 1e-6);
+    r = runGlint("-q s.test --spp 4 -o plain.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Film plain = readExr(dir + "/plain.exr");
+    EXPECT_EQ(plain.at(20, 12), l.color.at(20, 12));
+    r = runGlint("-q s.test --spp 4 --aov all -o all.exr", dir);
+    EXPECT_TRUE(readExrLayers(dir + "/all.exr").found.variance);
+}
+
+TEST(CliCleanImages, AovsNeedAnExrFileAndKnownNames) {
+    const std::string dir = withScene("clean-aov-errors");
+    CommandResult r = runGlint("s.test --aov albedo -o out.png", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "--aov writes the passes as layers of an OpenEXR file")) << r.err;
+    r = runGlint("s.test --aov albedo,shadow -o out.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "unknown pass 'shadow'")) << r.err;
+}
+
+TEST(CliCleanImages, DenoiseSmoothsAndGlintDenoiseDoesTheSameToASavedRender) {
+    const std::string dir = withScene("clean-denoise");
+    CommandResult r = runGlint("-q s.test --spp 8 --aov all -o raw.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runGlint("-q s.test --spp 8 --denoise --aov all -o denoised.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runGlint("denoise -q raw.exr -o later.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Film raw = readExr(dir + "/raw.exr"), now = readExr(dir + "/denoised.exr"),
+               later = readExr(dir + "/later.exr");
+    // The same denoiser on the same buffers (the EXR's floats: within float rounding).
+    double differs = 0, change = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            differs = std::max(differs, std::abs(now.at(x, y).x - later.at(x, y).x));
+            change += std::abs(raw.at(x, y).x - now.at(x, y).x);
+        }
+    EXPECT_LT(differs, 1e-3);
+    EXPECT_GT(change, 0);  // it did something
+    // The passes come along into the denoised file.
+    EXPECT_TRUE(readExrLayers(dir + "/later.exr").found.albedo);
+    // A PNG too, and errors as usual.
+    r = runGlint("denoise -q raw.exr -o later.png --tonemap neutral --srgb", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    r = runGlint("denoise missing.exr -o x.png", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "glint denoise: error: cannot read image 'missing.exr'")) << r.err;
+    r = runGlint("denoise raw.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+}
+
+TEST(CliCleanImages, AdaptiveSamplingSaysWhatItDid) {
+    const std::string dir = withScene("clean-adaptive");
+    CommandResult r = runGlint("s.test --noise-threshold 0.05 --min-spp 8 --spp 64 -o a.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: adaptive sampling: ")) << r.err;
+    EXPECT_TRUE(contains(r.err, "below noise 0.05")) << r.err;
+    // The same command, the same bytes (no time budget: reproducible).
+    r = runGlint("-q s.test --noise-threshold 0.05 --min-spp 8 --spp 64 -o b.png -t 1", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readBytes(dir + "/a.png"), readBytes(dir + "/b.png"));
+    r = runGlint("s.test --noise-threshold 2", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    r = runGlint("s.test --noise-threshold 0.1 --part 0/2 -o p.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "frame pieces hold a fixed number of samples")) << r.err;
+}
+
+TEST(CliCleanImages, ModelsAreSampledUntilCleanAndDenoisedByDefault) {
+    const std::string dir = freshDir("clean-model");
+    fs::copy_file(std::string(GLINT_TEST_DATA_DIR) + "/meshes/flat.obj", dir + "/flat.obj");
+    CommandResult r = runGlint("flat.obj --size 24x18 -o m.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: adaptive sampling (a model's default): ")) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: denoised in ")) << r.err;
+    // A fixed sample count or --no-denoise turns each off.
+    r = runGlint("flat.obj --size 24x18 --spp 4 --no-denoise -o n.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(contains(r.err, "adaptive")) << r.err;
+    EXPECT_FALSE(contains(r.err, "denoised")) << r.err;
+    // Scenes are never denoised unless asked.
+    writeFile(dir + "/s.test", kScene);
+    r = runGlint("s.test --spp 4 -o s.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(contains(r.err, "denoised")) << r.err;
+}
+
+}  // namespace
+}  // namespace glint::test
