@@ -87,11 +87,11 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
         for (int x = 0; x < width; ++x) {
             const size_t i = static_cast<size_t>(y) * width + x;
             for (int c = 0; c < 3; ++c) {
+                // Divided by the albedo, but never by less than the floor: continuous in the
+                // albedo (a cut-off that divides 0.011 by itself and 0.009 by 1 puts neighbours
+                // 100 times apart, and the filter then carries the large ones over).
                 float m = 1.0f;
-                if (in.albedo) {
-                    const float a = finite(in.albedo[i][c]);
-                    if (a > tuning.albedoFloor) m = a;
-                }
+                if (in.albedo) m = std::max(finite(in.albedo[i][c]), tuning.albedoFloor);
                 modulation[c].at(x, y) = m;
                 irradiance[c].at(x, y) = finite(in.color[i][c]) / m;
                 if (in.variance)

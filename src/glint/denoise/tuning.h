@@ -10,8 +10,10 @@
 namespace glint::denoise_detail {
 
 struct DenoiseTuning {
-    /// Albedo below this (per channel) is not divided out: the colour is filtered as it is.
-    float albedoFloor = 0.01f;
+    /// The colour is divided by max(albedo, this) per channel, and multiplied back by the same:
+    /// continuous in the albedo. 0.1 measured best over the five benchmark scenes (0.01 with a
+    /// cut-off instead made the models' dark-albedo regions 10 to 40 times worse than raw).
+    float albedoFloor = 0.1f;
     /// Radius of the box filter that smooths the variance buffer (it is noisy itself).
     int varianceRadius = 2;
     /// Without a variance buffer: the estimate from neighbour differences times this.
