@@ -179,12 +179,19 @@ std::pair<long long, long long> exrImageSize(std::string_view bytes, const std::
 
 namespace {
 
-/// The channels `names` of the file in `bytes` (full-size), each a plane of the data window,
-/// row by row; a name that is null or absent gives an empty plane. Checks the image's size
-/// against Glint's limits and the memory, for `planes` planes of doubles.
-std::vector<std::vector<float>> readChannels(std::string_view bytes, const std::string& name,
-                                             const std::vector<const char*>& names, int& width,
-                                             int& height) {
+/// Rows converted per batch when reading: bounds the float buffer whatever the image size.
+constexpr int kRowsPerBatch = 64;
+
+/// Reads the channels `names` (a null or absent name is skipped) of the file in `bytes`,
+/// full-size, after checking the image's size against Glint's limits and the memory for
+/// `bytesPerPixel` of output (and `passBytesPerPixel` more when any name from the fourth on is
+/// there: the render passes): calls start(width, height, present) with which names are
+/// there, then batch(y0, rows, planes) for each band of at most kRowsPerBatch rows, planes[c]
+/// holding channel c's rows (row by row; empty for a channel not there).
+template <typename Start, typename Batch>
+void readChannels(std::string_view bytes, const std::string& name,
+                  const std::vector<const char*>& names, double bytesPerPixel,
+                  double passBytesPerPixel, Start&& start, Batch&& batch) {
     auto fail = [&](const std::string& why) -> RenderError {
         return RenderError("cannot read image '" + name + "': " + why);
     };
@@ -199,35 +206,41 @@ std::vector<std::vector<float>> readChannels(std::string_view bytes, const std::
         throw fail("the image size " + std::to_string(w) + "x" + std::to_string(h) +
                    " is beyond Glint's limits");
     const Imf::ChannelList& channels = header.channels();
-    size_t present = 0;
-    for (const char* n : names)
-        if (n && channels.findChannel(n)) ++present;
+    std::vector<bool> present(names.size());
+    for (size_t c = 0; c < names.size(); ++c) {
+        const Imf::Channel* ch = names[c] ? channels.findChannel(names[c]) : nullptr;
+        if (ch && (ch->xSampling != 1 || ch->ySampling != 1))
+            throw fail(std::string("channel ") + names[c] +
+                       " is subsampled; Glint reads full-size channels only");
+        present[c] = ch != nullptr;
+    }
+    bool passes = false;
+    for (size_t c = 3; c < names.size(); ++c) passes = passes || present[c];
     const double bytesNeeded =
-        static_cast<double>(w * h) * (sizeof(Vec3) + static_cast<double>(present) * 4.0);
+        static_cast<double>(w * h) * (bytesPerPixel + (passes ? passBytesPerPixel : 0));
     if (size_t available = availableMemoryBytes();
         available > 0 && bytesNeeded > static_cast<double>(available))
         throw fail("a " + std::to_string(w) + "x" + std::to_string(h) + " image needs " +
                    formatBytes(bytesNeeded) + " of memory, more than the " +
                    formatBytes(static_cast<double>(available)) + " available");
-    for (const char* n : names)
-        if (const Imf::Channel* ch = n ? channels.findChannel(n) : nullptr;
-            ch && (ch->xSampling != 1 || ch->ySampling != 1))
-            throw fail(std::string("channel ") + n +
-                       " is subsampled; Glint reads full-size channels only");
-    width = static_cast<int>(w);
-    height = static_cast<int>(h);
+    const int width = static_cast<int>(w), height = static_cast<int>(h);
+    start(width, height, present);
     std::vector<std::vector<float>> planes(names.size());
-    Imf::FrameBuffer frame;
-    for (size_t c = 0; c < names.size(); ++c) {
-        if (!names[c] || !channels.findChannel(names[c])) continue;
-        planes[c].resize(static_cast<size_t>(width) * height);
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, planes[c].data(),
-                                                Imath::V2i(window.min.x, window.min.y), width,
-                                                height, sizeof(float), sizeof(float) * width));
+    for (size_t c = 0; c < names.size(); ++c)
+        if (present[c]) planes[c].resize(static_cast<size_t>(width) * kRowsPerBatch);
+    for (int y0 = 0; y0 < height; y0 += kRowsPerBatch) {
+        const int count = std::min(kRowsPerBatch, height - y0);
+        Imf::FrameBuffer frame;
+        for (size_t c = 0; c < names.size(); ++c)
+            if (present[c])
+                frame.insert(names[c],
+                             Imf::Slice::Make(Imf::FLOAT, planes[c].data(),
+                                              Imath::V2i(window.min.x, window.min.y + y0), width,
+                                              count, sizeof(float), sizeof(float) * width));
+        file.setFrameBuffer(frame);
+        file.readPixels(window.min.y + y0, window.min.y + y0 + count - 1);
+        batch(y0, count, planes);
     }
-    file.setFrameBuffer(frame);
-    file.readPixels(window.min.y, window.max.y);
-    return planes;
 }
 
 /// R, G and B, else Y (for all three); throws if neither is there.
@@ -262,41 +275,51 @@ ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name) {
         std::vector<const char*> names = colourChannels(bytes, name);
         for (const PassLayer* l : {&kAlbedo, &kNormal, &kDepth, &kVariance})
             for (int c = 0; c < 3; ++c) names.push_back(c < l->count ? l->channels[c] : nullptr);
-        int w = 0, h = 0;
-        const auto planes = readChannels(bytes, name, names, w, h);
         ExrLayers out;
-        out.color = Film(w, h);
-        const size_t n = static_cast<size_t>(w) * h;
-        const bool grey = planes[1].empty();
-        for (size_t i = 0; i < n; ++i)
-            out.color.at(int(i % w), int(i / w)) =
-                grey ? Vec3(planes[0][i]) : Vec3(planes[0][i], planes[1][i], planes[2][i]);
-        // A layer counts when all its channels are there.
-        auto has = [&](int layer) {
-            const int first = 3 + 3 * layer;
-            const int count = layer == 2 ? 1 : 3;
-            for (int c = 0; c < count; ++c)
-                if (planes[first + c].empty()) return false;
-            return true;
-        };
-        out.found = {has(0), has(1), has(2), has(3)};
-        if (!out.found.any()) return out;
         RenderPasses& p = out.aovs;
-        p.width = w;
-        p.height = h;
-        auto fill = [&](int layer, std::vector<Vec3>& to) {
-            to.assign(n, Vec3(0));
-            if (!has(layer)) return;
-            const int f = 3 + 3 * layer;
-            for (size_t i = 0; i < n; ++i)
-                to[i] = Vec3(planes[f][i], planes[f + 1][i], planes[f + 2][i]);
+        int width = 0;
+        // A layer counts when all its channels are there: albedo, normal, depth, variance.
+        auto layerOf = [](size_t channel) { return (static_cast<int>(channel) - 3) / 3; };
+        bool has[4] = {true, true, true, true};
+        auto start = [&](int w, int h, const std::vector<bool>& present) {
+            width = w;
+            out.color = Film(w, h);
+            for (size_t c = 3; c < names.size(); ++c)
+                if (names[c] && !present[c]) has[layerOf(c)] = false;
+            out.found = {has[0], has[1], has[2], has[3]};
+            if (!out.found.any()) return;
+            const size_t n = static_cast<size_t>(w) * h;
+            p.width = w;
+            p.height = h;
+            p.albedo.assign(n, Vec3(0));
+            p.normal.assign(n, Vec3(0));
+            p.variance.assign(n, Vec3(0));
+            p.depth.assign(n, 0.0);
         };
-        fill(0, p.albedo);
-        fill(1, p.normal);
-        fill(3, p.variance);
-        p.depth.assign(n, 0.0);
-        if (has(2))
-            for (size_t i = 0; i < n; ++i) p.depth[i] = planes[9][i];
+        auto batch = [&](int y0, int rows, const std::vector<std::vector<float>>& planes) {
+            const bool grey = planes[1].empty();
+            const size_t count = static_cast<size_t>(width) * rows;
+            const size_t first = static_cast<size_t>(y0) * width;
+            for (size_t k = 0; k < count; ++k) {
+                const int x = static_cast<int>(k % width), y = y0 + static_cast<int>(k / width);
+                out.color.at(x, y) =
+                    grey ? Vec3(planes[0][k]) : Vec3(planes[0][k], planes[1][k], planes[2][k]);
+            }
+            auto fill = [&](int layer, std::vector<Vec3>& to) {
+                if (!has[layer]) return;
+                const size_t f = 3 + 3 * static_cast<size_t>(layer);
+                for (size_t k = 0; k < count; ++k)
+                    to[first + k] = Vec3(planes[f][k], planes[f + 1][k], planes[f + 2][k]);
+            };
+            if (!out.found.any()) return;
+            fill(0, p.albedo);
+            fill(1, p.normal);
+            fill(3, p.variance);
+            if (has[2])
+                for (size_t k = 0; k < count; ++k) p.depth[first + k] = planes[9][k];
+        };
+        // The film, and the passes' 80 bytes a pixel where the file has them.
+        readChannels(bytes, name, names, sizeof(Vec3), 80, start, batch);
         return out;
     });
 }
