@@ -128,6 +128,10 @@ int run(const Options& opt) {
     const double budget = modelDefaults ? kModelSeconds : opt.timeBudget;
     const int maxSpp = opt.spp > 0 ? opt.spp : kAdaptiveMaxSpp;
     const bool denoise = !piece && (opt.denoise != 0 ? opt.denoise > 0 : studio);
+    if (piece && aovs.any())
+        return usageError(
+            "--aov: frame pieces do not carry render passes yet; render the whole frame with "
+            "--aov, or merge the pieces and denoise without passes");
     if (piece && (opt.noiseThreshold > 0 || opt.denoise > 0))
         return usageError(std::string(opt.denoise > 0 ? "--denoise" : "--noise-threshold") +
                           ": frame pieces hold a fixed number of samples, raw; denoise the "

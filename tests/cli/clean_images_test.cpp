@@ -52,6 +52,9 @@ TEST(CliCleanImages, AovsNeedAnExrFileAndKnownNames) {
     r = runGlint("s.test --aov albedo,shadow -o out.exr", dir);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_TRUE(contains(r.err, "unknown pass 'shadow'")) << r.err;
+    r = runGlint("s.test --aov all --part 0/2 -o p.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "frame pieces do not carry render passes yet")) << r.err;
 }
 
 TEST(CliCleanImages, DenoiseSmoothsAndGlintDenoiseDoesTheSameToASavedRender) {
