@@ -16,12 +16,7 @@
 
 namespace {
 
-glint::Film filmOf(int w, int h, const std::vector<glint::Vec3>& v) {
-    glint::Film f(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) f.at(x, y) = v[static_cast<size_t>(y) * w + x];
-    return f;
-}
+glint::Film filmOf(int w, int h, const std::vector<glint::Vec3>& v) { return {w, h, v}; }
 
 }  // namespace
 

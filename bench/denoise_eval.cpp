@@ -42,13 +42,6 @@ struct Buffers {
     std::vector<double> depth;
 };
 
-std::vector<Vec3> pixels(const Film& f) {
-    std::vector<Vec3> v(static_cast<size_t>(f.width()) * f.height());
-    for (int y = 0; y < f.height(); ++y)
-        for (int x = 0; x < f.width(); ++x) v[static_cast<size_t>(y) * f.width() + x] = f.at(x, y);
-    return v;
-}
-
 double relMse(const std::vector<Vec3>& x, const std::vector<Vec3>& ref) {
     double sum = 0;
     for (size_t i = 0; i < x.size(); ++i)
@@ -192,16 +185,16 @@ Buffers load(const std::string& dir, const std::string& name, const std::string&
     const std::string base = dir + "/" + name + "_" + spp;
     Film color = readPfm(base + ".pfm");
     b.width = color.width(), b.height = color.height();
-    b.color = pixels(color);
+    b.color = color.pixels();
     auto optional = [&](const std::string& what) {
         const std::string path = base + "." + what + ".pfm";
-        return std::filesystem::exists(path) ? pixels(readPfm(path)) : std::vector<Vec3>{};
+        return std::filesystem::exists(path) ? readPfm(path).pixels() : std::vector<Vec3>{};
     };
     b.albedo = optional("albedo");
     b.normal = optional("normal");
     b.variance = optional("variance");
     for (const Vec3& d : optional("depth")) b.depth.push_back(d.x);
-    b.reference = pixels(readPfm(reference.empty() ? dir + "/" + name + "_ref.pfm" : reference));
+    b.reference = readPfm(reference.empty() ? dir + "/" + name + "_ref.pfm" : reference).pixels();
     return b;
 }
 
@@ -293,11 +286,7 @@ int main(int argc, char** argv) {
                 meanOf(result) / meanOf(b.color), meanOf(result) / meanOf(b.reference),
                 seconds[seconds.size() / 2], pool.threads());
     if (out != "none") {
-        Film f(b.width, b.height);
-        for (int y = 0; y < b.height; ++y)
-            for (int x = 0; x < b.width; ++x)
-                f.at(x, y) = result[static_cast<size_t>(y) * b.width + x];
-        writeImage(out, f);
+        writeImage(out, Film(b.width, b.height, result));
     }
     if (keys.count("png")) {  // noisy | denoised | reference, side by side, for the eye
         Film f(3 * b.width, b.height);

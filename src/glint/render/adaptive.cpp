@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "glint/render/integrator.h"
+#include "glint/render/progressive.h"
 
 namespace glint {
 
@@ -30,10 +31,8 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
     const int minSpp =
         std::clamp(adaptive.minSpp > 0 ? adaptive.minSpp : kDefaultMinSpp, 1, maxSpp);
 
-    // The film: the scene's size, or the crop's with cropFilm (as render() makes it).
-    const bool cropped = options.cropFilm && !options.crop.empty();
-    const int width = cropped ? std::max(options.crop.x1 - options.crop.x0, 0) : scene.width;
-    const int height = cropped ? std::max(options.crop.y1 - options.crop.y0, 0) : scene.height;
+    const FilmLayout layout = filmLayout(scene, options);
+    const int width = layout.width, height = layout.height;
     FilmSums sums(width, height);
     sums.keepPasses();  // the squares, for the error; the other passes come along
     std::vector<uint8_t> active(static_cast<size_t>(width) * height, 1);
@@ -59,12 +58,8 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
         const double before = elapsed();
         if (options.onProgress)
             o.onProgress = [&](const RenderProgress& p) {
-                RenderProgress q = p;
-                q.seconds = before + p.seconds;
-                double share = (done + roundSpp * p.fraction()) / maxSpp;
-                if (adaptive.seconds > 0) share = std::max(share, q.seconds / adaptive.seconds);
-                q.overall = std::clamp(share, 0.0, 1.0);
-                options.onProgress(q);
+                options.onProgress(withinJob(p, before, (done + roundSpp * p.fraction()) / maxSpp,
+                                             adaptive.seconds));
             };
         RenderResult r = render(scene, o);
         result.rays += r.rays;
@@ -125,13 +120,8 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
                 pixelError(sums.sum(x, y), sums.passes(x, y).squares, n) < adaptive.threshold;
         }
     if (options.keepSums) {
+        if (!options.aovs) sums.dropPasses();  // kept for the error alone
         result.sums = std::move(sums);
-        if (!options.aovs)
-            result.sums = [&] {  // passes only where asked for
-                FilmSums plain(width, height);
-                plain.add(result.sums);
-                return plain;
-            }();
     }
     result.samplesPerPixel = most;
     result.meanSamplesPerPixel = rendered > 0 ? total / rendered : 0;

@@ -35,14 +35,8 @@ void resolvePassesAt(const Vec3& sum, double n, const PassSums& p, RenderPasses&
 }
 
 RenderPasses FilmSums::resolvePasses() const {
-    RenderPasses out;
-    if (passes_.empty()) return out;
-    out.width = width_;
-    out.height = height_;
-    out.albedo.resize(size());
-    out.normal.resize(size());
-    out.variance.resize(size());
-    out.depth.resize(size());
+    if (passes_.empty()) return {};
+    RenderPasses out(width_, height_);
     for (size_t i = 0; i < size(); ++i) resolvePassesAt(sums_[i], weights_[i], passes_[i], out, i);
     return out;
 }

@@ -2,6 +2,7 @@
 /// Images: the float film the renderer writes, and 8-bit images for output and comparison.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "glint/math/vec3.h"
@@ -15,11 +16,16 @@ class Film {
     Film() = default;
     Film(int width, int height)
         : width_(width), height_(height), pixels_(static_cast<size_t>(width) * height) {}
+    /// A film holding `pixels`, row by row (width * height of them).
+    Film(int width, int height, std::vector<Vec3> pixels)
+        : width_(width), height_(height), pixels_(std::move(pixels)) {}
 
     int width() const { return width_; }
     int height() const { return height_; }
     Vec3& at(int x, int y) { return pixels_[static_cast<size_t>(y) * width_ + x]; }
     const Vec3& at(int x, int y) const { return pixels_[static_cast<size_t>(y) * width_ + x]; }
+    /// Every pixel, row by row from the top.
+    const std::vector<Vec3>& pixels() const { return pixels_; }
 
   private:
     int width_ = 0, height_ = 0;
@@ -52,8 +58,21 @@ struct RenderPasses {
     std::vector<Vec3> albedo, normal, variance;
     std::vector<double> depth;
 
+    RenderPasses() = default;
+    /// Every pass of width x height pixels, all zero.
+    RenderPasses(int w, int h)
+        : width(w),
+          height(h),
+          albedo(size(w, h)),
+          normal(size(w, h)),
+          variance(size(w, h)),
+          depth(size(w, h)) {}
+
     bool empty() const { return albedo.empty(); }
     size_t index(int x, int y) const { return static_cast<size_t>(y) * width + x; }
+
+  private:
+    static size_t size(int w, int h) { return static_cast<size_t>(w) * static_cast<size_t>(h); }
 };
 
 /// Which render passes to write beside the beauty image (`--aov albedo,normal,depth,variance`).
@@ -116,6 +135,8 @@ class FilmSums {
     bool hasPasses() const { return !passes_.empty(); }
     /// Keeps them from now on (all zero).
     void keepPasses() { passes_.assign(size(), PassSums{}); }
+    /// Keeps them no more.
+    void dropPasses() { passes_ = {}; }
     PassSums& passes(int x, int y) { return passes_[index(x, y)]; }
     const PassSums& passes(int x, int y) const { return passes_[index(x, y)]; }
 

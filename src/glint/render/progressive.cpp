@@ -8,6 +8,16 @@
 
 namespace glint {
 
+RenderProgress withinJob(const RenderProgress& p, double before, double samplesShare,
+                         double budgetSeconds) {
+    RenderProgress q = p;
+    q.seconds = before + p.seconds;
+    const double share =
+        budgetSeconds > 0 ? std::max(samplesShare, q.seconds / budgetSeconds) : samplesShare;
+    q.overall = std::clamp(share, 0.0, 1.0);
+    return q;
+}
+
 uint64_t passSeed(uint64_t seed, int pass) {
     if (pass == 0) return seed;
     return mixBits(seed ^ mixBits(0xd1b54a32d192ed03ULL * static_cast<uint64_t>(pass)));
@@ -36,11 +46,8 @@ RenderResult renderForTime(const Scene& scene, const RenderOptions& options,
         const double before = elapsed();
         if (options.onProgress)
             o.onProgress = [&](const RenderProgress& p) {
-                RenderProgress q = p;
-                q.seconds = before + p.seconds;
-                double samples = (spp + passSpp * p.fraction()) / maxSpp;
-                q.overall = std::clamp(std::max(q.seconds / budget.seconds, samples), 0.0, 1.0);
-                options.onProgress(q);
+                options.onProgress(
+                    withinJob(p, before, (spp + passSpp * p.fraction()) / maxSpp, budget.seconds));
             };
         RenderResult r = render(scene, o);
         result.rays += r.rays;

@@ -23,6 +23,13 @@ struct TimeBudget {
 /// Samples per pixel of the first pass, and the most a later pass takes.
 inline constexpr int kFirstPassSpp = 4, kMaxPassSpp = 64;
 
+/// Progress `p` of one render within a longer job (the passes here, adaptive.h's rounds) whose
+/// render began `before` seconds into the job: its seconds counted from the job's start, and
+/// RenderProgress::overall the larger of `samplesShare` (of the job's samples) and the time
+/// over `budgetSeconds` (0: no budget), in [0, 1].
+RenderProgress withinJob(const RenderProgress& p, double before, double samplesShare,
+                         double budgetSeconds);
+
 /// The seed of pass `pass` of a render seeded `seed`: `seed` itself for pass 0.
 uint64_t passSeed(uint64_t seed, int pass);
 

@@ -17,6 +17,20 @@ namespace {
 constexpr double kReportSeconds = 0.1;  // progress about ten times a second
 }  // namespace
 
+FilmLayout filmLayout(const Scene& scene, const RenderOptions& options) {
+    FilmLayout l;
+    PixelBounds crop =
+        options.crop.empty() ? PixelBounds{0, scene.width, 0, scene.height} : options.crop;
+    l.crop = {std::max(crop.x0, 0), std::min(crop.x1, scene.width), std::max(crop.y0, 0),
+              std::min(crop.y1, scene.height)};
+    const bool cropped = options.cropFilm && !options.crop.empty();
+    l.ox = cropped ? l.crop.x0 : 0;
+    l.oy = cropped ? l.crop.y0 : 0;
+    l.width = cropped ? std::max(l.crop.x1 - l.crop.x0, 0) : scene.width;
+    l.height = cropped ? std::max(l.crop.y1 - l.crop.y0, 0) : scene.height;
+    return l;
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options) {
     using Clock = std::chrono::steady_clock;
     auto start = Clock::now();
@@ -40,15 +54,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     // The tiles of the part asked for: the image's tile grid, rows of it picked by `part`,
     // each tile clipped to the crop.
     const int tile = std::max(1, options.tileSize);
-    PixelBounds crop =
-        options.crop.empty() ? PixelBounds{0, scene.width, 0, scene.height} : options.crop;
-    crop = {std::max(crop.x0, 0), std::min(crop.x1, scene.width), std::max(crop.y0, 0),
-            std::min(crop.y1, scene.height)};
-    // The film's pixel (0, 0) is the image's (ox, oy): the crop's corner with cropFilm.
-    const bool cropped = options.cropFilm && !options.crop.empty();
-    const int ox = cropped ? crop.x0 : 0, oy = cropped ? crop.y0 : 0;
-    const int filmWidth = cropped ? std::max(crop.x1 - crop.x0, 0) : scene.width;
-    const int filmHeight = cropped ? std::max(crop.y1 - crop.y0, 0) : scene.height;
+    const FilmLayout layout = filmLayout(scene, options);
+    const PixelBounds crop = layout.crop;
+    const int ox = layout.ox, oy = layout.oy;
+    const int filmWidth = layout.width, filmHeight = layout.height;
     // Or the caller's film, of that size, reused across calls (the web page's).
     if (options.film &&
         (options.film->width() != filmWidth || options.film->height() != filmHeight))
@@ -66,14 +75,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     if (options.keepSums) result.sums = FilmSums(filmWidth, filmHeight);
     const bool passes = options.aovs || (accumulate && accumulate->hasPasses());
     if (options.aovs && !accumulate) {
-        RenderPasses& p = result.aovs;
-        p.width = filmWidth;
-        p.height = filmHeight;
-        const size_t n = static_cast<size_t>(filmWidth) * filmHeight;
-        p.albedo.assign(n, Vec3(0));
-        p.normal.assign(n, Vec3(0));
-        p.variance.assign(n, Vec3(0));
-        p.depth.assign(n, 0.0);
+        result.aovs = RenderPasses(filmWidth, filmHeight);
         if (options.keepSums) result.sums.keepPasses();
     }
     const int parts = std::max(options.parts, 1);

@@ -83,7 +83,7 @@ struct RenderOptions {
 
 struct RenderResult {
     Film film;
-    FilmSums sums;  ///< With RenderOptions::keepSums: the sums and weights behind `film`.
+    FilmSums sums;      ///< With RenderOptions::keepSums: the sums and weights behind `film`.
     RenderPasses aovs;  ///< With RenderOptions::aovs: the film's render passes.
     RayCounts rays;
     double seconds = 0;
@@ -99,6 +99,16 @@ struct RenderResult {
     /// finished) but has fewer samples than there was time for.
     bool stoppedEarly = false;
 };
+
+/// Where render() puts what it renders: the pixels asked for (options.crop clipped to the
+/// image; the whole image without a crop), and the film they go into, of the image's size or,
+/// with cropFilm, of the crop's, its pixel (0, 0) the image's (ox, oy).
+struct FilmLayout {
+    PixelBounds crop;
+    int ox = 0, oy = 0;
+    int width = 0, height = 0;
+};
+FilmLayout filmLayout(const Scene& scene, const RenderOptions& options);
 
 /// Renders `scene` (prepared, with a camera) at its width and height with the integrator it
 /// names (Scene::integrator). Throws RenderError if there is no such integrator.

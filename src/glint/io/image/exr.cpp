@@ -134,7 +134,7 @@ std::string encodeExr(const Film& film, double scale, const RenderPasses* aovs,
     };
     const char* rgb[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c)
-        plane(rgb[c], [&](size_t i) { return scale * film.at(int(i % w), int(i / w))[c]; });
+        plane(rgb[c], [&](size_t i) { return scale * film.pixels()[i][c]; });
     auto layer = [&](const PassLayer& l, const std::vector<Vec3>& values, double k) {
         for (int c = 0; c < l.count; ++c)
             plane(l.channels[c], [&](size_t i) { return k * values[i][c]; });
@@ -287,14 +287,7 @@ ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name) {
             for (size_t c = 3; c < names.size(); ++c)
                 if (names[c] && !present[c]) has[layerOf(c)] = false;
             out.found = {has[0], has[1], has[2], has[3]};
-            if (!out.found.any()) return;
-            const size_t n = static_cast<size_t>(w) * h;
-            p.width = w;
-            p.height = h;
-            p.albedo.assign(n, Vec3(0));
-            p.normal.assign(n, Vec3(0));
-            p.variance.assign(n, Vec3(0));
-            p.depth.assign(n, 0.0);
+            if (out.found.any()) p = RenderPasses(w, h);
         };
         auto batch = [&](int y0, int rows, const std::vector<std::vector<float>>& planes) {
             const bool grey = planes[1].empty();
