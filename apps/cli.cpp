@@ -144,6 +144,30 @@ CLI::Validator numberIn(double lo, double hi) {
         "", "");
 }
 
+DisplayTransform DisplayOptions::over(DisplayTransform base) const {
+    if (exposure) base.exposure = *exposure;
+    if (srgb != 0) base.srgb = srgb > 0;
+    if (!toneMap.empty()) base.toneMap = *toneMapNamed(toneMap);
+    return base;
+}
+
+void addDisplayOptions(CLI::App& app, DisplayOptions& d, const std::string& unchanged) {
+    app.add_option_function<double>(
+           "--exposure", [&d](double ev) { d.exposure = ev; },
+           "Multiply radiance by 2^EV before writing, -64 to 64 (default: " + unchanged + ")")
+        ->check(numberIn(-64, 64))
+        ->type_name("EV");
+    app.add_flag_callback(
+        "--srgb", [&d] { d.srgb = 1; },
+        "Encode 8-bit outputs with the sRGB curve (default: " + unchanged + ")");
+    app.add_flag_callback(
+        "--no-srgb", [&d] { d.srgb = -1; }, "Encode 8-bit outputs with the course's floor(255 c)");
+    app.add_option("--tonemap", d.toneMap,
+                   "neutral or clamp, for 8-bit outputs (default: " + unchanged + ")")
+        ->check(CLI::IsMember({"neutral", "clamp"}))
+        ->type_name("NAME");
+}
+
 int usageError(const std::string& message) {
     std::fprintf(stderr, "glint: error: %s\nRun 'glint --help' for usage.\n", message.c_str());
     return kExitUsage;

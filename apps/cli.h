@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "glint/accel/bvh.h"
@@ -81,6 +82,20 @@ struct Prepared {
 /// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not
 /// built yet. Prints warnings and errors; returns kGoOn, or the exit code to end with.
 int prepare(const Options& opt, Prepared& out);
+
+/// How glint merge and glint denoise show their image, as their options change it.
+struct DisplayOptions {
+    std::optional<double> exposure;  ///< --exposure EV
+    int srgb = 0;                    ///< --srgb 1, --no-srgb -1, 0 not given
+    std::string toneMap;             ///< --tonemap NAME; empty: not given
+
+    /// `base` with what was given in its place.
+    DisplayTransform over(DisplayTransform base) const;
+};
+
+/// Registers --exposure, --srgb, --no-srgb and --tonemap on `app`; `unchanged` says what an
+/// option not given leaves ("the pieces'").
+void addDisplayOptions(CLI::App& app, DisplayOptions& d, const std::string& unchanged);
 
 int usageError(const std::string& message);
 /// Option validators with plain messages: an integer, or a finite number, within [lo, hi].

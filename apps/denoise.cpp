@@ -10,7 +10,6 @@
 #include "glint/core/parallel.h"
 #include "glint/denoise/film_denoise.h"
 #include "glint/io/image/image_io.h"
-#include "glint/render/tonemap.h"
 
 namespace glint::cli {
 
@@ -25,9 +24,9 @@ int denoiseMain(int argc, char** argv) {
         return std::string("glint denoise: error: ") + e.what() +
                "\nRun 'glint denoise --help' for usage.\n";
     });
-    std::string input, output, toneMap;
-    int threads = 0, srgb = 0;
-    double exposure = 0;
+    std::string input, output;
+    int threads = 0;
+    DisplayOptions shown;
     bool quiet = false;
     app.add_option("INPUT", input, "The render (.exr), with its passes as layers")
         ->required()
@@ -39,14 +38,7 @@ int denoiseMain(int argc, char** argv) {
     app.add_option("-t,--threads", threads, "Threads, 1 to 4096 (default: all hardware threads)")
         ->check(integerIn(1, 4096))
         ->type_name("N");
-    app.add_option("--exposure", exposure, "Multiply radiance by 2^EV before writing, -64 to 64")
-        ->check(numberIn(-64, 64))
-        ->type_name("EV");
-    app.add_flag_callback(
-        "--srgb", [&] { srgb = 1; }, "Encode 8-bit outputs with the sRGB curve");
-    app.add_option("--tonemap", toneMap, "neutral or clamp, for 8-bit outputs (default clamp)")
-        ->check(CLI::IsMember({"neutral", "clamp"}))
-        ->type_name("NAME");
+    addDisplayOptions(app, shown, "off");
     app.add_flag("-q,--quiet", quiet, "No messages; errors only");
     app.set_help_flag("-h,--help", "Print this help and exit");
     try {
@@ -83,9 +75,7 @@ int denoiseMain(int argc, char** argv) {
         if (!in.found.depth) aovs.depth.clear();
         ThreadPool pool(threads);
         const Film out = denoiseFilm(in.color, aovs, pool);
-        DisplayTransform display{exposure, srgb > 0,
-                                 toneMap.empty() ? ToneMap::Clamp : *toneMapNamed(toneMap)};
-        writeImage(output, out, display, &in.aovs,
+        writeImage(output, out, shown.over({}), &in.aovs,
                    *format == ImageFormat::Exr ? in.found : AovSelection{});
         if (!quiet)
             std::fprintf(stderr, "glint denoise: wrote %s (%dx%d, %.2f s)\n", output.c_str(),

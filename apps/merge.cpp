@@ -43,10 +43,7 @@ int mergeMain(int argc, char** argv) {
     });
     std::vector<std::string> pieces;
     std::string output;
-    double exposure = 0;
-    bool exposureGiven = false;
-    int srgb = 0;
-    std::string toneMap;
+    DisplayOptions shown;
     bool quiet = false;
     app.add_option("PIECE", pieces, "Piece files (.exr) that glint wrote")
         ->required()
@@ -54,24 +51,7 @@ int mergeMain(int argc, char** argv) {
     app.add_option("-o,--output", output, "Image file to write; .png, .ppm, .pfm or .exr")
         ->required()
         ->type_name("FILE");
-    app.add_option_function<double>(
-           "--exposure",
-           [&](double ev) {
-               exposure = ev;
-               exposureGiven = true;
-           },
-           "Multiply radiance by 2^EV before writing, -64 to 64 (default: the pieces')")
-        ->check(numberIn(-64, 64))
-        ->type_name("EV");
-    app.add_flag_callback(
-        "--srgb", [&] { srgb = 1; },
-        "Encode 8-bit outputs with the sRGB curve (default: as the pieces were rendered)");
-    app.add_flag_callback(
-        "--no-srgb", [&] { srgb = -1; }, "Encode 8-bit outputs with the course's floor(255 c)");
-    app.add_option("--tonemap", toneMap,
-                   "neutral or clamp, for 8-bit outputs (default: as the pieces were rendered)")
-        ->check(CLI::IsMember({"neutral", "clamp"}))
-        ->type_name("NAME");
+    addDisplayOptions(app, shown, "as the pieces were rendered");
     app.add_flag("-q,--quiet", quiet, "No messages; warnings and errors only");
     app.set_help_flag("-h,--help", "Print this help and exit");
     try {
@@ -96,11 +76,8 @@ int mergeMain(int argc, char** argv) {
 
     // As the pieces were meant to be shown (the scene's display and their command line), unless
     // told otherwise here.
-    DisplayTransform display = merged.info.display;
-    if (exposureGiven) display.exposure = exposure;
-    if (srgb != 0) display.srgb = srgb > 0;
-    if (!toneMap.empty()) display.toneMap = *toneMapNamed(toneMap);
-    if (isFloatFormat(*format) && (srgb > 0 || !toneMap.empty()))
+    const DisplayTransform display = shown.over(merged.info.display);
+    if (isFloatFormat(*format) && (shown.srgb > 0 || !shown.toneMap.empty()))
         std::fprintf(stderr,
                      "glint merge: warning: --srgb and --tonemap apply to 8-bit outputs (.png, "
                      ".ppm) only; '%s' is written linear\n",
