@@ -28,6 +28,7 @@
 
 #include "glint/core/error.h"
 #include "glint/denoise/denoise.h"
+#include "glint/denoise/metrics.h"
 #include "glint/denoise/tuning.h"
 #include "glint/io/image/image_io.h"
 #include "glint/math/rng.h"
@@ -41,22 +42,6 @@ struct Buffers {
     std::vector<Vec3> color, albedo, normal, variance, reference, reference32;
     std::vector<double> depth;
 };
-
-double relMse(const std::vector<Vec3>& x, const std::vector<Vec3>& ref) {
-    double sum = 0;
-    for (size_t i = 0; i < x.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const double e = x[i][c] - ref[i][c];
-            sum += e * e / (ref[i][c] * ref[i][c] + 0.01);
-        }
-    return sum / (3.0 * static_cast<double>(x.size()));
-}
-
-double meanOf(const std::vector<Vec3>& x) {
-    double s = 0;
-    for (const Vec3& v : x) s += v.x + v.y + v.z;
-    return s / (3.0 * static_cast<double>(x.size()));
-}
 
 // ---- The synthetic scene: ray cast once per pixel centre.
 struct Sphere {
@@ -283,7 +268,7 @@ int main(int argc, char** argv) {
         std::printf("  (raw at 32x spp %.5f: goal gain %.1fx)", relMse(b.reference32, b.reference),
                     raw / relMse(b.reference32, b.reference));
     std::printf("  mean/input %.4f  mean/ref %.4f  time %.3f s (%d threads)\n",
-                meanOf(result) / meanOf(b.color), meanOf(result) / meanOf(b.reference),
+                meanValue(result) / meanValue(b.color), meanValue(result) / meanValue(b.reference),
                 seconds[seconds.size() / 2], pool.threads());
     if (out != "none") {
         writeImage(out, Film(b.width, b.height, result));

@@ -9,11 +9,20 @@
 #include <set>
 #include <string>
 
+#include "glint/io/course/course_loader.h"
 #include "glint/math/vec3.h"
 #include "glint/scene/material.h"
 #include "glint/scene/scene.h"
 
 namespace glint::test {
+
+/// The course-format scene `text`, parsed and prepared (warnings dropped).
+inline std::unique_ptr<Scene> preparedScene(const std::string& text) {
+    std::vector<Diagnostic> warnings;
+    auto scene = parseCourseScene(text, "test.test", warnings);
+    scene->prepare();
+    return scene;
+}
 
 /// Expects every component of `a` within `eps` of `b`.
 inline void expectNear(const Vec3& a, const Vec3& b, double eps = 1e-12) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "glint/denoise/metrics.h"
 #include "glint/math/rng.h"
 
 namespace glint {
@@ -63,22 +64,6 @@ void addNoise(Scene& s, int spp, uint64_t seed = 7) {
     }
 }
 
-double relMse(const std::vector<Vec3>& x, const std::vector<Vec3>& ref) {
-    double sum = 0;
-    for (size_t i = 0; i < x.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            const double e = x[i][c] - ref[i][c];
-            sum += e * e / (ref[i][c] * ref[i][c] + 0.01);
-        }
-    return sum / (3.0 * static_cast<double>(x.size()));
-}
-
-double mean(const std::vector<Vec3>& x) {
-    double s = 0;
-    for (const Vec3& v : x) s += v.x + v.y + v.z;
-    return s / (3.0 * static_cast<double>(x.size()));
-}
-
 bool allFinite(const std::vector<Vec3>& x) {
     for (const Vec3& v : x)
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) return false;
@@ -118,7 +103,7 @@ TEST(Denoise, PreservesTheMeanOfAConstantImage) {
     for (Vec3& t : s.truth) t = Vec3(0.5, 0.3, 0.1);
     addNoise(s, 16);
     const std::vector<Vec3> out = denoise(s.input());
-    EXPECT_NEAR(mean(out) / mean(s.color), 1.0, 0.01);
+    EXPECT_NEAR(meanValue(out) / meanValue(s.color), 1.0, 0.01);
     EXPECT_LT(relMse(out, s.truth), relMse(s.color, s.truth) / 10);
 }
 
@@ -129,7 +114,7 @@ TEST(Denoise, PreservesTheMeanOfANoisyGradient) {
             s.truth[s.index(x, y)] = Vec3(0.05 + 2.0 * x / s.width, 0.5, 0.1 + 0.01 * y);
     addNoise(s, 8);
     const std::vector<Vec3> out = denoise(s.input());
-    EXPECT_NEAR(mean(out) / mean(s.color), 1.0, 0.01);
+    EXPECT_NEAR(meanValue(out) / meanValue(s.color), 1.0, 0.01);
     // And locally: away from the image's sides (where every neighbour lies up or down the slope:
     // a known weakness of a weighted mean), each column's mean stays within 6% of the truth's.
     for (int x = 8; x < s.width - 8; x += 8) {
@@ -235,7 +220,8 @@ TEST(Denoise, WorksWithoutFeatureOrVarianceBuffers) {
         // the texture for noise and the filter blurs it (docs/denoise.md). Only no NaN there.
         if (leaveOut == 4) continue;
         EXPECT_LT(relMse(out, s.truth), before / 3) << "without buffer " << leaveOut;
-        EXPECT_NEAR(mean(out) / mean(s.color), 1.0, 0.02) << "without buffer " << leaveOut;
+        EXPECT_NEAR(meanValue(out) / meanValue(s.color), 1.0, 0.02)
+            << "without buffer " << leaveOut;
     }
 }
 

@@ -10,17 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "glint/io/course/course_loader.h"
+#include "unit/test_support.h"
 
 namespace glint {
 namespace {
-
-std::unique_ptr<Scene> sceneOf(const std::string& text) {
-    std::vector<Diagnostic> warnings;
-    auto scene = parseCourseScene(text, "adaptive.test", warnings);
-    scene->prepare();
-    return scene;
-}
 
 /// The left half of the image sees a diffuse wall lit by the sky (noisy), the right half the
 /// sky itself (exact).
@@ -50,7 +43,7 @@ RenderOptions threads(int n) {
 }
 
 TEST(Adaptive, ExactPixelsStopAtTheMinimumAndNoisyOnesGoOn) {
-    auto scene = sceneOf(kHalfNoisy);
+    auto scene = test::preparedScene(kHalfNoisy);
     RenderOptions o = threads(1);
     o.keepSums = true;
     const RenderResult r = renderAdaptive(*scene, o, {0.05, 8, 256, 0});
@@ -70,7 +63,7 @@ TEST(Adaptive, ExactPixelsStopAtTheMinimumAndNoisyOnesGoOn) {
 }
 
 TEST(Adaptive, NoPixelStopsBeforeItsMinimumAndNoneGoesPastTheCap) {
-    auto scene = sceneOf(kHalfNoisy);
+    auto scene = test::preparedScene(kHalfNoisy);
     RenderOptions o = threads(2);
     o.keepSums = true;
     const RenderResult r = renderAdaptive(*scene, o, {1e-4, 24, 40, 0});
@@ -85,7 +78,7 @@ TEST(Adaptive, NoPixelStopsBeforeItsMinimumAndNoneGoesPastTheCap) {
 }
 
 TEST(Adaptive, TheImageDoesNotDependOnThreadsOrCrops) {
-    auto scene = sceneOf(kHalfNoisy);
+    auto scene = test::preparedScene(kHalfNoisy);
     const AdaptiveOptions a{0.03, 8, 128, 0};
     RenderOptions one = threads(1), three = threads(3);
     three.tileSize = 4;
@@ -106,7 +99,7 @@ TEST(Adaptive, TheImageDoesNotDependOnThreadsOrCrops) {
 TEST(Adaptive, TheMeanConvergesToTheFixedSampleRendersMean) {
     // Unbiased wherever pixels stop: the image mean matches a fixed 256-spp render's within the
     // noise of both.
-    auto scene = sceneOf(kHalfNoisy);
+    auto scene = test::preparedScene(kHalfNoisy);
     RenderOptions fixed = threads(2);
     fixed.spp = 256;
     const RenderResult ref = render(*scene, fixed);

@@ -8,20 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "glint/io/course/course_loader.h"
 #include "glint/io/image/exr.h"
 #include "glint/render/progressive.h"
 #include "glint/render/renderer.h"
+#include "unit/test_support.h"
 
 namespace glint {
 namespace {
-
-std::unique_ptr<Scene> sceneOf(const std::string& text) {
-    std::vector<Diagnostic> warnings;
-    auto scene = parseCourseScene(text, "aov.test", warnings);
-    scene->prepare();
-    return scene;
-}
 
 /// A camera looking down -z at a wall 4 units away (z = -4) that fills the left half of the
 /// image: diffuse (0.5, 0.25, 0.1) under a sky light; the right half sees the sky.
@@ -44,7 +37,7 @@ RenderOptions passesAt(int spp, int threads = 1) {
 }
 
 TEST(Aovs, ThePathTracerReportsTheFirstSurfacesAlbedoNormalAndDepth) {
-    auto scene = sceneOf(kWall);
+    auto scene = test::preparedScene(kWall);
     RenderResult r = render(*scene, passesAt(4));
     const RenderPasses& p = r.aovs;
     ASSERT_EQ(p.width, 16);
@@ -70,7 +63,7 @@ TEST(Aovs, ThePathTracerReportsTheFirstSurfacesAlbedoNormalAndDepth) {
 TEST(Aovs, PassesFollowPerfectMirrorsToWhatTheyShow) {
     // A mirror (specular 0.8, no diffuse) fills the view; it reflects the diffuse wall behind
     // the camera.
-    auto scene = sceneOf(
+    auto scene = test::preparedScene(
         "size 8 8\nintegrator path\ncamera 0 0 0  0 0 -1  0 1 0  40\nbackground 1 1 1\n"
         "ambient 0 0 0\nspecular 0.8 0.8 0.8\n"
         "vertex -100 -100 -4\nvertex 100 -100 -4\nvertex 100 100 -4\nvertex -100 100 -4\n"
@@ -110,7 +103,7 @@ TEST(Aovs, VarianceIsTheSampleVarianceOfThePixelsMean) {
 }
 
 TEST(Aovs, PassesDoNotChangeTheImageAndDoNotDependOnThreads) {
-    auto scene = sceneOf(kWall);
+    auto scene = test::preparedScene(kWall);
     RenderOptions plain;
     plain.spp = 8;
     plain.threads = 1;
@@ -128,7 +121,7 @@ TEST(Aovs, PassesDoNotChangeTheImageAndDoNotDependOnThreads) {
 }
 
 TEST(Aovs, SampleRangePiecesAddUpToTheWholeRendersPasses) {
-    auto scene = sceneOf(kWall);
+    auto scene = test::preparedScene(kWall);
     RenderOptions whole = passesAt(8);
     whole.keepSums = true;
     const RenderResult all = render(*scene, whole);
@@ -149,7 +142,7 @@ TEST(Aovs, SampleRangePiecesAddUpToTheWholeRendersPasses) {
 }
 
 TEST(Aovs, RendersToATimeBudgetHavePassesToo) {
-    auto scene = sceneOf(kWall);
+    auto scene = test::preparedScene(kWall);
     RenderOptions o = passesAt(1);
     const RenderResult r = renderForTime(*scene, o, {10, 8});
     ASSERT_EQ(r.samplesPerPixel, 8);
@@ -159,7 +152,7 @@ TEST(Aovs, RendersToATimeBudgetHavePassesToo) {
 }
 
 TEST(Aovs, PassesRoundTripThroughOpenExrLayers) {
-    auto scene = sceneOf(kWall);
+    auto scene = test::preparedScene(kWall);
     const RenderResult r = render(*scene, passesAt(4));
     const ExrLayers back =
         decodeExrLayers(encodeExr(r.film, 2, &r.aovs, AovSelection::all()), "mem.exr");
