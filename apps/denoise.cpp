@@ -68,13 +68,8 @@ int denoiseMain(int argc, char** argv) {
                          "glint denoise: warning: %s has no variance pass: the noise is "
                          "estimated from the image\n",
                          input.c_str());
-        RenderPasses aovs = in.aovs;
-        if (!in.found.variance) aovs.variance.clear();
-        if (!in.found.normal) aovs.normal.clear();
-        if (!in.found.albedo) aovs.albedo.clear();
-        if (!in.found.depth) aovs.depth.clear();
         ThreadPool pool(threads);
-        const Film out = denoiseFilm(in.color, aovs, pool);
+        const Film out = denoiseFilm(in.color, in.aovs, pool);
         writeImage(output, out, shown.over({}), &in.aovs,
                    *format == ImageFormat::Exr ? in.found : AovSelection{});
         if (!quiet)

@@ -68,7 +68,10 @@ struct RenderPasses {
           variance(size(w, h)),
           depth(size(w, h)) {}
 
-    bool empty() const { return albedo.empty(); }
+    /// No pass at all (a file may hold some passes and not others: those are empty).
+    bool empty() const {
+        return albedo.empty() && normal.empty() && variance.empty() && depth.empty();
+    }
     size_t index(int x, int y) const { return static_cast<size_t>(y) * width + x; }
 
   private:

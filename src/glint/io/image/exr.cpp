@@ -287,7 +287,13 @@ ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name) {
             for (size_t c = 3; c < names.size(); ++c)
                 if (names[c] && !present[c]) has[layerOf(c)] = false;
             out.found = {has[0], has[1], has[2], has[3]};
-            if (out.found.any()) p = RenderPasses(w, h);
+            const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
+            p.width = w;
+            p.height = h;
+            if (has[0]) p.albedo.resize(n);
+            if (has[1]) p.normal.resize(n);
+            if (has[2]) p.depth.resize(n);
+            if (has[3]) p.variance.resize(n);
         };
         auto batch = [&](int y0, int rows, const std::vector<std::vector<float>>& planes) {
             const bool grey = planes[1].empty();
