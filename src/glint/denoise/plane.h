@@ -4,10 +4,11 @@
 /// its weights use. Internal to denoise/.
 
 #include <algorithm>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include "glint/math/bits.h"
 
 namespace glint::denoise_detail {
 
@@ -66,7 +67,7 @@ inline float expNeg(float x) {
     p = p * f + 2.4022651e-1f;
     p = p * f + 6.9314718e-1f;
     p = p * f + 1.0f;
-    return p * std::bit_cast<float>(static_cast<int32_t>((i + 127) << 23));
+    return p * bitCast<float>(static_cast<int32_t>((i + 127) << 23));
 }
 
 }  // namespace glint::denoise_detail
