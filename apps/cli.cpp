@@ -53,32 +53,20 @@ std::shared_ptr<const EnvironmentMap> environmentNamed(const std::string& name) 
 
 }  // namespace
 
-std::string parseAovList(const std::string& text, AovSelection& out) {
-    AovSelection sel;
-    if (text == "all") {
-        out = AovSelection::all();
-        return {};
-    }
-    size_t at = 0;
-    for (;;) {
-        const size_t comma = text.find(',', at);
-        const std::string name = text.substr(at, comma == std::string::npos ? comma : comma - at);
-        if (name == "albedo")
-            sel.albedo = true;
-        else if (name == "normal")
-            sel.normal = true;
-        else if (name == "depth")
-            sel.depth = true;
-        else if (name == "variance")
-            sel.variance = true;
-        else
-            return "unknown pass '" + name +
-                   "' (Glint has albedo, normal, depth, variance; or all)";
-        if (comma == std::string::npos) break;
-        at = comma + 1;
-    }
-    out = sel;
-    return {};
+SamplingPlan planSampling(const Options& opt, const Prepared& prepared, bool piece,
+                          bool timeBudgets) {
+    const Scene& scene = *prepared.scene;
+    SamplingPlan p;
+    p.spp = opt.spp > 0 ? opt.spp : (scene.spp > 0 ? scene.spp : 1);
+    p.maxSpp = opt.spp > 0 ? opt.spp : kAdaptiveMaxSpp;
+    // The studio look only: the classic one (--integrator whitted) renders as it always did.
+    p.studio = prepared.model && scene.integrator != "whitted";
+    p.modelDefaults =
+        p.studio && !piece && opt.spp == 0 && opt.timeBudget == 0 && opt.noiseThreshold == 0;
+    p.threshold = p.modelDefaults ? kModelNoiseThreshold : opt.noiseThreshold;
+    p.seconds = p.modelDefaults && timeBudgets ? kModelSeconds : opt.timeBudget;
+    p.denoise = !piece && (opt.denoise != 0 ? opt.denoise > 0 : p.studio);
+    return p;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t) {

@@ -61,10 +61,6 @@ struct Options {
     int minSpp = 0;             ///< --min-spp; 0: the default.
 };
 
-/// The passes `text` names ("albedo,normal,depth,variance" in any order, or "all"), or what is
-/// wrong with it.
-std::string parseAovList(const std::string& text, AovSelection& out);
-
 /// Registers every option and flag of `glint` on `app`, storing into `opt`.
 void addOptions(CLI::App& app, Options& opt);
 
@@ -82,6 +78,24 @@ struct Prepared {
 /// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not
 /// built yet. Prints warnings and errors; returns kGoOn, or the exit code to end with.
 int prepare(const Options& opt, Prepared& out);
+
+/// How a render samples and cleans its image, from the options and the scene (docs/denoising.md).
+struct SamplingPlan {
+    int spp = 1;           ///< A fixed count: --spp, else the scene's `spp`, else 1.
+    int maxSpp = 1;        ///< Adaptive sampling's cap: --spp, else kAdaptiveMaxSpp.
+    double threshold = 0;  ///< > 0: adaptive sampling to this noise.
+    double seconds = 0;    ///< A time budget (--time, or a model's default); 0: none.
+    bool denoise = false;
+    bool studio = false;         ///< A model in the studio look (not --integrator whitted).
+    bool modelDefaults = false;  ///< Neither samples, time nor threshold given for a model.
+};
+
+/// The plan `opt` asks for of the prepared scene. A model given no sample count, time or
+/// threshold is sampled until clean (kModelNoiseThreshold), within kModelSeconds when
+/// `timeBudgets` (glint; glint-mpi renders without), and denoised; scenes are not denoised
+/// unless asked. Frame pieces (`piece`) take exactly what they are told, and are never denoised.
+SamplingPlan planSampling(const Options& opt, const Prepared& prepared, bool piece,
+                          bool timeBudgets);
 
 /// How glint merge and glint denoise show their image, as their options change it.
 struct DisplayOptions {

@@ -72,13 +72,17 @@ int run(const Options& opt) {
     Prepared prepared;
     if (int code = prepare(opt, prepared); code != kGoOn) return code;
     glint::PieceInfo pieceInfo;
-    const int spp = opt.spp > 0 ? opt.spp : (prepared.scene->spp > 0 ? prepared.scene->spp : 1);
+    // Passes, denoising and adaptive sampling (docs/denoising.md).
+    const SamplingPlan plan = planSampling(opt, prepared, piece, true);
+    const int spp = plan.spp, maxSpp = plan.maxSpp;
     if (piece) {
         // The demo is read from no file: its text is hashed instead.
         uint64_t hash =
             prepared.demo ? glint::hashBytes(glint::kDemoScene, inputs->hash()) : inputs->hash();
         inputs.reset();
-        if (int code = describePiece(opt, prepared, spp, hash, pieceInfo); code != kGoOn)
+        if (int code = describePiece(opt, prepared, opt.noiseThreshold > 0 ? maxSpp : spp, hash,
+                                     pieceInfo);
+            code != kGoOn)
             return code;
     }
     std::unique_ptr<glint::Scene>& scene = prepared.scene;
@@ -113,29 +117,13 @@ int run(const Options& opt) {
         return kExitSceneError;
     }
 
-    // Passes, denoising and adaptive sampling (docs/denoising.md). A model, given no sample
-    // count, time or threshold, samples until clean or kModelSeconds, then is denoised.
     glint::AovSelection aovs;
     if (!opt.aov.empty()) parseAovList(opt.aov, aovs);  // checked with the options
     if (aovs.any() && !piece && glint::imageFormatFor(output) != glint::ImageFormat::Exr)
         return usageError("--aov writes the passes as layers of an OpenEXR file: '" + output +
                           "' is not an .exr file");
-    // The studio look only: the classic one (--integrator whitted) renders as it always did.
-    const bool studio = prepared.model && scene->integrator != "whitted";
-    const bool modelDefaults =
-        studio && !piece && opt.spp == 0 && opt.timeBudget == 0 && opt.noiseThreshold == 0;
-    const double threshold = modelDefaults ? kModelNoiseThreshold : opt.noiseThreshold;
-    const double budget = modelDefaults ? kModelSeconds : opt.timeBudget;
-    const int maxSpp = opt.spp > 0 ? opt.spp : kAdaptiveMaxSpp;
-    const bool denoise = !piece && (opt.denoise != 0 ? opt.denoise > 0 : studio);
-    if (piece && aovs.any())
-        return usageError(
-            "--aov: frame pieces do not carry render passes yet; render the whole frame with "
-            "--aov, or merge the pieces and denoise without passes");
-    if (piece && (opt.noiseThreshold > 0 || opt.denoise > 0))
-        return usageError(std::string(opt.denoise > 0 ? "--denoise" : "--noise-threshold") +
-                          ": frame pieces hold a fixed number of samples, raw; denoise the "
-                          "merged image (glint denoise MERGED.exr -o OUT)");
+    const double threshold = plan.threshold, budget = plan.seconds;
+    const bool denoise = plan.denoise, studio = plan.studio, modelDefaults = plan.modelDefaults;
 
     // Build, then render, on one pool of threads (-t 1: the calling thread alone).
     glint::ThreadPool pool(opt.threads);

@@ -23,6 +23,7 @@
 #include "glint/core/atomic_file.h"
 #include "glint/core/error.h"
 #include "glint/core/parallel.h"
+#include "glint/denoise/film_denoise.h"
 #include "glint/io/image/image_io.h"
 #include "glint/render/integrator.h"
 #include "mpi_load.h"
@@ -95,8 +96,22 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
         }
         work.buildSeconds = secondsSince(t0);
     }
-    work.options.spp = opt.spp > 0 ? opt.spp : (scene.spp > 0 ? scene.spp : 1);
+    // As glint samples and cleans, without a time budget (docs/scale-out.md, "MPI"): adaptive
+    // tiles make the whole frame's pixels, and their passes are gathered for --aov and the
+    // denoiser, which runs on rank 0.
+    const SamplingPlan plan = planSampling(opt, prepared, false, false);
+    glint::AovSelection aovs;
+    if (!opt.aov.empty()) parseAovList(opt.aov, aovs);  // checked with the options
+    if (aovs.any() && glint::imageFormatFor(prepared.output) != glint::ImageFormat::Exr) {
+        if (root)
+            usageError("--aov writes the passes as layers of an OpenEXR file: '" +
+                       prepared.output + "' is not an .exr file");
+        return root ? kExitUsage : 0;
+    }
+    work.options.spp = plan.threshold > 0 ? plan.maxSpp : plan.spp;
     work.options.seed = opt.seed;
+    work.options.aovs = aovs.any() || plan.denoise;
+    if (plan.threshold > 0) work.adaptive = {plan.threshold, opt.minSpp, plan.maxSpp, 0};
     // One integrator for every tile of this rank (making one scans the scene's lights).
     std::unique_ptr<glint::Integrator> integrator;
     if (work.buildError.empty()) {
@@ -117,8 +132,10 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
     // Rank 0: render with every rank, then write once every rank has come through.
     glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
     glint::Film film(scene.width, scene.height);
+    glint::RenderPasses passes;
+    if (work.options.aovs) passes = glint::RenderPasses(scene.width, scene.height);
     glint::mpi::FrameFigures figures;
-    int code = glint::mpi::coordinate(scene, work, job, gInterrupt, film, figures,
+    int code = glint::mpi::coordinate(scene, work, job, gInterrupt, film, passes, figures,
                                       opt.quiet ? nullptr : &progress);
     MPI_Barrier(MPI_COMM_WORLD);
     if (code == glint::mpi::kInterrupted) {
@@ -128,9 +145,15 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
     }
     if (code != kGoOn) return code;
 
+    if (plan.denoise) {
+        auto t = Clock::now();
+        glint::ThreadPool pool(job.threads);
+        film = glint::denoiseFilm(film, passes, pool);
+        if (!opt.quiet) std::fprintf(stderr, "glint-mpi: denoised in %.2f s\n", secondsSince(t));
+    }
     auto t1 = Clock::now();
     try {
-        glint::writeImage(prepared.output, film, prepared.display);
+        glint::writeImage(prepared.output, film, prepared.display, &passes, aovs);
     } catch (const glint::RenderError& e) {
         std::fprintf(stderr, "glint-mpi: error: %s\n", e.what());
         return kExitSceneError;
@@ -191,13 +214,6 @@ int parse(int argc, char** argv, bool root, Options& opt, MpiOptions& mpiOpt) {
     if (opt.timeBudget > 0) {
         if (root)
             usageError("--time is not available in glint-mpi (every rank renders a fixed --spp)");
-        return kExitUsage;
-    }
-    if (opt.noiseThreshold > 0 || !opt.aov.empty() || opt.denoise > 0) {
-        if (root)
-            usageError(
-                "--noise-threshold, --aov and --denoise are not available in glint-mpi yet (render "
-                "pieces with glint --part and merge them, then glint denoise)");
         return kExitUsage;
     }
     if (!root) mpiOpt.timings.clear();

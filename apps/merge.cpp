@@ -82,8 +82,17 @@ int mergeMain(int argc, char** argv) {
                      "glint merge: warning: --srgb and --tonemap apply to 8-bit outputs (.png, "
                      ".ppm) only; '%s' is written linear\n",
                      output.c_str());
+    // The passes the pieces carry go beside the image, as the single render writes them.
+    AovSelection aovs = merged.info.aovs;
+    if (aovs.any() && *format != ImageFormat::Exr)
+        std::fprintf(stderr,
+                     "glint merge: warning: the pieces carry render passes (%s), which only an "
+                     ".exr output holds; '%s' gets the image alone\n",
+                     aovListText(aovs).c_str(), output.c_str());
+    if (*format != ImageFormat::Exr) aovs = {};
     try {
-        writeImage(output, merged.sums.resolve(), display);
+        const RenderPasses passes = merged.sums.resolvePasses();
+        writeImage(output, merged.sums.resolve(), display, &passes, aovs);
     } catch (const RenderError& e) {
         std::fprintf(stderr, "glint merge: error: %s\n", e.what());
         return kExitSceneError;

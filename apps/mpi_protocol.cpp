@@ -12,17 +12,6 @@ std::vector<PixelBounds> frameTiles(int width, int height, int side) {
     return tiles;
 }
 
-std::vector<double> tilePixels(const Film& film) {
-    std::vector<double> p;
-    p.reserve(static_cast<size_t>(film.width()) * film.height() * 3);
-    for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x) {
-            const Vec3& c = film.at(x, y);
-            p.insert(p.end(), {c.x, c.y, c.z});
-        }
-    return p;
-}
-
 std::string processorName() {
     char name[MPI_MAX_PROCESSOR_NAME] = {};
     int length = 0;

@@ -87,10 +87,6 @@ inline std::vector<char> packToRoot(const ToRootHeader& h, const void* payload =
     return m;
 }
 
-/// The pixels of `film` (the tile's own size, cropFilm) as doubles, 3 per pixel, rows from
-/// the top.
-std::vector<double> tilePixels(const Film& film);
-
 /// The name of this machine as MPI knows it.
 std::string processorName();
 

@@ -112,8 +112,8 @@ struct Worker {
 }  // namespace
 
 int coordinate(const Scene& scene, const RankWork& work, const Job& job,
-               const std::atomic<int>& interrupt, Film& film, FrameFigures& figures,
-               ProgressReporter* progress) {
+               const std::atomic<int>& interrupt, Film& film, RenderPasses& aovs,
+               FrameFigures& figures, ProgressReporter* progress) {
     const double cpu0 = threadCpuSeconds();
     const auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -133,10 +133,11 @@ int coordinate(const Scene& scene, const RankWork& work, const Job& job,
         int i = next++;
         return Tile{i, tiles[static_cast<size_t>(i)]};
     };
+    const bool passes = work.options.aovs;
+    RenderPasses* const frameAovs = passes ? &aovs : nullptr;
     auto deliver = [&](const Tile& t, RenderResult&& r, double seconds) {
-        for (int y = t.bounds.y0; y < t.bounds.y1; ++y)  // disjoint pixels: no lock needed
-            for (int x = t.bounds.x0; x < t.bounds.x1; ++x)
-                film.at(x, y) = r.film.at(x - t.bounds.x0, y - t.bounds.y0);
+        // Disjoint pixels: no lock needed.
+        placeTile(tilePixels(r, passes).data(), t.bounds, film, frameAovs);
         {
             std::lock_guard lock(mailbox.mutex);
             ++tilesIn;
@@ -149,7 +150,7 @@ int coordinate(const Scene& scene, const RankWork& work, const Job& job,
     std::optional<TileRenderers> local;
     if (work.buildError.empty())
         local.emplace(
-            scene, work.options, work.threads, mailbox,
+            scene, work.options, work.adaptive, work.threads, mailbox,
             [&](std::unique_lock<std::mutex>&, const std::atomic<bool>&) { return takeNext(); },
             deliver);
 
@@ -212,12 +213,9 @@ int coordinate(const Scene& scene, const RankWork& work, const Job& job,
                 if (h.tile < 0 || h.tile >= total) return fail(rank, "sent an unknown tile");
                 const PixelBounds& b = tiles[static_cast<size_t>(h.tile)];
                 const size_t pixels = static_cast<size_t>(b.x1 - b.x0) * (b.y1 - b.y0);
-                if (payloadBytes != pixels * 3 * sizeof(double))
+                if (payloadBytes != pixels * tileValues(passes) * sizeof(double))
                     return fail(rank, "sent a tile of the wrong size");
-                const double* p = reinterpret_cast<const double*>(payload);
-                for (int y = b.y0; y < b.y1; ++y)
-                    for (int x = b.x0; x < b.x1; ++x, p += 3)
-                        film.at(x, y) = Vec3(p[0], p[1], p[2]);
+                placeTile(reinterpret_cast<const double*>(payload), b, film, frameAovs);
                 {
                     std::lock_guard lock(mailbox.mutex);
                     ++tilesIn;
@@ -315,7 +313,7 @@ int serve(const Scene& scene, const RankWork& work, const Job& job,
         return t;
     };
     auto deliver = [&](const Tile& t, RenderResult&& r, double seconds) {
-        Rendered done{t.index, tilePixels(r.film), r.rays, seconds};
+        Rendered done{t.index, tilePixels(r, work.options.aovs), r.rays, seconds};
         {
             std::lock_guard lock(mailbox.mutex);
             rendered.push_back(std::move(done));
@@ -334,7 +332,7 @@ int serve(const Scene& scene, const RankWork& work, const Job& job,
     };
     std::optional<TileRenderers> local;
     if (work.buildError.empty()) {
-        local.emplace(scene, work.options, work.threads, mailbox, take, deliver);
+        local.emplace(scene, work.options, work.adaptive, work.threads, mailbox, take, deliver);
         ToRootHeader h;
         h.type = ToRoot::Request;
         h.count = work.threads + 1;  // one in hand beyond one per thread: no thread waits

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "glint/render/film.h"
+#include "glint/render/adaptive.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
 #include "mpi_load.h"
@@ -35,7 +36,8 @@ struct FrameFigures {
 /// How a rank renders its tiles: the options of a whole-frame render (spp, seed; its pool and
 /// crop are ignored), its render threads, and the outcome of its BVH build.
 struct RankWork {
-    RenderOptions options;
+    RenderOptions options;  ///< options.aovs: the tiles' passes are gathered too.
+    AdaptiveOptions adaptive{.threshold = 0};  ///< Threshold above 0: each tile adaptively.
     int threads = 1;
     int tileSide = 32;  ///< Of the tiles rank 0 hands out.
     double buildSeconds = 0;
@@ -46,13 +48,14 @@ struct RankWork {
 /// From coordinate(): a signal arrived before every tile was in.
 constexpr int kInterrupted = -2;
 
-/// Rank 0: renders `scene` into `film` (its size) with every rank of the job, `interrupt` (a signal
+/// Rank 0: renders `scene` into `film` (its size; and its passes into `aovs`, of that size, when
+/// work.options.aovs) with every rank of the job, `interrupt` (a signal
 /// number, when not 0) asking it to stop. Returns cli::kGoOn when every tile is in, kInterrupted
 /// when stopped; else prints one message naming the rank that failed and returns the exit code.
 /// Every worker has stopped when it returns.
 int coordinate(const Scene& scene, const RankWork& work, const Job& job,
-               const std::atomic<int>& interrupt, Film& film, FrameFigures& figures,
-               ProgressReporter* progress);
+               const std::atomic<int>& interrupt, Film& film, RenderPasses& aovs,
+               FrameFigures& figures, ProgressReporter* progress);
 
 /// Every other rank: renders the tiles rank 0 hands out until it says stop. Returns 0.
 int serve(const Scene& scene, const RankWork& work, const Job& job,

@@ -4,10 +4,12 @@
 
 namespace glint::mpi {
 
-TileRenderers::TileRenderers(const Scene& scene, const RenderOptions& options, int threads,
-                             Mailbox& mailbox, Take take, Deliver deliver)
+TileRenderers::TileRenderers(const Scene& scene, const RenderOptions& options,
+                             const AdaptiveOptions& adaptive, int threads, Mailbox& mailbox,
+                             Take take, Deliver deliver)
     : scene_(scene),
       options_(options),
+      adaptive_(adaptive),
       mailbox_(mailbox),
       take_(std::move(take)),
       deliver_(std::move(deliver)),
@@ -56,7 +58,10 @@ void TileRenderers::loop() {
             if (!tile || cancel_.load()) break;
             o.crop = tile->bounds;
             auto start = std::chrono::steady_clock::now();
-            RenderResult r = render(scene_, o);
+            // Each pixel's adaptive stop depends on its own samples: a tile's pixels are the
+            // whole frame's.
+            RenderResult r = adaptive_.threshold > 0 ? renderAdaptive(scene_, o, adaptive_)
+                                                     : render(scene_, o);
             double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (!r.complete) break;  // cancelled
@@ -77,6 +82,38 @@ void TileRenderers::loop() {
     }
     mailbox_.arrived.notify_all();
     mailbox_.news.notify_all();
+}
+
+std::vector<double> tilePixels(const RenderResult& r, bool passes) {
+    const Film& film = r.film;
+    std::vector<double> p;
+    p.reserve(static_cast<size_t>(film.width()) * film.height() * tileValues(passes));
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const Vec3& c = film.at(x, y);
+            p.insert(p.end(), {c.x, c.y, c.z});
+            if (!passes) continue;
+            const size_t i = r.aovs.index(x, y);
+            for (const Vec3& v : {r.aovs.albedo[i], r.aovs.normal[i], r.aovs.variance[i]})
+                p.insert(p.end(), {v.x, v.y, v.z});
+            p.push_back(r.aovs.depth[i]);
+        }
+    return p;
+}
+
+void placeTile(const double* p, const PixelBounds& b, Film& film, RenderPasses* aovs) {
+    for (int y = b.y0; y < b.y1; ++y)
+        for (int x = b.x0; x < b.x1; ++x) {
+            film.at(x, y) = Vec3(p[0], p[1], p[2]);
+            p += 3;
+            if (!aovs) continue;
+            const size_t i = aovs->index(x, y);
+            aovs->albedo[i] = Vec3(p[0], p[1], p[2]);
+            aovs->normal[i] = Vec3(p[3], p[4], p[5]);
+            aovs->variance[i] = Vec3(p[6], p[7], p[8]);
+            aovs->depth[i] = p[9];
+            p += 10;
+        }
 }
 
 }  // namespace glint::mpi

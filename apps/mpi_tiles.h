@@ -12,6 +12,7 @@
 #include <string>
 
 #include "glint/core/parallel.h"
+#include "glint/render/adaptive.h"
 #include "glint/render/renderer.h"
 
 namespace glint::mpi {
@@ -30,6 +31,18 @@ struct Mailbox {
     std::condition_variable arrived;  ///< For render threads waiting for a tile.
 };
 
+/// The doubles per pixel of a tile's message: its colour, then with `passes` its render passes
+/// (albedo, normal, depth, variance).
+inline size_t tileValues(bool passes) { return passes ? 13 : 3; }
+
+/// The pixels of a tile's render `r` (the tile's own size, cropFilm) as doubles, tileValues()
+/// per pixel, rows from the top.
+std::vector<double> tilePixels(const RenderResult& r, bool passes);
+
+/// Places a tile's pixels (as tilePixels made them) at `bounds` of `film` and, with passes,
+/// of `aovs` (the frame's size).
+void placeTile(const double* pixels, const PixelBounds& bounds, Film& film, RenderPasses* aovs);
+
 class TileRenderers {
   public:
     /// Called with the mailbox locked: the next tile, or nothing to end the thread. May wait on
@@ -39,9 +52,11 @@ class TileRenderers {
     /// Called without the lock, on the render thread, for each tile rendered completely.
     using Deliver = std::function<void(const Tile&, RenderResult&&, double seconds)>;
 
-    /// Starts `threads` render threads (none if 0).
-    TileRenderers(const Scene& scene, const RenderOptions& options, int threads, Mailbox& mailbox,
-                  Take take, Deliver deliver);
+    /// Starts `threads` render threads (none if 0), rendering each tile with `options`, or
+    /// adaptively with `adaptive` when its threshold is above 0.
+    TileRenderers(const Scene& scene, const RenderOptions& options,
+                  const AdaptiveOptions& adaptive, int threads, Mailbox& mailbox, Take take,
+                  Deliver deliver);
     /// Cancels and waits.
     ~TileRenderers();
     TileRenderers(const TileRenderers&) = delete;
@@ -62,6 +77,7 @@ class TileRenderers {
 
     const Scene& scene_;
     RenderOptions options_;
+    AdaptiveOptions adaptive_;
     Mailbox& mailbox_;
     Take take_;
     Deliver deliver_;

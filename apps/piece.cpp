@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "glint/io/image/image_io.h"
+#include "glint/render/adaptive.h"
 
 namespace glint::cli {
 
@@ -37,6 +38,14 @@ int checkPieceOptions(const Options& opt) {
     if (opt.timeBudget > 0)
         return usageError(what +
                           ": pieces need a fixed number of samples per pixel (--spp), not --time");
+    if (opt.noiseThreshold > 0 && !opt.samples.empty())
+        return usageError("--samples " + opt.samples +
+                          ": with --noise-threshold each pixel takes its own number of samples; "
+                          "split the frame into pieces with --part or --crop");
+    if (opt.denoise > 0)
+        return usageError(what +
+                          ": --denoise: a piece holds its raw sums; denoise the merged image "
+                          "(glint merge -o MERGED.exr ...; glint denoise MERGED.exr -o OUT)");
     return kGoOn;
 }
 
@@ -80,6 +89,11 @@ int describePiece(const Options& opt, const Prepared& prepared, int spp, uint64_
             return usageError("--part " + opt.part + " holds no pixel of the " +
                               (opt.crop.empty() ? "image" : "crop") + "; use fewer parts");
     }
+    if (opt.noiseThreshold > 0) {
+        p.noiseThreshold = opt.noiseThreshold;
+        p.minSpp = std::min(opt.minSpp > 0 ? opt.minSpp : kDefaultMinSpp, spp);
+    }
+    if (!opt.aov.empty()) parseAovList(opt.aov, p.aovs);  // checked with the options
     p.seed = opt.seed;
     p.sceneHash = sceneHash;
     p.settings = pixelSettings(opt, scene);

@@ -14,8 +14,8 @@ namespace glint::cli {
 /// Whether the options ask for a piece (--crop, --samples or --part).
 bool wantsPiece(const Options& opt);
 
-/// The checks that need no scene: a piece goes to `-o FILE.exr`, and has a fixed number of
-/// samples (no --time). Returns kGoOn, or the exit code of the usage error it printed.
+/// The checks that need no scene: a piece goes to `-o FILE.exr`, is reproducible (no --time),
+/// adaptive only when split by pixels (not --samples), and raw (no --denoise). Returns kGoOn, or the exit code of the usage error it printed.
 int checkPieceOptions(const Options& opt);
 
 /// The piece the options ask for of the prepared scene, rendered at `spp` samples per pixel

@@ -52,9 +52,6 @@ TEST(CliCleanImages, AovsNeedAnExrFileAndKnownNames) {
     r = runGlint("s.test --aov albedo,shadow -o out.exr", dir);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_TRUE(contains(r.err, "unknown pass 'shadow'")) << r.err;
-    r = runGlint("s.test --aov all --part 0/2 -o p.exr", dir);
-    EXPECT_EQ(r.exitCode, 2);
-    EXPECT_TRUE(contains(r.err, "frame pieces do not carry render passes yet")) << r.err;
 }
 
 TEST(CliCleanImages, DenoiseSmoothsAndGlintDenoiseDoesTheSameToASavedRender) {
@@ -100,9 +97,46 @@ TEST(CliCleanImages, AdaptiveSamplingSaysWhatItDid) {
     EXPECT_EQ(readBytes(dir + "/a.png"), readBytes(dir + "/b.png"));
     r = runGlint("s.test --noise-threshold 2", dir);
     EXPECT_EQ(r.exitCode, 2);
-    r = runGlint("s.test --noise-threshold 0.1 --part 0/2 -o p.exr", dir);
+    r = runGlint("s.test --noise-threshold 0.1 --samples 0:8 -o p.exr", dir);
     EXPECT_EQ(r.exitCode, 2);
-    EXPECT_TRUE(contains(r.err, "frame pieces hold a fixed number of samples")) << r.err;
+    EXPECT_TRUE(contains(r.err, "split the frame into pieces with --part or --crop")) << r.err;
+    r = runGlint("s.test --denoise --part 0/2 -o p.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, "denoise the merged image")) << r.err;
+}
+
+TEST(CliCleanImages, AdaptivePiecesWithPassesMergeToTheWholeRendersBytes) {
+    // Each pixel stops on its own samples: pieces split by rows and crops make the same pixels
+    // and passes, which the merge writes as the single render does; glint denoise then takes
+    // the merged file.
+    const std::string dir = withScene("clean-adaptive-pieces");
+    const std::string common = "-q s.test --noise-threshold 0.05 --min-spp 4 --spp 64 --aov all";
+    CommandResult r = runGlint(common + " -o whole.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* piece : {"--crop 0,40,0,16 --part 0/2 -o a.exr",
+                              "--crop 0,40,0,16 --part 1/2 -o b.exr", "--crop 0,40,16,30 -o c.exr"}) {
+        r = runGlint(common + " -t 1 " + piece, dir);
+        ASSERT_EQ(r.exitCode, 0) << piece << ": " << r.err;
+    }
+    r = runGlint("merge -q -o merged.exr c.exr b.exr a.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readBytes(dir + "/merged.exr"), readBytes(dir + "/whole.exr"));
+    EXPECT_TRUE(readExrLayers(dir + "/merged.exr").found.variance);
+    r = runGlint("denoise -q merged.exr -o clean.png", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    // An 8-bit merge has no layers: said, and the image written.
+    r = runGlint("merge -o merged.png a.exr b.exr c.exr", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "only an .exr output holds")) << r.err;
+    // Pieces with other passes, or without adaptive sampling, are not of one frame.
+    r = runGlint("-q s.test --noise-threshold 0.05 --min-spp 4 --spp 64 --aov albedo -t 1 "
+                 "--crop 0,40,16,30 -o d.exr",
+                 dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runGlint("merge -o m.exr a.exr b.exr d.exr", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "passes albedo, but a.exr has passes albedo,normal,depth,variance"))
+        << r.err;
 }
 
 TEST(CliCleanImages, ModelsAreSampledUntilCleanAndDenoisedByDefault) {

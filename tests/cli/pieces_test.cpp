@@ -171,6 +171,7 @@ TEST(CliPieces, BadPieceOptionsAreUsageErrors) {
     usage("--part 0/2 -o a.png", "'a.png' is not an .exr file");
     usage("--part 0/2", "name its OpenEXR file with -o FILE.exr");
     usage("--part 0/2 --time 1 -o a.exr", "not --time");
+    usage("--samples 0:4 --noise-threshold 0.1 -o a.exr", "split the frame into pieces with");
     EXPECT_FALSE(fs::exists(dir + "/a.exr"));
     EXPECT_FALSE(fs::exists(dir + "/a.png"));
 }

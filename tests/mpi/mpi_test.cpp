@@ -86,6 +86,21 @@ TEST(GlintMpi, ThreeRanksGiveTheSingleProcessBytesForAPathTracedScene) {
     EXPECT_TRUE(a == b) << "the PFM files differ";
 }
 
+TEST(GlintMpi, AdaptiveSamplingPassesAndTheDenoiserGiveTheSingleProcessBytes) {
+    std::string dir = freshDir("mpi-clean");
+    const std::string scene = std::string("'" GLINT_SCENES_DIR "/cornell.test'") +
+                              " --integrator path --size 70x45 --spp 64 --noise-threshold 0.05 "
+                              "--min-spp 4 --aov all --denoise";
+    CommandResult one = runGlint(scene + " -q -o one.exr", dir);
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    CommandResult mpi = runMpi("-np 3 " + kGlintMpi + " " + scene + " -t 1 -o mpi.exr", dir);
+    ASSERT_EQ(mpi.exitCode, 0) << mpi.err;
+    EXPECT_TRUE(contains(mpi.err, "glint-mpi: denoised in ")) << mpi.err;
+    std::string a = readBytes(dir + "/one.exr"), b = readBytes(dir + "/mpi.exr");
+    ASSERT_GT(a.size(), 1000u);
+    EXPECT_TRUE(a == b) << "the EXR files differ";
+}
+
 /// A scene with a mesh, in `dir`: `mesh` names the OBJ file, `obj` its text (none if empty).
 void writeMeshScene(const std::string& dir, const std::string& obj) {
     writeFile(dir + "/s.test",

@@ -57,12 +57,13 @@ class FailingIntegrator final : public Integrator {
 /// Runs TileRenderers on two threads over `scene`'s tiles until they end; `deliver` is called
 /// for each tile rendered (under no lock). Returns the error kept, and counts the tiles taken.
 std::string runTiles(const Scene& scene, const RenderOptions& o,
-                     const TileRenderers::Deliver& deliver, int& taken) {
+                     const TileRenderers::Deliver& deliver, int& taken,
+                     const AdaptiveOptions& adaptive = {.threshold = 0}) {
     Mailbox mailbox;
     std::deque<Tile> tiles = tilesOf(scene);
     taken = 0;
     TileRenderers renderers(
-        scene, o, 2, mailbox,
+        scene, o, adaptive, 2, mailbox,
         [&](std::unique_lock<std::mutex>&, const std::atomic<bool>&) -> std::optional<Tile> {
             if (tiles.empty()) return std::nullopt;
             Tile t = tiles.front();
@@ -106,6 +107,42 @@ TEST(TileRenderers, RenderEveryTileOnceWithTheWholeRendersPixels) {
             for (int x = t.bounds.x0; x < t.bounds.x1; ++x)
                 differ += !(f.at(x - t.bounds.x0, y - t.bounds.y0) == reference.film.at(x, y));
     }
+    EXPECT_EQ(differ, 0);
+}
+
+TEST(TileRenderers, AdaptiveTilesWithPassesGiveTheWholeAdaptiveRendersPixelsAndPasses) {
+    Scene scene;
+    test::buildLensScene(scene, 27, 19, "path");
+    const AdaptiveOptions adaptive{.threshold = 0.05, .minSpp = 4, .maxSpp = 64};
+    RenderOptions o = options();
+    o.spp = adaptive.maxSpp;
+    o.aovs = true;
+    RenderOptions whole = o;
+    whole.threads = 1;
+    const RenderResult reference = renderAdaptive(scene, whole, adaptive);
+    ASSERT_LT(reference.meanSamplesPerPixel, reference.samplesPerPixel);  // it did adapt
+    std::mutex mutex;
+    Film film(27, 19);
+    RenderPasses aovs(27, 19);
+    int taken = 0;
+    const std::string error = runTiles(
+        scene, o,
+        [&](const Tile& t, RenderResult&& r, double) {
+            std::lock_guard lock(mutex);
+            placeTile(tilePixels(r, true).data(), t.bounds, film, &aovs);
+        },
+        taken, adaptive);
+    EXPECT_EQ(error, "");
+    int differ = 0;
+    for (int y = 0; y < 19; ++y)
+        for (int x = 0; x < 27; ++x) {
+            const size_t i = aovs.index(x, y);
+            differ += !(film.at(x, y) == reference.film.at(x, y)) ||
+                      !(aovs.albedo[i] == reference.aovs.albedo[i]) ||
+                      !(aovs.normal[i] == reference.aovs.normal[i]) ||
+                      !(aovs.variance[i] == reference.aovs.variance[i]) ||
+                      aovs.depth[i] != reference.aovs.depth[i];
+        }
     EXPECT_EQ(differ, 0);
 }
 

@@ -48,4 +48,46 @@ Film FilmSums::resolve() const {
     return film;
 }
 
+std::string parseAovList(const std::string& text, AovSelection& out) {
+    AovSelection sel;
+    if (text == "all") {
+        out = AovSelection::all();
+        return {};
+    }
+    size_t at = 0;
+    for (;;) {
+        const size_t comma = text.find(',', at);
+        const std::string name = text.substr(at, comma == std::string::npos ? comma : comma - at);
+        if (name == "albedo")
+            sel.albedo = true;
+        else if (name == "normal")
+            sel.normal = true;
+        else if (name == "depth")
+            sel.depth = true;
+        else if (name == "variance")
+            sel.variance = true;
+        else
+            return "unknown pass '" + name +
+                   "' (Glint has albedo, normal, depth, variance; or all)";
+        if (comma == std::string::npos) break;
+        at = comma + 1;
+    }
+    out = sel;
+    return {};
+}
+
+std::string aovListText(const AovSelection& aovs) {
+    std::string out;
+    auto add = [&](bool on, const char* name) {
+        if (!on) return;
+        if (!out.empty()) out += ',';
+        out += name;
+    };
+    add(aovs.albedo, "albedo");
+    add(aovs.normal, "normal");
+    add(aovs.depth, "depth");
+    add(aovs.variance, "variance");
+    return out;
+}
+
 }  // namespace glint

@@ -2,6 +2,7 @@
 /// Images: the float film the renderer writes, and 8-bit images for output and comparison.
 
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -84,7 +85,15 @@ struct AovSelection {
 
     bool any() const { return albedo || normal || depth || variance; }
     static AovSelection all() { return {true, true, true, true}; }
+    bool operator==(const AovSelection&) const = default;
 };
+
+/// Parses `--aov`'s list ("albedo,normal", or "all") into `out`; returns what is wrong, or an
+/// empty string (`out` is then set).
+std::string parseAovList(const std::string& text, AovSelection& out);
+/// The list that parseAovList reads back: "albedo,normal,depth,variance" in that order; empty
+/// for none.
+std::string aovListText(const AovSelection& aovs);
 
 /// What one camera sample reports for the passes (see RenderPasses): the integrator fills it.
 struct SamplePasses {

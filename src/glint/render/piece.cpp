@@ -67,6 +67,18 @@ std::pair<std::string, std::string> firstDifference(const std::string& a, const 
     return {"settings '" + a + "'", "settings '" + b + "'"};
 }
 
+std::string adaptiveText(const PieceInfo& p) {
+    if (!(p.noiseThreshold > 0)) return "a fixed number of samples per pixel";
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "adaptive sampling to noise %g from %d samples",
+                  p.noiseThreshold, p.minSpp);
+    return buf;
+}
+
+std::string passesText(const PieceInfo& p) {
+    return p.aovs.any() ? "passes " + aovListText(p.aovs) : std::string("no render passes");
+}
+
 /// Problems that pieces of other frames have, against the first piece.
 void checkBelongTogether(const std::vector<PieceInfo>& pieces,
                          const std::vector<std::string>& files, std::vector<PieceProblem>& out) {
@@ -94,6 +106,10 @@ void checkBelongTogether(const std::vector<PieceInfo>& pieces,
             auto [mine, theirs] = firstDifference(p.settings, f.settings);
             add(mine + ", but " + first + " has " + theirs);
         }
+        if (p.noiseThreshold != f.noiseThreshold || p.minSpp != f.minSpp)
+            add(adaptiveText(p) + ", but " + first + " has " + adaptiveText(f));
+        if (p.aovs != f.aovs)
+            add(passesText(p) + ", but " + first + " has " + passesText(f));
         if (p.version != f.version)
             add("rendered by glint " + p.version + ", but " + first + " by glint " + f.version);
     }

@@ -33,6 +33,13 @@ struct PieceInfo {
     /// separated by spaces ("integrator=path maxdepth=5 ...").
     std::string settings;
     std::string version;  ///< Glint's, e.g. "1.4.0".
+    /// Adaptive sampling (`--noise-threshold`): above 0, each pixel took between minSpp and spp
+    /// samples, stopping on its own error (sampleBegin:sampleEnd is then 0:spp); 0: each pixel
+    /// took samples() samples.
+    double noiseThreshold = 0;
+    int minSpp = 0;  ///< With noiseThreshold: the samples every pixel took first (<= spp).
+    /// The render passes whose sums the piece carries, written by the merge beside the image.
+    AovSelection aovs;
     /// How the frame is meant to be shown (the scene's defaults and the piece's command line):
     /// what `glint merge` writes with unless told otherwise. Not a pixel setting.
     DisplayTransform display;
@@ -46,6 +53,11 @@ struct PieceInfo {
     /// How many pixels it holds.
     long long pixelCount() const;
     int samples() const { return sampleEnd - sampleBegin; }
+    /// Whether a pixel the piece holds may hold `n` samples: samples(), or with adaptive
+    /// sampling minSpp to spp.
+    bool allowsSamples(double n) const {
+        return noiseThreshold > 0 ? n >= minSpp && n <= spp : n == samples();
+    }
     /// What the piece is, for messages: "part 2/4", "crop 0,320,0,240, samples 0:32", or "the
     /// whole frame".
     std::string describe() const;
@@ -82,7 +94,8 @@ class PieceError : public RenderError {
 };
 
 /// Checks that `pieces` (read from `files`, the same length) are pieces of one frame (the same
-/// size, samples per pixel, seed, scene hash, settings and version as the first) and that, for
+/// size, samples per pixel, seed, scene hash, settings, adaptive sampling, passes and version
+/// as the first) and that, for
 /// every pixel, the sample ranges of the pieces that hold it partition [0, spp): names what is
 /// missing, given twice or overlapping. At most `limit` problems are returned; a last one says
 /// how many more there were. Empty: the pieces merge. Memory: 8 bytes per pixel of the frame.

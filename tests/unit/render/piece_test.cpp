@@ -239,6 +239,16 @@ TEST(CheckPieces, PiecesOfOtherFramesAreNamed) {
     EXPECT_THAT(text(check({part(0, 2), other})),
                 HasSubstr("maxdepth=3, but p0.exr has maxdepth=5"));
     other = part(1, 2);
+    other.aovs.albedo = true;
+    EXPECT_THAT(text(check({part(0, 2), other})),
+                HasSubstr("passes albedo, but p0.exr has no render passes"));
+    other = part(1, 2);
+    other.noiseThreshold = 0.01;
+    other.minSpp = 2;
+    EXPECT_THAT(text(check({part(0, 2), other})),
+                HasSubstr("adaptive sampling to noise 0.01 from 2 samples, but p0.exr has a "
+                          "fixed number of samples per pixel"));
+    other = part(1, 2);
     other.version = "1.0.1";
     EXPECT_THAT(text(check({part(0, 2), other})),
                 HasSubstr("rendered by glint 1.0.1, but p0.exr by glint 1.0.0"));

@@ -28,13 +28,54 @@ using exr_detail::MemoryInputFile;
 using exr_detail::StringOStream;
 
 /// The layout of the pixels and attributes; a reader refuses other versions.
-constexpr int kPieceFormat = 1;
+constexpr int kPieceFormat = 2;
 
-/// The exact channels: the 64 bits of each sum's double, high and low words, then the weight.
-const char* const kSumChannels[6] = {"sumR.hi", "sumR.lo", "sumG.hi",
-                                     "sumG.lo", "sumB.hi", "sumB.lo"};
+/// The exact channels, each double's 64 bits in two UINT channels NAME.hi and NAME.lo: the
+/// beauty's sums, then, in a piece with passes, their sums (PassSums).
+constexpr int kSumValues = 3, kPassValues = 11;
+const char* const kExactNames[kSumValues + kPassValues] = {
+    "sumR",        "sumG",        "sumB",        "passSquaresR", "passSquaresG",
+    "passSquaresB", "passAlbedoR", "passAlbedoG", "passAlbedoB",  "passNormalX",
+    "passNormalY", "passNormalZ", "passDepth",   "passHits"};
 const char* const kWeightChannel = "weight";
 const char* const kPreviewChannels[3] = {"R", "G", "B"};
+
+/// How many exact values a pixel of `info`'s piece has.
+int exactValues(const PieceInfo& info) {
+    return kSumValues + (info.aovs.any() ? kPassValues : 0);
+}
+
+/// A pixel's exact values in the order of kExactNames, `n` of them.
+void getExact(const FilmSums& s, int x, int y, int n, double* out) {
+    const Vec3& sum = s.sum(x, y);
+    for (int c = 0; c < 3; ++c) out[c] = sum[c];
+    if (n == kSumValues) return;
+    const PassSums& p = s.passes(x, y);
+    for (int c = 0; c < 3; ++c) {
+        out[3 + c] = p.squares[c];
+        out[6 + c] = p.albedo[c];
+        out[9 + c] = p.normal[c];
+    }
+    out[12] = p.depth;
+    out[13] = p.hits;
+}
+
+/// And back.
+void setExact(FilmSums& s, int x, int y, int n, const double* in) {
+    for (int c = 0; c < 3; ++c) s.sum(x, y)[c] = in[c];
+    if (n == kSumValues) return;
+    PassSums& p = s.passes(x, y);
+    for (int c = 0; c < 3; ++c) {
+        p.squares[c] = in[3 + c];
+        p.albedo[c] = in[6 + c];
+        p.normal[c] = in[9 + c];
+    }
+    p.depth = in[12];
+    p.hits = in[13];
+}
+
+/// The UINT channel names of exact value k: NAME.hi, NAME.lo.
+std::string wordChannel(int k, bool high) { return std::string(kExactNames[k]) + (high ? ".hi" : ".lo"); }
 
 /// The bits of a double and back (memcpy: std::bit_cast is missing from some standard
 /// libraries Glint builds with).
@@ -129,6 +170,19 @@ PieceInfo readInfo(const Imf::Header& h) {
     else
         throw Bad{"glint.toneMap '" + toneMap + "' is not a tone mapper Glint has"};
 
+    const auto* threshold = h.findTypedAttribute<Imf::DoubleAttribute>("glint.noiseThreshold");
+    if (!threshold || !(threshold->value() >= 0 && threshold->value() <= 1))
+        throw Bad{"glint.noiseThreshold is missing or out of range"};
+    info.noiseThreshold = threshold->value();
+    info.minSpp = intAttr(h, "glint.minSpp");
+    if (info.noiseThreshold > 0 &&
+        (info.minSpp < 1 || info.minSpp > info.spp || info.sampleBegin != 0 ||
+         info.sampleEnd != info.spp))
+        throw Bad{"glint.minSpp or glint.samples do not fit adaptive sampling to glint.spp"};
+    if (std::string aovs = stringAttr(h, "glint.aovs"); !aovs.empty())
+        if (std::string e = parseAovList(aovs, info.aovs); !e.empty())
+            throw Bad{"glint.aovs: " + e};
+
     const PixelBounds bounds = info.bounds();
     if (bounds.empty()) throw Bad{"the piece holds no pixel of the frame"};
     const Imath::Box2i data = h.dataWindow();
@@ -141,7 +195,10 @@ PieceInfo readInfo(const Imf::Header& h) {
             throw Bad{std::string("it has no full-size ") + (type == Imf::UINT ? "UINT" : "FLOAT") +
                       " channel " + name};
     };
-    for (const char* n : kSumChannels) need(n, Imf::UINT);
+    for (int k = 0; k < exactValues(info); ++k) {
+        need(wordChannel(k, true).c_str(), Imf::UINT);
+        need(wordChannel(k, false).c_str(), Imf::UINT);
+    }
     need(kWeightChannel, Imf::UINT);
     return info;
 }
@@ -167,28 +224,33 @@ std::string encodePiece(const PieceInfo& info, const FilmSums& sums) {
         throw RenderError("encodePiece: the sums are not the frame's size");
     const PixelBounds b = info.bounds();
     if (b.empty()) throw RenderError("the piece " + info.describe() + " holds no pixel");
+    if (info.aovs.any() && !sums.hasPasses())
+        throw RenderError("encodePiece: the piece carries passes, but the sums have none");
     const int w = b.x1 - b.x0, h = b.y1 - b.y0;
     const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
-    std::vector<uint32_t> bits(n * 6), weight(n);
+    const int values = exactValues(info), words = 2 * values;
+    std::vector<uint32_t> bits(n * words), weight(n);
     std::vector<float> rgb(n * 3);
     const double scale = info.display.scale();
+    double exact[kSumValues + kPassValues];
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + x;
             if (!info.covers(b.x0 + x, b.y0 + y)) continue;  // zeros: rows of other parts
-            const Vec3& s = sums.sum(b.x0 + x, b.y0 + y);
             const double wt = sums.weight(b.x0 + x, b.y0 + y);
-            if (wt != info.samples())
+            if (!info.allowsSamples(wt))
                 throw RenderError("encodePiece: a pixel of the piece has " + std::to_string(wt) +
-                                  " samples, not " + std::to_string(info.samples()));
+                                  " samples, which its samples (" + info.describe() +
+                                  ") do not allow");
             weight[i] = static_cast<uint32_t>(wt);
-            const Vec3 v = pixelValue(s, wt);
-            for (int c = 0; c < 3; ++c) {
-                const uint64_t u = bitsOf(s[c]);
-                bits[i * 6 + 2 * c] = static_cast<uint32_t>(u >> 32);
-                bits[i * 6 + 2 * c + 1] = static_cast<uint32_t>(u);
-                rgb[i * 3 + c] = static_cast<float>(scale * v[c]);
+            getExact(sums, b.x0 + x, b.y0 + y, values, exact);
+            for (int k = 0; k < values; ++k) {
+                const uint64_t u = bitsOf(exact[k]);
+                bits[i * words + 2 * k] = static_cast<uint32_t>(u >> 32);
+                bits[i * words + 2 * k + 1] = static_cast<uint32_t>(u);
             }
+            const Vec3 v = pixelValue(sums.sum(b.x0 + x, b.y0 + y), wt);
+            for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = static_cast<float>(scale * v[c]);
         }
 
     std::string out;
@@ -213,6 +275,9 @@ std::string encodePiece(const PieceInfo& info, const FilmSums& sums) {
         header.insert("glint.srgb", Imf::IntAttribute(info.display.srgb ? 1 : 0));
         header.insert("glint.toneMap",
                       Imf::StringAttribute(std::string(toneMapName(info.display.toneMap))));
+        header.insert("glint.noiseThreshold", Imf::DoubleAttribute(info.noiseThreshold));
+        header.insert("glint.minSpp", Imf::IntAttribute(info.minSpp));
+        header.insert("glint.aovs", Imf::StringAttribute(aovListText(info.aovs)));
 
         const Imath::V2i origin(b.x0, b.y0);
         Imf::FrameBuffer frame;
@@ -222,11 +287,12 @@ std::string encodePiece(const PieceInfo& info, const FilmSums& sums) {
                          Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, origin, w, h,
                                           3 * sizeof(float), 3 * sizeof(float) * w));
         }
-        for (int k = 0; k < 6; ++k) {
-            header.channels().insert(kSumChannels[k], Imf::Channel(Imf::UINT));
-            frame.insert(kSumChannels[k],
-                         Imf::Slice::Make(Imf::UINT, bits.data() + k, origin, w, h,
-                                          6 * sizeof(uint32_t), 6 * sizeof(uint32_t) * w));
+        const size_t stride = words * sizeof(uint32_t);
+        for (int k = 0; k < words; ++k) {
+            const std::string name = wordChannel(k / 2, k % 2 == 0);
+            header.channels().insert(name, Imf::Channel(Imf::UINT));
+            frame.insert(name, Imf::Slice::Make(Imf::UINT, bits.data() + k, origin, w, h, stride,
+                                                stride * w));
         }
         header.channels().insert(kWeightChannel, Imf::Channel(Imf::UINT));
         frame.insert(kWeightChannel, Imf::Slice::Make(Imf::UINT, weight.data(), origin, w, h,
@@ -261,40 +327,49 @@ PieceData decodePiece(std::string_view bytes, const std::string& name) {
         piece.window = b;
         const int w = b.x1 - b.x0, h = b.y1 - b.y0;
         const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
-        // The reader's buffers (28 bytes a pixel) and the sums (32).
-        const double need = static_cast<double>(n) * 60;
+        const int values = exactValues(piece.info), words = 2 * values;
+        // The reader's buffers (4 bytes a word and the weight) and the sums.
+        const double need = static_cast<double>(n) *
+                            (4.0 * (words + 1) + 32 + (values > kSumValues ? sizeof(PassSums) : 0));
         if (size_t available = availableMemoryBytes();
             available > 0 && need > static_cast<double>(available))
             throw Bad{"reading it needs " + formatBytes(need) + " of memory, more than the " +
                       formatBytes(static_cast<double>(available)) + " available"};
 
-        std::vector<uint32_t> bits(n * 6), weight(n);
+        std::vector<uint32_t> bits(n * words), weight(n);
         const Imath::V2i origin(b.x0, b.y0);
+        const size_t stride = words * sizeof(uint32_t);
         Imf::FrameBuffer frame;
-        for (int k = 0; k < 6; ++k)
-            frame.insert(kSumChannels[k],
-                         Imf::Slice::Make(Imf::UINT, bits.data() + k, origin, w, h,
-                                          6 * sizeof(uint32_t), 6 * sizeof(uint32_t) * w));
+        for (int k = 0; k < words; ++k)
+            frame.insert(wordChannel(k / 2, k % 2 == 0),
+                         Imf::Slice::Make(Imf::UINT, bits.data() + k, origin, w, h, stride,
+                                          stride * w));
         frame.insert(kWeightChannel, Imf::Slice::Make(Imf::UINT, weight.data(), origin, w, h,
                                                       sizeof(uint32_t), sizeof(uint32_t) * w));
         file.setFrameBuffer(frame);
         file.readPixels(b.y0, b.y1 - 1);
 
         piece.sums = FilmSums(w, h);
-        const uint32_t samples = static_cast<uint32_t>(piece.info.samples());
+        if (values > kSumValues) piece.sums.keepPasses();
+        double exact[kSumValues + kPassValues];
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + x;
-                const uint32_t want = piece.info.covers(b.x0 + x, b.y0 + y) ? samples : 0;
-                if (weight[i] != want)
+                const bool covered = piece.info.covers(b.x0 + x, b.y0 + y);
+                if (covered ? !piece.info.allowsSamples(weight[i]) : weight[i] != 0)
                     throw Bad{"pixel (" + std::to_string(b.x0 + x) + "," +
                               std::to_string(b.y0 + y) + ") holds " + std::to_string(weight[i]) +
-                              " samples where the header says " + std::to_string(want) +
+                              " samples where the header says " +
+                              (!covered ? std::string("0")
+                               : piece.info.noiseThreshold > 0
+                                   ? std::to_string(piece.info.minSpp) + " to " +
+                                         std::to_string(piece.info.spp)
+                                   : std::to_string(piece.info.samples())) +
                               ": the file is damaged"};
-                Vec3& s = piece.sums.sum(x, y);
-                for (int c = 0; c < 3; ++c)
-                    s[c] = doubleOf(static_cast<uint64_t>(bits[i * 6 + 2 * c]) << 32 |
-                                    bits[i * 6 + 2 * c + 1]);
+                for (int k = 0; k < values; ++k)
+                    exact[k] = doubleOf(static_cast<uint64_t>(bits[i * words + 2 * k]) << 32 |
+                                        bits[i * words + 2 * k + 1]);
+                setExact(piece.sums, x, y, values, exact);
                 piece.sums.weight(x, y) = weight[i];
             }
         return piece;

@@ -6,8 +6,12 @@
 /// pixel holds the exact sums the merge adds, each double's 64 bits in two UINT channels
 /// (sumR.hi, sumR.lo, and G and B likewise: no float type holds a double losslessly), its
 /// sample count in the UINT channel `weight` (0 for pixels of the window the piece does not
-/// hold), and R, G, B as 32-bit floats (the piece's own average, times 2^exposure) so that any
-/// EXR viewer shows it. ZIP compressed. The header's glint.* attributes hold the PieceInfo.
+/// hold; with adaptive sampling each pixel's own), and R, G, B as 32-bit floats (the piece's
+/// own average, times 2^exposure) so that any EXR viewer shows it. A piece rendered with
+/// `--aov` also holds the sums behind the passes (PassSums) the same way: passSquaresR/G/B,
+/// passAlbedoR/G/B, passNormalX/Y/Z, passDepth, passHits. ZIP compressed. The header's glint.*
+/// attributes hold the PieceInfo (format 2: glint.noiseThreshold, glint.minSpp and glint.aovs
+/// were added to format 1).
 
 #include <string>
 #include <string_view>

@@ -56,6 +56,8 @@ MergedFrame mergePieceFiles(const std::vector<std::string>& paths) {
     merged.info.sampleBegin = 0;
     merged.info.sampleEnd = merged.info.spp;
     merged.sums = FilmSums(merged.info.width, merged.info.height);
+    const bool passes = merged.info.aovs.any();  // the check made every piece agree
+    if (passes) merged.sums.keepPasses();
     for (size_t i : order) {
         if (!sameDisplay(infos[i].display, merged.info.display))
             merged.warnings.push_back(
@@ -79,9 +81,11 @@ MergedFrame mergePieceFiles(const std::vector<std::string>& paths) {
                 if (first) {
                     merged.sums.sum(x, y) = s;
                     merged.sums.weight(x, y) = w;
+                    if (passes) merged.sums.passes(x, y) = piece.sums.passes(x - b.x0, y - b.y0);
                 } else {
                     merged.sums.sum(x, y) += s;
                     merged.sums.weight(x, y) += w;
+                    if (passes) merged.sums.passes(x, y) += piece.sums.passes(x - b.x0, y - b.y0);
                 }
             }
         }

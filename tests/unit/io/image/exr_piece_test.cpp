@@ -116,6 +116,55 @@ TEST(ExrPiece, RoundTripKeepsEverySumBitForBitAndTheMetadata) {
     EXPECT_EQ(decodePieceInfo(bytes, "p.exr").sceneHash, p.sceneHash);
 }
 
+TEST(ExrPiece, AdaptivePiecesKeepTheirSampleCountsAndPassSumsBitForBit) {
+    PieceInfo p = info(13, 9, 32);
+    p.noiseThreshold = 0.05;
+    p.minSpp = 4;
+    p.aovs = {.albedo = true, .depth = true};
+    p.part = 1;
+    p.parts = 2;  // rows 4-7
+    FilmSums sums = sumsFor(p);
+    sums.keepPasses();
+    Rng rng(3);
+    for (int y = 0; y < p.height; ++y)
+        for (int x = 0; x < p.width; ++x) {
+            if (!p.covers(x, y)) continue;
+            sums.weight(x, y) = 4 + (x * 7 + y * 3) % 29;  // 4 to 32
+            PassSums& ps = sums.passes(x, y);
+            ps.squares = Vec3(rng.uniform(), 1.0 / 3, 5e-324);
+            ps.albedo = Vec3(rng.uniform(), rng.uniform(), -0.0);
+            ps.normal = Vec3(-rng.uniform(), 0.25, 1e300);
+            ps.depth = rng.uniform() * 100;
+            ps.hits = x % 5;
+        }
+    const std::string bytes = encodePiece(p, sums);
+
+    const PieceData d = decodePiece(bytes, "p.exr");
+    EXPECT_EQ(d.info.noiseThreshold, 0.05);
+    EXPECT_EQ(d.info.minSpp, 4);
+    EXPECT_EQ(d.info.aovs, p.aovs);
+    ASSERT_TRUE(d.sums.hasPasses());
+    for (int y = d.window.y0; y < d.window.y1; ++y)
+        for (int x = d.window.x0; x < d.window.x1; ++x) {
+            const int wx = x - d.window.x0, wy = y - d.window.y0;
+            EXPECT_EQ(d.sums.weight(wx, wy), sums.weight(x, y));
+            const PassSums &a = d.sums.passes(wx, wy), &b = sums.passes(x, y);
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_EQ(bitsOf(a.squares[c]), bitsOf(b.squares[c]));
+                ASSERT_EQ(bitsOf(a.albedo[c]), bitsOf(b.albedo[c]));
+                ASSERT_EQ(bitsOf(a.normal[c]), bitsOf(b.normal[c]));
+            }
+            ASSERT_EQ(bitsOf(a.depth), bitsOf(b.depth));
+            ASSERT_EQ(bitsOf(a.hits), bitsOf(b.hits));
+        }
+    // A count the header does not allow (below the minimum) is refused by the writer.
+    sums.weight(0, 4) = 3;
+    EXPECT_THROW(encodePiece(p, sums), RenderError);
+    // So are passes the sums do not hold.
+    FilmSums bare = sumsFor(info(13, 9, 32));
+    EXPECT_THROW(encodePiece(p, bare), RenderError);
+}
+
 TEST(ExrPiece, ViewersSeeThePiecesAverageWithItsExposure) {
     PieceInfo p = info(8, 6, 4);
     p.crop = {1, 7, 2, 5};
