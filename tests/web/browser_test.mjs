@@ -9,8 +9,8 @@
 // so); scene5 from the examples renders to the canvas and matches the official image by the
 // course's rule (and the native CLI's pixels exactly); a typo shows the CLI's error at its line;
 // a dropped OBJ with its MTL and texture renders as `glint model.obj` does; dragging on the
-// canvas changes the view; a dropped GLB renders as `glint model.glb` does; a long render can be cancelled; and a timer on the page's main
-// thread keeps firing while the worker renders.
+// canvas changes the view; a dropped GLB renders as `glint model.glb` does; a long render can be cancelled; a timer on the page's main
+// thread keeps firing while the worker renders; and the path tracer's image is denoised.
 import { execFileSync, spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -86,6 +86,14 @@ function sameImage(a, b, threshold, budget, mask) {
         console.log(String(e.stdout || '') + String(e.stderr || ''));
         return false;
     }
+}
+
+/// How many pixels of `a` differ from `b` by more than `threshold` levels (imgdiff's count).
+function hotPixels(a, b, threshold) {
+    const r = spawnSync(args.imgdiff, [a, b, '--threshold', String(threshold), '--budget', '0'],
+                        { encoding: 'utf8' });
+    const m = /FAILED: (\d+)\//.exec(r.stdout + r.stderr);
+    return r.status === 0 ? 0 : m ? Number(m[1]) : Infinity;
 }
 
 /// The largest gap between firings of a 20 ms timer on the page's main thread, from now until
@@ -232,6 +240,27 @@ try {
     const progress = await page.evaluate(() => document.getElementById('progress').value);
     check(progress < 1, `before the render finished (${Math.round(progress * 100)}% done)`);
     check(longGaps.max < kMaxGapMs, `the main thread's timer kept firing (at most ${Math.round(longGaps.max)} ms apart)`);
+
+    // 8. The path tracer's progressive image is denoised after each pass (on by default): at 4
+    //    samples per pixel it is far closer to a converged native render than the raw image.
+    await page.fill('#size', '160x120');
+    await page.fill('#spp', '4');
+    check(await page.isChecked('#denoise'), 'Denoise is on by default');
+    let doneBefore8 = (await glintPage()).rendersDone;
+    await page.click('#render');
+    g = await waitFor('done', (p) => p.rendersDone > doneBefore8);
+    check(g.last.denoiseSeconds > 0, `the image was denoised (${(g.last.denoiseSeconds || 0).toFixed(3)} s in all)`);
+    const denoised = await canvasPng('cornell-denoised.png');
+    doneBefore8 = g.rendersDone;
+    await page.uncheck('#denoise');  // renders again, raw
+    g = await waitFor('done', (p) => p.rendersDone > doneBefore8);
+    check(!(g.last.denoiseSeconds > 0), 'unchecked, it is not');
+    const raw = await canvasPng('cornell-raw.png');
+    const converged = path.join(tmp, 'cornell-converged.png');
+    execFileSync(args.glint, [path.join(root, 'scenes/cornell.test'), '--integrator', 'path',
+                              '--size', '160x120', '--spp', '1024', '-o', converged, '-q']);
+    const hotRaw = hotPixels(raw, converged, 24), hotDenoised = hotPixels(denoised, converged, 24);
+    check(hotDenoised * 4 < hotRaw, `against 1024 spp, pixels off by more than 24 levels: ${hotDenoised} denoised, ${hotRaw} raw`);
 } catch (e) {
     check(false, `the page works through every step: ${e.stack || e}`);
 } finally {

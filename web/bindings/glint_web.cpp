@@ -20,6 +20,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/parallel.h"
+#include "glint/denoise/film_denoise.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
@@ -151,10 +152,12 @@ class Session {
     }
 
     /// Starts a render of the loaded scene with {width, height, spp, maxDepth, integrator, seed,
-    /// passes}: `spp` camera rays per pixel in all (0: the scene's), in one pass, or with
-    /// `passes` true, in passes of 1, 1, 2, 4, ... samples whose average the image shows as it
-    /// refines (the path tracer's progressive display). Returns {error (or null), width,
-    /// height}.
+    /// passes, denoise}: `spp` camera rays per pixel in all (0: the scene's), in one pass, or
+    /// with `passes` true, in passes of 1, 1, 2, 4, ... samples whose average the image shows as
+    /// it refines (the path tracer's progressive display). With `denoise` true, the image is
+    /// denoised after each pass (render passes are kept for it): the first pass shows its tiles
+    /// as they come, later passes replace the whole image once they are done, so that what is
+    /// shown is always a whole denoised image. Returns {error (or null), width, height}.
     val begin(const val& o) {
         val r = val::object();
         r.set("error", val::null());
@@ -177,8 +180,10 @@ class Session {
         spp_ = std::max(1, intOr(o, "spp", s.spp > 0 ? s.spp : 1));
         seed_ = static_cast<uint64_t>(std::max(0, intOr(o, "seed", 0)));
         progressive_ = o["passes"].isTrue();
+        denoise_ = o["denoise"].isTrue();
         film_ = Film(s.width, s.height);
-        passFilm_ = Film(s.width, s.height);
+        sums_ = FilmSums(s.width, s.height);
+        if (denoise_) sums_.keepPasses();
         rgba_.assign(static_cast<size_t>(s.width) * s.height * 4, 0);
         tilesX_ = (s.width + kTile - 1) / kTile;
         tiles_ = tilesX_ * ((s.height + kTile - 1) / kTile);
@@ -188,6 +193,7 @@ class Session {
         samples_ = 0;
         rays_ = 0;
         seconds_ = 0;
+        denoiseSeconds_ = 0;
         display_ = {0, s.display.srgb, s.display.toneMap};
         r.set("width", s.width);
         r.set("height", s.height);
@@ -195,8 +201,8 @@ class Session {
     }
 
     /// Renders tiles for about `milliseconds` (at least one batch of them). Returns {done, pass,
-    /// samples, fraction, rays, seconds, x0, y0, x1, y1}: the pixels changed by this call lie in
-    /// [x0, x1) x [y0, y1). Throws nothing: an error is {error}.
+    /// samples, fraction, rays, seconds, denoiseSeconds, x0, y0, x1, y1}: the pixels changed by
+    /// this call lie in [x0, x1) x [y0, y1). Throws nothing: an error is {error}.
     val step(double milliseconds) {
         val r = val::object();
         if (!scene_ || film_.width() == 0) {
@@ -217,14 +223,19 @@ class Session {
                 ro.seed = passSeed(seed_, pass_);
                 ro.firstTile = next_;
                 ro.tileCount = batch_;
-                ro.film = &passFilm_;
+                ro.accumulate = &sums_;  // each pixel's samples of every pass, summed
+                ro.aovs = denoise_;
                 RenderResult pass = render(s, ro);
                 rays_ += pass.rays.total();
                 seconds_ += pass.seconds;
+                // The first pass shows its tiles as they come; with the denoiser, later passes
+                // show nothing until they are whole (then the whole image, denoised).
+                const bool show = !denoise_ || samples_ == 0;
                 for (int t = next_; t < next_ + pass.tilesTotal; ++t) {
                     int tx0 = t % tilesX_ * kTile, ty0 = t / tilesX_ * kTile;
                     int tx1 = std::min(tx0 + kTile, s.width), ty1 = std::min(ty0 + kTile, s.height);
-                    merge(passFilm_, passSpp, tx0, ty0, tx1, ty1);
+                    resolveTile(tx0, ty0, tx1, ty1, show);
+                    if (!show) continue;
                     x0 = std::min(x0, tx0), y0 = std::min(y0, ty0);
                     x1 = std::max(x1, tx1), y1 = std::max(y1, ty1);
                 }
@@ -237,6 +248,10 @@ class Session {
                     next_ = 0;
                     ++pass_;
                     samples_ += passSpp;
+                    if (denoise_) {
+                        denoiseImage();
+                        x0 = y0 = 0, x1 = s.width, y1 = s.height;
+                    }
                 }
                 if (std::chrono::duration<double, std::milli>(Clock::now() - start).count() >=
                     milliseconds)
@@ -254,6 +269,7 @@ class Session {
               std::min(1.0, (samples_ + double(next_) / tiles_ * nextPassSpp()) / spp_));
         r.set("rays", static_cast<double>(rays_));
         r.set("seconds", seconds_);
+        r.set("denoiseSeconds", denoiseSeconds_);
         r.set("x0", x0), r.set("y0", y0), r.set("x1", std::max(x0, x1)),
             r.set("y1", std::max(y0, y1));
         return r;
@@ -280,19 +296,32 @@ class Session {
         return progressive_ ? std::min(spp_ - samples_, std::max(1, samples_)) : spp_;
     }
 
-    /// Folds tile [x0, x1) x [y0, y1) of a pass of `passSpp` samples into the film (the first
-    /// pass's values as they are: a one-pass render is the command line's, bit for bit), and
-    /// into the RGBA bytes through the display transform.
-    void merge(const Film& pass, int passSpp, int x0, int y0, int x1, int y1) {
-        Film tile(x1 - x0, y1 - y0);
-        const double before = samples_, total = samples_ + passSpp;
+    /// The image's tile [x0, x1) x [y0, y1) from the sums of every pass so far (the rule of a
+    /// one-pass render, so that one is the command line's, bit for bit), and with `show` into
+    /// the RGBA bytes through the display transform.
+    void resolveTile(int x0, int y0, int x1, int y1, bool show) {
         for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                Vec3& v = film_.at(x, y);
-                v = samples_ == 0 ? pass.at(x, y)
-                                  : (v * before + pass.at(x, y) * double(passSpp)) / total;
-                tile.at(x - x0, y - y0) = v;
-            }
+            for (int x = x0; x < x1; ++x) film_.at(x, y) = pixelValue(sums_.sum(x, y), sums_.weight(x, y));
+        if (show) showTile(film_, x0, y0, x1, y1);
+    }
+
+    /// Denoises the image of the passes so far, guided by their render passes, and shows it.
+    /// Below two samples a pixel's variance is unknown: the denoiser then estimates the noise
+    /// from the image.
+    void denoiseImage() {
+        auto start = Clock::now();
+        RenderPasses aovs = sums_.resolvePasses();
+        if (samples_ < 2) aovs.variance.clear();
+        film_ = denoiseFilm(sums_.resolve(), aovs, pool_);
+        showTile(film_, 0, 0, film_.width(), film_.height());
+        denoiseSeconds_ += std::chrono::duration<double>(Clock::now() - start).count();
+    }
+
+    /// Writes [x0, x1) x [y0, y1) of `film` into the RGBA bytes through the display transform.
+    void showTile(const Film& film, int x0, int y0, int x1, int y1) {
+        Film tile(x1 - x0, y1 - y0);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) tile.at(x - x0, y - y0) = film.at(x, y);
         Image8 bytes = toImage8(tile, display_);
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
@@ -305,14 +334,14 @@ class Session {
     ThreadPool pool_;
     std::unique_ptr<Scene> scene_;
     CameraSpec home_;
-    Film film_;      // the image so far: the average of the passes
-    Film passFilm_;  // the pass in progress, into which render() writes its tiles
+    Film film_;       // the image so far: the average of the passes' samples (denoised)
+    FilmSums sums_;   // every pass's samples summed (and their render passes, to denoise)
     std::vector<uint8_t> rgba_;
     DisplayTransform display_;
     int spp_ = 1, tiles_ = 0, tilesX_ = 0, next_ = 0, batch_ = 1, pass_ = 0, samples_ = 0;
-    bool progressive_ = false;
+    bool progressive_ = false, denoise_ = false;
     uint64_t seed_ = 0, rays_ = 0;
-    double seconds_ = 0;
+    double seconds_ = 0, denoiseSeconds_ = 0;
 };
 
 /// What `glint SCENE -o OUTPUT -t THREADS --kernels KERNELS` does, for the Node tests: the

@@ -147,7 +147,9 @@ function showProgress(p, final) {
     $('progress').value = final ? 1 : p.fraction;
     const mrays = seconds > 0 ? p.rays / seconds / 1e6 : 0;
     $('stats').textContent = `${seconds.toFixed(2)} s, ${mrays.toFixed(1)} Mrays/s` +
-                             (p.samples > 1 ? `, ${p.samples} spp` : '');
+                             (p.samples > 1 ? `, ${p.samples} spp` : '') +
+                             (p.denoiseSeconds > 0
+                                  ? `, denoised (${p.denoiseSeconds.toFixed(2)} s)` : '');
 }
 
 function setState(state, text) {
@@ -173,9 +175,12 @@ function options(preview) {
     const depth = $('maxdepth').value === '' ? undefined : Number($('maxdepth').value);
     const integrator = $('integrator').value || undefined;
     const path = (integrator || (sceneInfo && sceneInfo.integrator)) === 'path';
+    // The path tracer's noise is denoised after each pass and in the preview; the Whitted
+    // integrator's images (the course's) stay exact.
     const o = { width: size ? Number(size[1]) : undefined,
                 height: size ? Number(size[2]) : undefined,
-                spp, maxDepth: depth, integrator, passes: path };
+                spp, maxDepth: depth, integrator, passes: path,
+                denoise: path && $('denoise').checked };
     if (preview) {  // fast: about 160 pixels across, one sample, short paths
         const width = o.width || canvas.width, height = o.height || canvas.height;
         const scale = Math.max(1, Math.round(Math.max(width, height) / 160));
@@ -363,7 +368,7 @@ $('download').onclick = async () => {
     link.click();
     setTimeout(() => URL.revokeObjectURL(link.href), 1000);
 };
-for (const id of ['size', 'spp', 'maxdepth', 'integrator'])
+for (const id of ['size', 'spp', 'maxdepth', 'integrator', 'denoise'])
     $(id).addEventListener('change', () => startRender({ reload: id === 'integrator' }));
 document.addEventListener('keydown', (e) => {
     if ((e.ctrlKey || e.metaKey) && e.key === 'Enter') startRender({ reload: true });
