@@ -220,11 +220,9 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                 if (!consistent(ls->wi, wi)) wi = Vec3(0);
                 Vec3 f = bsdf.eval(wo, wi) * std::abs(wi.z);
                 if (!(f == Vec3(0))) {
-                    double end = ls->distance;
-                    if (std::isfinite(end))  // back off at the light's end: its surface lies there
-                        end -= spawnOffset(si.p + ls->wi * end, offset);
                     ctx.counts.shadow++;
-                    if (!scene_.occluded(spawnRay(si.p, ls->wi, offset, end))) {
+                    if (!scene_.occluded(
+                            shadowRayOffSurface(si.p, si.ng, ls->wi, ls->distance, offset))) {
                         double w = ls->delta || strategy_ == Strategy::LightsOnly
                                        ? 1
                                        : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
@@ -256,7 +254,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             beta = beta / survive;
         }
 
-        ray = spawnRay(si.p, next, offset);
+        ray = spawnRayOffSurface(si.p, si.ng, next, offset);
         ctx.counts.reflection++;
         hit = Hit{};
         found = scene_.intersect(ray, hit);

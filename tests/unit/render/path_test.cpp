@@ -229,6 +229,58 @@ void lightsAndGloss(Scene& scene) {
     scene.prepare();
 }
 
+// A closed room of separate wall quads that share their edges, grey walls lit by a white lamp
+// inside, a green sky outside: no path may reach the sky. Each path's green equals its red
+// unless it does, so the check is exact. Camera rays hit the floor within the spawn offset
+// (0.001) of a wall, where rays that left along their direction started beyond the wall's plane
+// and escaped through the corner (issue 22: thin lines of sky light along a room's corners).
+TEST(PathCorners, NoPathLeavesAClosedRoomThroughItsCorners) {
+    Scene scene;
+    scene.integrator = "path";
+    scene.maxDepth = 6;
+    scene.background = Background{Vec3(0, 1, 0), Vec3(0, 1, 0)};
+    Material wall;
+    wall.diffuse = Vec3(0.7);
+    const uint32_t w = scene.addMaterial(wall);
+    const Vec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                       {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+    // Floor, ceiling, back, front, left and right: two triangles each, facing in.
+    const int quads[6][4] = {{0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1},
+                             {4, 5, 6, 7}, {0, 4, 7, 3}, {1, 2, 6, 5}};
+    for (const auto& q : quads) {
+        scene.primitives.addTriangle(c[q[0]], c[q[1]], c[q[2]], nullptr, w);
+        scene.primitives.addTriangle(c[q[0]], c[q[2]], c[q[3]], nullptr, w);
+    }
+    Light lamp;
+    lamp.position = Vec3(0.2, 0.6, -0.1);
+    lamp.color = Vec3(1);
+    scene.lights.push_back(lamp);
+    scene.prepare();
+    PathIntegrator integrator(scene);
+    int samples = 0;
+    double mostGreen = 0;
+    for (double gap : {1e-4, 3e-4, 6e-4, 9e-4})
+        for (double z : {-0.5, 0.0, 0.7}) {
+            // From the room's middle at the floor, a hair from the left wall (x = -1).
+            const Vec3 target(-1 + gap, -1, z);
+            const Ray ray{Vec3(0.3, 0.2, 0.1), normalize(target - Vec3(0.3, 0.2, 0.1)), 0,
+                          kInfinity};
+            Hit hit;
+            ASSERT_TRUE(scene.bvh().intersect(ray, hit));
+            for (int i = 0; i < 2000; ++i) {
+                RayCounts counts;
+                PathContext ctx{Rng(77 + i), counts};
+                ctx.pixelSeed = 77 + static_cast<uint64_t>(gap * 1e5) + static_cast<uint64_t>(z * 10);
+                ctx.sampleIndex = static_cast<uint32_t>(i);
+                const Vec3 L = integrator.li(ray, &hit, ctx);
+                mostGreen = std::max(mostGreen, L.y - L.x);
+                ++samples;
+            }
+        }
+    EXPECT_EQ(samples, 24000);
+    EXPECT_EQ(mostGreen, 0) << "a path saw the sky outside the room";
+}
+
 TEST(PathStrategies, LightBsdfAndMisEstimatesAgree) {
     Scene scene;
     lightsAndGloss(scene);
