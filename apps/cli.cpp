@@ -268,7 +268,13 @@ int prepare(const Options& opt, Prepared& out) {
         scene->height = height;
     }
     if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
+    scene->clampIndirect = opt.clampIndirect;
     if (!opt.integrator.empty()) scene->integrator = opt.integrator;
+    if (opt.clampIndirect > 0 && scene->integrator != "path")
+        std::fprintf(stderr,
+                     "glint: warning: --clamp-indirect applies to the path tracer; integrator "
+                     "'%s' ignores it\n",
+                     scene->integrator.c_str());
     if (!framed) {  // a model's environment and ground were chosen when it was framed
         if (environment) scene->environment = *environment;
         if (!opt.ground.empty())
@@ -393,6 +399,13 @@ void addOptions(CLI::App& app, Options& opt) {
         ->group(render)
         ->check(integerIn(0, kMaxDepthLimit))
         ->type_name("N");
+    app.add_option("--clamp-indirect", opt.clampIndirect,
+                   "Path tracer: scale each sample's light after two or more bounces down to at "
+                   "most X in its largest channel (Cycles' Clamp Indirect): fewer fireflies, "
+                   "darker caustics and glossy interreflections (biased); default off")
+        ->group(render)
+        ->check(numberIn(0, 1e30))
+        ->type_name("X");
 
     app.add_option(
            "--integrator", opt.integrator,

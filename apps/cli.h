@@ -36,6 +36,7 @@ struct Options {
     std::string kernels = "auto";
     std::string size;
     int maxDepth = -1;
+    double clampIndirect = 0;  ///< --clamp-indirect; 0: none.
     std::string integrator;  ///< Empty: the scene's `integrator`, else whitted.
     int spp = 0;             ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;

@@ -1,6 +1,7 @@
 #include "piece.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "glint/io/image/image_io.h"
 #include "glint/render/adaptive.h"
@@ -12,6 +13,13 @@ bool wantsPiece(const Options& opt) {
 }
 
 namespace {
+
+/// `v` in 17 significant digits: exactly.
+std::string exactText(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+}
 
 /// The option that made this a piece, for messages.
 std::string pieceOption(const Options& opt) {
@@ -128,6 +136,8 @@ std::string pixelSettings(const Options& opt, const Scene& scene) {
         environment = "file";
     return "integrator=" + orDefault(scene.integrator) +
            " maxdepth=" + std::to_string(scene.maxDepth) +
+           (scene.clampIndirect > 0 ? " clamp-indirect=" + exactText(scene.clampIndirect)
+                                    : std::string()) +
            " environment=" + orDefault(environment) + " ground=" + orDefault(opt.ground) +
            " camera=" + orDefault(opt.camera) + " lenient=" + (opt.lenient ? "yes" : "no");
 }

@@ -139,6 +139,34 @@ TEST(CliCleanImages, AdaptivePiecesWithPassesMergeToTheWholeRendersBytes) {
         << r.err;
 }
 
+TEST(CliCleanImages, ClampIndirectDarkensTheIndirectLightAndIsNamedInPieces) {
+    const std::string dir = withScene("clean-clamp");
+    CommandResult r = runGlint("-q s.test --spp 16 -o full.pfm", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runGlint("-q s.test --spp 16 --clamp-indirect 0.01 -o clamped.pfm", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Film full = readPfm(dir + "/full.pfm"), clamped = readPfm(dir + "/clamped.pfm");
+    double a = 0, b = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+            a += full.at(x, y).x;
+            b += clamped.at(x, y).x;
+            EXPECT_LE(clamped.at(x, y).x, full.at(x, y).x + 1e-9) << x << "," << y;
+        }
+    EXPECT_LT(b, a);
+    // Pieces of other clamps are not of one frame; the Whitted integrator says it ignores it.
+    r = runGlint("-q s.test --spp 4 --clamp-indirect 0.5 --part 0/2 -o p0.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runGlint("-q s.test --spp 4 --part 1/2 -o p1.exr", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runGlint("merge -o m.png p0.exr p1.exr", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.err, "clamp-indirect")) << r.err;
+    r = runGlint("s.test --integrator whitted --clamp-indirect 1 -o w.png", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "--clamp-indirect applies to the path tracer")) << r.err;
+}
+
 TEST(CliCleanImages, ModelsAreSampledUntilCleanAndDenoisedByDefault) {
     const std::string dir = freshDir("clean-model");
     fs::copy_file(std::string(GLINT_TEST_DATA_DIR) + "/meshes/flat.obj", dir + "/flat.obj");

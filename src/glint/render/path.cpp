@@ -86,6 +86,12 @@ PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
     if (scene.shadowCatcher) catcher_.emplace(scene);
 }
 
+Vec3 PathIntegrator::clampedIndirect(const Vec3& c) const {
+    const double most = maxComponent(c);
+    const double limit = scene_.clampIndirect;
+    return limit > 0 && most > limit ? c * (limit / most) : c;
+}
+
 double PathIntegrator::bsdfWeight(double bsdfPdf, double lightPdf) const {
     switch (strategy_) {
         case Strategy::Mis:
@@ -133,10 +139,13 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         if (!found) {
             double lightPdf = 0;
             Vec3 le = lights_.environment(ray.dir, &lightPdf);
+            // Light found at depth d came through d bounces: the first two are direct.
+            Vec3 light(0);
             if (depth == 0 || specularBounce)
-                L += beta * le;
+                light = beta * le;
             else if (!(le == Vec3(0)))
-                L += beta * le * bsdfWeight(bsdfPdf, lightPdf);
+                light = beta * le * bsdfWeight(bsdfPdf, lightPdf);
+            L += depth >= 2 ? clampedIndirect(light) : light;
             break;
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
@@ -187,10 +196,11 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
 
         // Light the surface emits towards the path.
         if (!(emission == Vec3(0)) && (!m.frontEmissionOnly || dot(ray.dir, si.ng) < 0)) {
-            if (depth == 0 || specularBounce)
-                L += beta * emission;
-            else
-                L += beta * emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, hit, si));
+            const Vec3 light =
+                depth == 0 || specularBounce
+                    ? beta * emission
+                    : beta * emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, hit, si));
+            L += depth >= 2 ? clampedIndirect(light) : light;
         }
         if (depth >= scene_.maxDepth) break;
 
@@ -226,7 +236,8 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                         double w = ls->delta || strategy_ == Strategy::LightsOnly
                                        ? 1
                                        : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
-                        L += beta * f * ls->L * (w / ls->pdf);
+                        const Vec3 light = beta * f * ls->L * (w / ls->pdf);
+                        L += depth >= 1 ? clampedIndirect(light) : light;
                     }
                 }
             }

@@ -31,6 +31,10 @@ class PathIntegrator final : public Integrator {
     bool usesRandomNumbers() const override { return true; }
 
   private:
+    /// `c`, light that reached the camera through two or more bounces, under the scene's
+    /// clampIndirect.
+    Vec3 clampedIndirect(const Vec3& c) const;
+
     /// Weight of light a BSDF-sampled ray found on a light that next-event estimation samples
     /// with density `lightPdf` (0: it does not).
     double bsdfWeight(double bsdfPdf, double lightPdf) const;

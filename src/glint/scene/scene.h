@@ -72,6 +72,10 @@ class Scene {
 
     int width = 640, height = 480;
     int maxDepth = 5;  ///< Primary rays are depth 0; reflect while depth < maxDepth.
+    /// The path tracer's clamp of indirect light (`--clamp-indirect`, Cycles' "Clamp
+    /// Indirect"): each sample's light that reached the camera after two or more bounces is
+    /// scaled down to at most this in its largest channel. 0: no clamp (unbiased).
+    double clampIndirect = 0;
     /// The integrator that renders the scene, by name (render/integrator.h; `integrator`).
     std::string integrator = "whitted";
     std::string output;  ///< Output file the scene asks for; may be empty.

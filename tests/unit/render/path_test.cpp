@@ -281,6 +281,55 @@ TEST(PathCorners, NoPathLeavesAClosedRoomThroughItsCorners) {
     EXPECT_EQ(mostGreen, 0) << "a path saw the sky outside the room";
 }
 
+// --clamp-indirect: each sample's light through two or more bounces is at most the clamp in
+// its largest channel, light through fewer is untouched, and a clamp no sample reaches changes
+// nothing. A path of the scene's 3 bounces adds at most 4 indirect terms (next-event estimation
+// at its 2nd and 3rd vertex, emission found by its 3rd and 4th ray): over a direct-only render
+// of the same random numbers, a clamped sample gains at most 4 clamps.
+TEST(PathClampIndirect, ClampsLightAfterTwoBouncesOnly) {
+    Scene scene;
+    lightsAndGloss(scene);
+    const Ray ray{Vec3(0, 1.5, 5), normalize(Vec3(0.2, 0, 2) - Vec3(0, 1.5, 5)), 0,
+                  kInfinity};
+    Hit hit;
+    ASSERT_TRUE(scene.bvh().intersect(ray, hit));
+    auto sample = [&](int i) {
+        PathIntegrator integrator(scene);
+        RayCounts counts;
+        PathContext ctx{Rng(5 + i), counts};
+        ctx.pixelSeed = 11;
+        ctx.sampleIndex = static_cast<uint32_t>(i);
+        return integrator.li(ray, &hit, ctx);
+    };
+    constexpr double kClamp = 0.001;
+    double clampedSum = 0, fullSum = 0;
+    int changed = 0;
+    for (int i = 0; i < 400; ++i) {
+        scene.clampIndirect = 0;
+        const Vec3 full = sample(i);
+        scene.clampIndirect = 1e30;
+        EXPECT_EQ(sample(i), full) << "a clamp no sample reaches changed sample " << i;
+        scene.clampIndirect = kClamp;
+        const Vec3 clamped = sample(i);
+        scene.maxDepth = 1;
+        const Vec3 direct = sample(i);
+        scene.clampIndirect = 0;
+        EXPECT_EQ(sample(i), direct) << "direct light was clamped in sample " << i;
+        scene.maxDepth = 3;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_GE(clamped[c], direct[c] - 1e-12) << i;
+            EXPECT_LE(clamped[c], direct[c] + 4 * kClamp + 1e-12) << i;
+        }
+        changed += !(clamped == full);
+        clampedSum += clamped.x;
+        fullSum += full.x;
+    }
+    // An open scene: most bounces off the floor leave it; those that meet a sphere bring
+    // indirect light above the clamp (13 of the 400 samples).
+    EXPECT_GT(changed, 5);
+    EXPECT_LT(clampedSum, fullSum);
+}
+
 TEST(PathStrategies, LightBsdfAndMisEstimatesAgree) {
     Scene scene;
     lightsAndGloss(scene);
