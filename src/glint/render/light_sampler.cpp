@@ -23,7 +23,16 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     const Primitives& prims = scene.primitives;
     Bounds3f b = prims.bounds();
     if (!b.empty()) sceneRadius_ = std::max(length(Vec3(b.hi) - Vec3(b.lo)) / 2, 1e-6);
-    std::vector<double> power;
+    std::vector<LightBounds> bounded;
+    auto addBounded = [&](const Entry& e, const LightBounds& lb) {
+        lightOfTreeLeaf_.push_back(static_cast<uint32_t>(lights_.size()));
+        lights_.push_back(e);
+        bounded.push_back(lb);
+    };
+    auto addInfinite = [&](const Entry& e) {
+        infinite_.push_back(static_cast<uint32_t>(lights_.size()));
+        lights_.push_back(e);
+    };
 
     // Delta lights. A point light's power is estimated at unit distance; quad lights are
     // represented by their emissive triangles below.
@@ -31,11 +40,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         const Light& l = scene.lights[i];
         if (l.kind == Light::Kind::Point) {
             double att = std::max(l.attenuation.x + l.attenuation.y + l.attenuation.z, 1e-6);
-            lights_.push_back({Kind::Point, i});
-            power.push_back(4 * kPi * brightness(l.color) / att);
+            const double power = 4 * kPi * brightness(l.color) / att;
+            if (power > 0) addBounded({Kind::Point, i}, LightBounds::point(l.position, power));
         } else if (l.kind == Light::Kind::Directional) {
-            lights_.push_back({Kind::Directional, i});
-            power.push_back(kPi * sceneRadius_ * sceneRadius_ * brightness(l.color));
+            if (brightness(l.color) > 0) addInfinite({Kind::Directional, i});
         }
     }
 
@@ -44,60 +52,94 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         uint32_t m = prims.materialOf(id);
         return m != Primitives::kMixedMaterials && brightness(scene.materials[m].emission) > 0;
     };
-    const uint32_t bounded = prims.boundedCount();
-    for (uint32_t id = 0; id < bounded; ++id) {
+    const uint32_t boundedCount = prims.boundedCount();
+    for (uint32_t id = 0; id < boundedCount; ++id) {
         if (prims.isInstance(id) || !emits(id)) continue;
-        if (lightOfPrimitive_.empty()) lightOfPrimitive_.assign(bounded, UINT32_MAX);
+        if (lightOfPrimitive_.empty()) lightOfPrimitive_.assign(boundedCount, UINT32_MAX);
         const Material& m = scene.materials[prims.materialOf(id)];
         Entry e{Kind::Triangle, id, m.frontEmissionOnly};
         e.emission = m.emission;
         if (m.pbr != 0 && scene.pbr(m.pbr).emissiveTexture && id < prims.triangleCount())
             e.texturedPbr = m.pbr;
         double area;
+        Vec3 lo, hi, normal(0);
         if (id < prims.triangleCount()) {
             auto v = prims.triangleVertices(id);
             const Vec3 va(v[0]), vb(v[1]), vc(v[2]);
-            Vec3 normal = cross(vb - va, vc - va);
-            area = 0.5 * length(normal);
+            Vec3 cr = cross(vb - va, vc - va);
+            area = 0.5 * length(cr);
             if (!(area > 0)) continue;
             e.pdfArea = 1 / area;
             e.c = vc;
             e.ca = va - vc;
             e.cb = vb - vc;
-            e.n = normal / (2 * area);
-        } else if (prims.isSphere(id)) {
-            e.kind = Kind::Sphere;
-            area = approximateArea(prims.sphere(id - prims.triangleCount()));
+            e.n = cr / (2 * area);
+            lo = min(va, min(vb, vc));
+            hi = max(va, max(vb, vc));
+            normal = e.n;
         } else {
-            e.kind = Kind::Shape;
-            area = approximateArea(prims.shape(id - prims.triangleCount() - prims.sphereCount()));
+            const Bounds3f box = prims.bounds(id);
+            lo = Vec3(box.lo);
+            hi = Vec3(box.hi);
+            if (prims.isSphere(id)) {
+                e.kind = Kind::Sphere;
+                area = approximateArea(prims.sphere(id - prims.triangleCount()));
+            } else {
+                e.kind = Kind::Shape;
+                area = approximateArea(
+                    prims.shape(id - prims.triangleCount() - prims.sphereCount()));
+            }
         }
+        const double power = kPi * area * brightness(m.emission) * (e.frontOnly ? 1 : 2);
+        if (!(power > 0)) continue;
         lightOfPrimitive_[id] = static_cast<uint32_t>(lights_.size());
-        lights_.push_back(e);
-        power.push_back(kPi * area * brightness(m.emission) * (e.frontOnly ? 1 : 2));
+        // A sphere or shape emits about every normal; a triangle about its own, from both
+        // sides unless front-only.
+        addBounded(e, LightBounds::surface(lo, hi, power, normal, !e.frontOnly));
     }
 
-    // The environment map, or the background if it is not black: power 4 pi^2 r^2 times the
-    // mean radiance.
+    // The environment map, or the background if it is not black.
     double env = scene.environment
                      ? scene.environment->power(sceneRadius_)
-                     : 4 * kPi * kPi * sceneRadius_ * sceneRadius_ *
-                           brightness((scene.background.down + scene.background.up) * 0.5);
+                     : brightness((scene.background.down + scene.background.up) * 0.5);
     if (env > 0) {
         environment_ = static_cast<uint32_t>(lights_.size());
-        lights_.push_back({Kind::Environment, 0});
-        power.push_back(env);
+        addInfinite({Kind::Environment, 0});
     }
-    power_ = Distribution1D(std::move(power));
+
+    tree_ = LightTree(bounded);
+    treeLeafOf_.assign(lights_.size(), UINT32_MAX);
+    for (uint32_t k = 0; k < lightOfTreeLeaf_.size(); ++k) treeLeafOf_[lightOfTreeLeaf_[k]] = k;
+    const double nInfinite = static_cast<double>(infinite_.size());
+    pInfinite_ = nInfinite / (nInfinite + (tree_.empty() ? 0 : 1));
 }
 
-std::optional<LightSample> LightSampler::sample(const Vec3& p, double uLight, Point2 u) const {
+std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, double uLight,
+                                                Point2 u) const {
     if (lights_.empty()) return std::nullopt;
-    double choice = 0;
-    size_t i = power_.sampleDiscrete(uLight, &choice);
-    std::optional<LightSample> s = sampleEntry(lights_[i], p, u);
+    uint32_t index;
+    double choice;
+    if (uLight < pInfinite_) {
+        const size_t count = infinite_.size();
+        index = infinite_[std::min(static_cast<size_t>(uLight / pInfinite_ * count), count - 1)];
+        choice = pInfinite_ / static_cast<double>(count);
+    } else {
+        const double v = std::min((uLight - pInfinite_) / (1 - pInfinite_), 0x1.fffffffffffffp-1);
+        std::optional<LightTree::Choice> c = tree_.sample(p, n, v);
+        if (!c) return std::nullopt;
+        index = lightOfTreeLeaf_[c->light];
+        choice = (1 - pInfinite_) * c->probability;
+    }
+    std::optional<LightSample> s = sampleEntry(lights_[index], p, u);
     if (s) s->pdf *= choice;
     return s;
+}
+
+double LightSampler::choiceProbability(size_t index, const Vec3& p, const Vec3& n) const {
+    if (index >= lights_.size()) return 0;
+    const uint32_t leaf = treeLeafOf_[index];
+    if (leaf == UINT32_MAX) return pInfinite_ / static_cast<double>(infinite_.size());
+    return (1 - pInfinite_) * tree_.pmf(p, n, leaf);
 }
 
 std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3& p,
@@ -147,7 +189,8 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     return LightSample{wi, emission, pdf, dist, false};
 }
 
-double LightSampler::pdfHit(const Vec3& from, const Hit& hit, const SurfaceInteraction& si) const {
+double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
+                            const SurfaceInteraction& si) const {
     if (lightOfPrimitive_.empty() || hit.primId >= lightOfPrimitive_.size()) return 0;
     uint32_t index = lightOfPrimitive_[hit.primId];
     if (index == UINT32_MAX) return 0;
@@ -163,7 +206,7 @@ double LightSampler::pdfHit(const Vec3& from, const Hit& hit, const SurfaceInter
     double d2 = dot(d, d);
     double cosLight = std::abs(dot(d, si.ng)) / std::sqrt(d2);
     if (!(cosLight > 0)) return 0;
-    return power_.probability(index) * pdfArea * d2 / cosLight;
+    return choiceProbability(index, from, fromN) * pdfArea * d2 / cosLight;
 }
 
 Vec3 LightSampler::environment(const Vec3& dir, double* pdf) const {
@@ -173,14 +216,14 @@ Vec3 LightSampler::environment(const Vec3& dir, double* pdf) const {
     }
     const EnvironmentMap& map = *scene_.environment;
     const Point2 st = map.imageCoordinates(dir);
-    *pdf = environment_ == UINT32_MAX ? 0 : power_.probability(environment_) * map.pdfAt(st);
+    *pdf = environment_ == UINT32_MAX ? 0 : choiceProbability(environment_, {}, {}) * map.pdfAt(st);
     return map.evalAt(st);
 }
 
 double LightSampler::pdfEnvironment(const Vec3& dir) const {
     if (environment_ == UINT32_MAX) return 0;
     double pdf = scene_.environment ? scene_.environment->pdf(dir) : 1 / (4 * kPi);
-    return power_.probability(environment_) * pdf;
+    return choiceProbability(environment_, {}, {}) * pdf;
 }
 
 }  // namespace glint

@@ -2,10 +2,13 @@
 /// Every source of light in a scene, as a physically based integrator samples them: the point
 /// and directional lights, every emissive surface (triangles, meshes, spheres and the other
 /// shapes, including the geometry of quad lights) as an area light, and the environment map or
-/// the background as an environment light. One is chosen per shading point with probability
-/// proportional to an estimate of its power (pbrt's PowerLightSampler), then sampled: emissive
-/// surfaces uniformly by area (see geometry/surface_sampling.h), an environment map by its
-/// luminance (scene/environment.h), a constant or gradient background uniformly over the sphere.
+/// the background as an environment light. One is chosen per shading point, then sampled:
+/// emissive surfaces uniformly by area (see geometry/surface_sampling.h), an environment map
+/// by its luminance (scene/environment.h), a constant or gradient background uniformly over
+/// the sphere. The choice is pbrt-v4's BVHLightSampler's: the lights at infinity (the
+/// environment, directional lights) each with probability 1 / (their number + 1), and
+/// otherwise one of the others through a light tree (render/light_tree.h), by its power,
+/// distance and orientation as seen from the shading point and its normal.
 ///
 /// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite, and
 /// emissive triangles of instanced meshes. pdfHit() is 0 for them, so an integrator weighting
@@ -16,6 +19,7 @@
 #include <vector>
 
 #include "glint/math/distribution.h"
+#include "glint/render/light_tree.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
@@ -39,14 +43,21 @@ class LightSampler {
     bool empty() const { return lights_.empty(); }
     size_t size() const { return lights_.size(); }
 
-    /// Chooses a light with `uLight` and samples a direction towards it from `p` with `u`.
-    /// None if nothing arrives (p behind a one-sided emitter, on the light itself, ...).
-    std::optional<LightSample> sample(const Vec3& p, double uLight, Point2 u) const;
+    /// Chooses a light with `uLight` for point `p` whose surface normal is `n` (zero: p
+    /// receives from every side, behind glass or in a medium) and samples a direction towards
+    /// it with `u`. None if nothing arrives (p behind a one-sided emitter, on the light itself,
+    /// ...).
+    std::optional<LightSample> sample(const Vec3& p, const Vec3& n, double uLight,
+                                      Point2 u) const;
 
-    /// The density (as LightSample::pdf) with which sample() from `from` would have drawn
-    /// the direction to `hit`, a point on an emissive surface that a ray from `from`
-    /// reached; 0 if that surface is not among the sampled lights.
-    double pdfHit(const Vec3& from, const Hit& hit, const SurfaceInteraction& si) const;
+    /// The density (as LightSample::pdf) with which sample() from `from` with normal `fromN`
+    /// would have drawn the direction to `hit`, a point on an emissive surface that a ray from
+    /// `from` reached; 0 if that surface is not among the sampled lights.
+    double pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
+                  const SurfaceInteraction& si) const;
+
+    /// The probability with which sample() chooses light `index` (of size()) for `p`, `n`.
+    double choiceProbability(size_t index, const Vec3& p, const Vec3& n) const;
 
     /// The density (as LightSample::pdf) with which sample() draws the direction `dir` towards
     /// the environment; 0 if the background is black.
@@ -76,7 +87,13 @@ class LightSampler {
 
     const Scene& scene_;
     std::vector<Entry> lights_;
-    Distribution1D power_;
+    /// The lights at infinity, by index, each chosen with probability pInfinite_ / their
+    /// number; the others are in the tree.
+    std::vector<uint32_t> infinite_;
+    double pInfinite_ = 0;
+    LightTree tree_;
+    std::vector<uint32_t> lightOfTreeLeaf_;  ///< Tree light k is lights_[lightOfTreeLeaf_[k]].
+    std::vector<uint32_t> treeLeafOf_;       ///< And back (UINT32_MAX: at infinity).
     /// Light index of each bounded primitive (none: UINT32_MAX); empty if no surface emits.
     std::vector<uint32_t> lightOfPrimitive_;
     uint32_t environment_ = UINT32_MAX;  ///< Index of the environment light, if any.

@@ -17,6 +17,20 @@ inline double powerHeuristic(double a, double b) {
     return a2 > 0 ? a2 / (a2 + b2) : 0;
 }
 
+/// The normal by which the light tree weighs lights for a point of `bsdf` on a surface of
+/// geometric normal `ng`: none where light also arrives through the surface (glass,
+/// transmission), so that lights on either side count.
+Vec3 receivingNormal(const Bsdf& bsdf, const Vec3& ng) {
+    struct Visitor {
+        bool operator()(const Dielectric&) const { return true; }
+        bool operator()(const MetallicRoughness& m) const { return m.transmission > 0; }
+        bool operator()(const Lambertian&) const { return false; }
+        bool operator()(const Conductor&) const { return false; }
+        bool operator()(const DiffuseSpecular&) const { return false; }
+    };
+    return std::visit(Visitor{}, bsdf.lobe) ? Vec3(0) : ng;
+}
+
 /// Whether every lobe of `bsdf` is a delta: no light sample can meet it.
 bool specularOnly(const Bsdf& bsdf) {
     struct Visitor {
@@ -109,7 +123,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     Vec3 L(0), beta(1);
     bool specularBounce = false;
     double bsdfPdf = 0;  // density of the direction the last bounce drew
-    Vec3 from;           // where it left from
+    Vec3 from, fromN;    // where it left from, and the normal the light tree saw there
     Ray ray = cameraRay;
     Hit hit;
     bool found = cameraHit != nullptr;
@@ -199,7 +213,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             const Vec3 light =
                 depth == 0 || specularBounce
                     ? beta * emission
-                    : beta * emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, hit, si));
+                    : beta * emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, fromN, hit, si));
             L += depth >= 2 ? clampedIndirect(light) : light;
         }
         if (depth >= scene_.maxDepth) break;
@@ -222,8 +236,9 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const Point2 uChoices = sampler.get2D();
         const double uLight = uChoices.x;
         const Point2 uLightPoint = sampler.get2D();
+        const Vec3 receiver = receivingNormal(bsdf, si.ng);
         if (!lights_.empty() && !specularOnly(bsdf)) {
-            std::optional<LightSample> ls = lights_.sample(si.p, uLight, uLightPoint);
+            std::optional<LightSample> ls = lights_.sample(si.p, receiver, uLight, uLightPoint);
             // BSDF sampling alone cannot reach delta lights: they are sampled in every mode.
             if (ls && !(ls->L == Vec3(0)) && (ls->delta || strategy_ != Strategy::BsdfOnly)) {
                 Vec3 wi = frame.toLocal(ls->wi);
@@ -256,6 +271,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         specularBounce = bs->isSpecular();
         bsdfPdf = bs->pdf;
         from = si.p;
+        fromN = receiver;
 
         // Russian roulette from the second bounce on: a path of throughput below 1 survives
         // with probability equal to it, and is reweighted so the estimate stays unbiased.

@@ -47,7 +47,7 @@ void checkLight(const Scene& scene, const Vec3& p, int surfaces, const char* wha
     int consistent = 0, inconsistent = 0;
     for (int i = 0; i < n; ++i) {
         Point2 u{rng.uniform(), rng.uniform()};
-        std::optional<LightSample> s = lights.sample(p, rng.uniform(), u);
+        std::optional<LightSample> s = lights.sample(p, Vec3(0), rng.uniform(), u);
         int o = s ? octant(s->wi) : -1;
         for (int k = 0; k < 8; ++k) inversePdf[k].add(k == o ? 1 / s->pdf : 0.0);
         if (s) {
@@ -61,7 +61,7 @@ void checkLight(const Scene& scene, const Vec3& p, int surfaces, const char* wha
                 SurfaceInteraction si = scene.primitives.interaction(ray, hit);
                 // Points within rounding of an edge may be given the neighbouring face's
                 // normal by the hit, and grazing ones lose digits: a few may differ.
-                (std::abs(lights.pdfHit(p, hit, si) - s->pdf) <= 1e-6 * s->pdf ? consistent
+                (std::abs(lights.pdfHit(p, Vec3(0), hit, si) - s->pdf) <= 1e-6 * s->pdf ? consistent
                                                                                : inconsistent)++;
             }
         }
@@ -140,31 +140,57 @@ TEST(LightSampler, QuadLightsEmitFromTheirFrontOnly) {
     int above = 0;
     for (int i = 0; i < 1000; ++i) {
         Point2 u{rng.uniform(), rng.uniform()};
-        EXPECT_FALSE(lights.sample({0, 0, 0}, 0.5, u)) << "sampled from behind";
-        above += lights.sample({0, 2, 0}, 0.5, u).has_value();
+        EXPECT_FALSE(lights.sample({0, 0, 0}, Vec3(0), 0.5, u)) << "sampled from behind";
+        above += lights.sample({0, 2, 0}, Vec3(0), 0.5, u).has_value();
     }
     EXPECT_EQ(above, 1000);
 }
 
-TEST(LightSampler, LightsAreChosenByPower) {
+TEST(LightSampler, LightsAreChosenAsTheirProbabilitiesSay) {
+    // Two lamps of equal area, one three times as bright; a sun and a sky at infinity.
     Scene scene;
     Material dim = emitter(), bright = emitter();
-    bright.emission = Vec3(3, 6, 9);  // three times as bright, same area
+    bright.emission = Vec3(3, 6, 9);
     scene.primitives.addTriangle({-1, 0, 0}, {0, 0, 0}, {-1, 1, 0}, nullptr,
                                  scene.addMaterial(dim));
     scene.primitives.addTriangle({1, 0, 0}, {2, 0, 0}, {1, 1, 0}, nullptr,
                                  scene.addMaterial(bright));
+    Light sun;
+    sun.kind = Light::Kind::Directional;
+    sun.direction = normalize(Vec3(1, 1, 1));
+    sun.color = Vec3(2);
+    scene.lights.push_back(sun);
+    scene.background = Background{Vec3(0.1), Vec3(0.3)};
     scene.prepare();
     LightSampler lights(scene);
+    ASSERT_EQ(lights.size(), 4u);
+    const Vec3 p(0.5, 0.5, 3), n(0, 0, 1);
+    double total = 0;
+    for (size_t k = 0; k < lights.size(); ++k) total += lights.choiceProbability(k, p, n);
+    EXPECT_NEAR(total, 1, 1e-12);
+    // The sun and the sky: one third each (each light at infinity as likely as the tree).
     Rng rng(5);
-    int brightCount = 0, n = 40000;
-    for (int i = 0; i < n; ++i) {
+    int counts[3] = {0, 0, 0};  // dim lamp, bright lamp, at infinity
+    const int trials = 60000;
+    for (int i = 0; i < trials; ++i) {
         std::optional<LightSample> s =
-            lights.sample({0.5, 0.5, 3}, rng.uniform(), {rng.uniform(), rng.uniform()});
+            lights.sample(p, n, rng.uniform(), {rng.uniform(), rng.uniform()});
         ASSERT_TRUE(s);
-        brightCount += s->L.x == 3;
+        counts[std::isinf(s->distance) ? 2 : s->L.x == 3 ? 1 : 0]++;
     }
-    EXPECT_NEAR(brightCount / double(n), 0.75, 5 * std::sqrt(0.75 * 0.25 / n));
+    // Indices: the sun (delta lights first), the dim and the bright lamp, the sky. The sun
+    // and the sky take a third each (each light at infinity is as likely as the tree); the
+    // tree gives the bright lamp, three times the power, more than half of its third.
+    const double pDim = lights.choiceProbability(1, p, n), pBright = lights.choiceProbability(2, p, n);
+    EXPECT_DOUBLE_EQ(lights.choiceProbability(0, p, n), 1.0 / 3);
+    EXPECT_DOUBLE_EQ(lights.choiceProbability(3, p, n), 1.0 / 3);
+    EXPECT_NEAR(pDim + pBright, 1.0 / 3, 1e-12);
+    EXPECT_GT(pBright, pDim);
+    const double shares[3] = {pDim, pBright, 2.0 / 3};
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(counts[k] / double(trials), shares[k],
+                    5 * std::sqrt(shares[k] * (1 - shares[k]) / trials))
+            << k;
 }
 
 TEST(LightSampler, TheBackgroundIsALightUnlessBlack) {
@@ -178,7 +204,7 @@ TEST(LightSampler, TheBackgroundIsALightUnlessBlack) {
     LightSampler lights(sky);
     ASSERT_EQ(lights.size(), 1u);
     EXPECT_DOUBLE_EQ(lights.pdfEnvironment({0, 1, 0}), 1 / (4 * std::numbers::pi));
-    std::optional<LightSample> s = lights.sample({0, 0, 0}, 0.3, {0.2, 0.7});
+    std::optional<LightSample> s = lights.sample({0, 0, 0}, Vec3(0), 0.3, {0.2, 0.7});
     ASSERT_TRUE(s);
     EXPECT_EQ(s->L, sky.background.eval(s->wi));
     EXPECT_TRUE(std::isinf(s->distance));

@@ -1,0 +1,282 @@
+#include "glint/render/light_tree.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "glint/core/ray.h"
+
+namespace glint {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double safeSqrt(double x) { return std::sqrt(std::max(x, 0.0)); }
+double safeAcos(double x) { return std::acos(std::clamp(x, -1.0, 1.0)); }
+
+/// cos(max(0, a - b)) and sin(max(0, a - b)) of two angles in [0, pi] given by their sines and
+/// cosines (a below b: the difference is 0).
+double cosSubClamped(double sinA, double cosA, double sinB, double cosB) {
+    return cosA > cosB ? 1 : cosA * cosB + sinA * sinB;
+}
+double sinSubClamped(double sinA, double cosA, double sinB, double cosB) {
+    return cosA > cosB ? 0 : sinA * cosB - cosA * sinB;
+}
+
+/// `v` turned by `angle` about the unit axis `k` (Rodrigues' formula).
+Vec3 rotate(const Vec3& v, const Vec3& k, double angle) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
+}
+
+struct Cone {
+    Vec3 w;
+    double cosTheta;
+};
+
+/// The smallest cone (of this construction) holding both cones (pbrt-v4's DirectionCone Union).
+Cone unite(const Cone& a, const Cone& b) {
+    if (a.cosTheta <= -1 || b.cosTheta <= -1) return {a.w, -1};
+    const double thetaA = safeAcos(a.cosTheta), thetaB = safeAcos(b.cosTheta);
+    const double thetaD = safeAcos(dot(a.w, b.w));
+    if (std::min(thetaD + thetaB, kPi) <= thetaA) return a;
+    if (std::min(thetaD + thetaA, kPi) <= thetaB) return b;
+    const double thetaO = (thetaA + thetaD + thetaB) / 2;
+    if (thetaO >= kPi) return {a.w, -1};
+    const Vec3 axis = cross(a.w, b.w);
+    const double len = length(axis);
+    if (!(len > 0)) return {a.w, -1};  // opposite axes
+    return {normalize(rotate(a.w, axis / len, thetaO - thetaA)), std::cos(thetaO)};
+}
+
+double surfaceMeasure(const LightBounds& b) {
+    const Vec3 d = b.hi - b.lo;
+    const double area = 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+    return area > 0 ? area : dot(d, d);  // flat or a point: its diagonal stands in
+}
+
+/// pbrt-v4's cost of a group of lights in a split: power times the solid angle its emission
+/// may reach (M_omega), times its bounds' area, times how thin the node is along the split's
+/// axis (Kr: splits across thin nodes are discouraged).
+double splitCost(const LightBounds& b, double kr) {
+    const double thetaO = safeAcos(b.cosThetaO), thetaE = safeAcos(b.cosThetaE);
+    const double thetaW = std::min(thetaO + thetaE, kPi);
+    const double sinO = safeSqrt(1 - b.cosThetaO * b.cosThetaO);
+    const double mOmega = 2 * kPi * (1 - b.cosThetaO) +
+                          kPi / 2 *
+                              (2 * thetaW * sinO - std::cos(thetaO - 2 * thetaW) -
+                               2 * thetaO * sinO + b.cosThetaO);
+    return b.phi * mOmega * kr * surfaceMeasure(b);
+}
+
+Vec3 centroid(const LightBounds& b) { return (b.lo + b.hi) * 0.5; }
+
+/// Deeper than this, subtrees are split in half by count, so that no path from the root is
+/// longer than 63 steps (a light's path is 64 bits) for up to 2^32 lights.
+constexpr int kMaxSahDepth = 30;
+
+}  // namespace
+
+LightBounds LightBounds::point(const Vec3& p, double phi) {
+    LightBounds b;
+    b.lo = b.hi = p;
+    b.phi = phi;
+    b.cosThetaO = -1;
+    b.cosThetaE = 0;
+    return b;
+}
+
+LightBounds LightBounds::surface(const Vec3& lo, const Vec3& hi, double phi, const Vec3& n,
+                                 bool twoSided) {
+    LightBounds b;
+    b.lo = lo;
+    b.hi = hi;
+    b.phi = phi;
+    const double len = length(n);
+    if (len > 0) {
+        b.w = n / len;
+        b.cosThetaO = 1;
+    } else {
+        b.cosThetaO = -1;
+    }
+    b.cosThetaE = 0;
+    b.twoSided = twoSided;
+    return b;
+}
+
+double LightBounds::importance(const Vec3& p, const Vec3& n) const {
+    const Vec3 pc = centroid(*this);
+    const Vec3 toP = p - pc;
+    const double dist2 = dot(toP, toP);
+    const double radius = length(hi - lo) / 2;
+    // Within the bounds the distance tells nothing: pbrt's floor of half the diagonal.
+    const double d2 = std::max(dist2, radius);
+    if (!(dist2 > 0)) return phi / std::max(d2, 1e-30);
+    const Vec3 wi = toP / std::sqrt(dist2);
+    // The angle the bounds subtend from p, about wi.
+    const double cosB = dist2 < radius * radius ? -1 : safeSqrt(1 - radius * radius / dist2);
+    const double sinB = safeSqrt(1 - cosB * cosB);
+    // The smallest angle between an emission normal and a direction to p.
+    double cosW = dot(w, wi);
+    if (twoSided) cosW = std::abs(cosW);
+    const double sinW = safeSqrt(1 - cosW * cosW);
+    const double sinO = safeSqrt(1 - cosThetaO * cosThetaO);
+    const double cosX = cosSubClamped(sinW, cosW, sinO, cosThetaO);
+    const double sinX = sinSubClamped(sinW, cosW, sinO, cosThetaO);
+    const double cosP = cosSubClamped(sinX, cosX, sinB, cosB);
+    if (cosP <= cosThetaE) return 0;
+    double result = phi * cosP / d2;
+    if (!(n == Vec3(0))) {  // the receiving cosine, at best over the bounds
+        const double cosI = std::abs(dot(wi, n));
+        const double sinI = safeSqrt(1 - cosI * cosI);
+        result *= cosSubClamped(sinI, cosI, sinB, cosB);
+    }
+    return std::max(result, 0.0);
+}
+
+LightBounds unite(const LightBounds& a, const LightBounds& b) {
+    if (!(a.phi > 0)) return b;
+    if (!(b.phi > 0)) return a;
+    LightBounds u;
+    u.lo = min(a.lo, b.lo);
+    u.hi = max(a.hi, b.hi);
+    u.phi = a.phi + b.phi;
+    const Cone c = unite(Cone{a.w, a.cosThetaO}, Cone{b.w, b.cosThetaO});
+    u.w = c.w;
+    u.cosThetaO = c.cosTheta;
+    u.cosThetaE = std::min(a.cosThetaE, b.cosThetaE);
+    u.twoSided = a.twoSided || b.twoSided;
+    return u;
+}
+
+LightTree::LightTree(const std::vector<LightBounds>& lights) {
+    if (lights.empty()) return;
+    std::vector<uint32_t> order(lights.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    trail_.assign(lights.size(), 0);
+    nodes_.reserve(2 * lights.size() - 1);
+    build(lights, order, 0, order.size(), 0, 0);
+}
+
+uint32_t LightTree::build(const std::vector<LightBounds>& lights, std::vector<uint32_t>& order,
+                          size_t begin, size_t end, int depth, uint64_t trail) {
+    const uint32_t index = static_cast<uint32_t>(nodes_.size());
+    nodes_.push_back({});
+    if (end - begin == 1) {
+        nodes_[index] = {lights[order[begin]], order[begin], true};
+        trail_[order[begin]] = trail;
+        return index;
+    }
+    LightBounds all;
+    Vec3 cLo(kInfinity), cHi(-kInfinity);
+    for (size_t i = begin; i < end; ++i) {
+        all = unite(all, lights[order[i]]);
+        cLo = min(cLo, centroid(lights[order[i]]));
+        cHi = max(cHi, centroid(lights[order[i]]));
+    }
+
+    // The split of least cost among 12 buckets of centroids along each axis.
+    size_t mid = begin + (end - begin) / 2;
+    if (depth < kMaxSahDepth) {
+        constexpr int kBuckets = 12;
+        double best = kInfinity;
+        int bestDim = -1, bestSplit = 0;
+        const Vec3 extent = all.hi - all.lo;
+        const double maxExtent = std::max({extent.x, extent.y, extent.z});
+        for (int dim = 0; dim < 3; ++dim) {
+            const double lo = cLo[dim], span = cHi[dim] - cLo[dim];
+            if (!(span > 0) || !(extent[dim] > 0)) continue;
+            auto bucketOf = [&](const LightBounds& b) {
+                return std::min(static_cast<int>((centroid(b)[dim] - lo) / span * kBuckets),
+                                kBuckets - 1);
+            };
+            std::array<LightBounds, kBuckets> buckets{};
+            for (size_t i = begin; i < end; ++i) {
+                LightBounds& b = buckets[static_cast<size_t>(bucketOf(lights[order[i]]))];
+                b = unite(b, lights[order[i]]);
+            }
+            const double kr = maxExtent / extent[dim];
+            for (int split = 1; split < kBuckets; ++split) {
+                LightBounds below, above;
+                for (int k = 0; k < split; ++k) below = unite(below, buckets[k]);
+                for (int k = split; k < kBuckets; ++k) above = unite(above, buckets[k]);
+                if (!(below.phi > 0) || !(above.phi > 0)) continue;
+                const double cost = splitCost(below, kr) + splitCost(above, kr);
+                if (cost < best) {
+                    best = cost;
+                    bestDim = dim;
+                    bestSplit = split;
+                }
+            }
+        }
+        if (bestDim >= 0) {
+            const double lo = cLo[bestDim], span = cHi[bestDim] - cLo[bestDim];
+            auto firstHalf = [&](uint32_t light) {
+                const double c = centroid(lights[light])[bestDim];
+                return std::min(static_cast<int>((c - lo) / span * kBuckets), kBuckets - 1) <
+                       bestSplit;
+            };
+            mid = static_cast<size_t>(
+                std::partition(order.begin() + static_cast<std::ptrdiff_t>(begin),
+                               order.begin() + static_cast<std::ptrdiff_t>(end), firstHalf) -
+                order.begin());
+            if (mid == begin || mid == end) mid = begin + (end - begin) / 2;
+        }
+    }
+    build(lights, order, begin, mid, depth + 1, trail);
+    const uint32_t second = build(lights, order, mid, end, depth + 1, trail | (1ull << depth));
+    nodes_[index] = {all, second, false};
+    return index;
+}
+
+std::optional<LightTree::Choice> LightTree::sample(const Vec3& p, const Vec3& n, double u) const {
+    if (nodes_.empty()) return std::nullopt;
+    uint32_t index = 0;
+    double probability = 1;
+    for (;;) {
+        const Node& node = nodes_[index];
+        if (node.leaf) {
+            if (index > 0 || node.bounds.importance(p, n) > 0)
+                return Choice{node.secondOrLight, probability};
+            return std::nullopt;
+        }
+        const double a = nodes_[index + 1].bounds.importance(p, n);
+        const double b = nodes_[node.secondOrLight].bounds.importance(p, n);
+        if (!(a + b > 0)) return std::nullopt;
+        const double pa = a / (a + b);
+        if (u < pa) {
+            u = std::min(u / pa, 0x1.fffffffffffffp-1);
+            probability *= pa;
+            index = index + 1;
+        } else {
+            u = std::min((u - pa) / (1 - pa), 0x1.fffffffffffffp-1);
+            probability *= 1 - pa;
+            index = node.secondOrLight;
+        }
+    }
+}
+
+double LightTree::pmf(const Vec3& p, const Vec3& n, uint32_t light) const {
+    if (light >= trail_.size()) return 0;
+    uint64_t trail = trail_[light];
+    uint32_t index = 0;
+    double probability = 1;
+    for (;;) {
+        const Node& node = nodes_[index];
+        if (node.leaf)
+            return node.secondOrLight == light &&
+                           (index > 0 || node.bounds.importance(p, n) > 0)
+                       ? probability
+                       : 0;
+        const double a = nodes_[index + 1].bounds.importance(p, n);
+        const double b = nodes_[node.secondOrLight].bounds.importance(p, n);
+        if (!(a + b > 0)) return 0;
+        const bool second = trail & 1;
+        probability *= (second ? b : a) / (a + b);
+        index = second ? node.secondOrLight : index + 1;
+        trail >>= 1;
+    }
+}
+
+}  // namespace glint
