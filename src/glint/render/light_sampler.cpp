@@ -2,6 +2,10 @@
 
 #include <cmath>
 #include <numbers>
+#include <tuple>
+#include <utility>
+
+#include "glint/math/sampling.h"
 
 #include "glint/geometry/surface_sampling.h"
 
@@ -9,6 +13,38 @@ namespace glint {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+/// The world centre and radius of sphere `s` if its transform is a similarity (rotation,
+/// uniform scale, translation); radius 0 if it is not (an ellipsoid).
+std::pair<Vec3, double> roundSphere(const Sphere& s) {
+    const Transform& t = s.worldFromObject;
+    const Vec3 x = t.vector({1, 0, 0}), y = t.vector({0, 1, 0}), z = t.vector({0, 0, 1});
+    const double lx = length(x), ly = length(y), lz = length(z);
+    const double tolerance = 1e-9 * lx;
+    if (std::abs(lx - ly) > tolerance || std::abs(lx - lz) > tolerance ||
+        std::abs(dot(x, y)) > tolerance * lx || std::abs(dot(y, z)) > tolerance * lx ||
+        std::abs(dot(z, x)) > tolerance * lx)
+        return {Vec3(0), 0};
+    return {t.point(s.center), s.radius * lx};
+}
+
+/// Whether a point at squared distance `d2` from the centre of a round sphere of `radius` is
+/// outside it, clear of its surface: points on the surface (the inside of an emitting sphere
+/// included, whose distance rounds either way) are sampled by area.
+bool outsideSphere(double d2, double radius) {
+    return radius > 0 && d2 > radius * radius * (1 + 1e-6);
+}
+
+/// sin^2 of the cone's half-angle below which its cosine is computed from the sine (pbrt-v4:
+/// 1.5 degrees), where 1 - cos would lose its digits.
+constexpr double kSmallCone = 0.00068523;
+
+/// 1 - cos of the half-angle of the cone that a sphere of `radius` at squared distance `d2`
+/// fills; its sine squared in `sin2Max`.
+double oneMinusCosCone(double radius, double d2, double* sin2Max) {
+    *sin2Max = radius * radius / d2;
+    return *sin2Max < kSmallCone ? *sin2Max / 2 : 1 - std::sqrt(std::max(1 - *sin2Max, 0.0));
+}
 
 /// Brightness of a colour for weighing lights: its luminance (Rec. 709), or its largest
 /// channel if that is not positive (a colour of negative channels).
@@ -29,8 +65,13 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         lights_.push_back(e);
         bounded.push_back(lb);
     };
-    auto addInfinite = [&](const Entry& e) {
+    // A light at infinity's weight is the irradiance it gives a surface facing it, times pi
+    // as the light tree's importance has it (a Lambertian emitter of power phi gives pi times
+    // the irradiance at normal incidence).
+    auto addInfinite = [&](const Entry& e, double weight) {
         infinite_.push_back(static_cast<uint32_t>(lights_.size()));
+        infiniteWeight_.push_back(weight);
+        infiniteTotal_ += weight;
         lights_.push_back(e);
     };
 
@@ -43,7 +84,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
             const double power = 4 * kPi * brightness(l.color) / att;
             if (power > 0) addBounded({Kind::Point, i}, LightBounds::point(l.position, power));
         } else if (l.kind == Light::Kind::Directional) {
-            if (brightness(l.color) > 0) addInfinite({Kind::Directional, i});
+            if (brightness(l.color) > 0)
+                addInfinite({Kind::Directional, i}, kPi * brightness(l.color));
         }
     }
 
@@ -83,7 +125,9 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
             hi = Vec3(box.hi);
             if (prims.isSphere(id)) {
                 e.kind = Kind::Sphere;
-                area = approximateArea(prims.sphere(id - prims.triangleCount()));
+                const Sphere& s = prims.sphere(id - prims.triangleCount());
+                area = approximateArea(s);
+                std::tie(e.center, e.radius) = roundSphere(s);
             } else {
                 e.kind = Kind::Shape;
                 area = approximateArea(
@@ -98,20 +142,27 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         addBounded(e, LightBounds::surface(lo, hi, power, normal, !e.frontOnly));
     }
 
-    // The environment map, or the background if it is not black.
-    double env = scene.environment
-                     ? scene.environment->power(sceneRadius_)
-                     : brightness((scene.background.down + scene.background.up) * 0.5);
-    if (env > 0) {
+    // The environment map, or the background if it is not black: its mean radiance L gives
+    // pi L from a hemisphere.
+    const double meanRadiance =
+        scene.environment
+            ? scene.environment->power(sceneRadius_) / (4 * kPi * kPi * sceneRadius_ * sceneRadius_)
+            : brightness((scene.background.down + scene.background.up) * 0.5);
+    if (meanRadiance > 0) {
         environment_ = static_cast<uint32_t>(lights_.size());
-        addInfinite({Kind::Environment, 0});
+        addInfinite({Kind::Environment, 0}, kPi * kPi * meanRadiance);
     }
 
     tree_ = LightTree(bounded);
     treeLeafOf_.assign(lights_.size(), UINT32_MAX);
     for (uint32_t k = 0; k < lightOfTreeLeaf_.size(); ++k) treeLeafOf_[lightOfTreeLeaf_[k]] = k;
-    const double nInfinite = static_cast<double>(infinite_.size());
-    pInfinite_ = nInfinite / (nInfinite + (tree_.empty() ? 0 : 1));
+}
+
+double LightSampler::pInfinite(const Vec3& p, const Vec3& n) const {
+    if (infinite_.empty()) return 0;
+    if (tree_.empty()) return 1;
+    const double tree = tree_.importance(p, n);
+    return infiniteTotal_ / (infiniteTotal_ + tree);
 }
 
 std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, double uLight,
@@ -119,16 +170,20 @@ std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, do
     if (lights_.empty()) return std::nullopt;
     uint32_t index;
     double choice;
-    if (uLight < pInfinite_) {
-        const size_t count = infinite_.size();
-        index = infinite_[std::min(static_cast<size_t>(uLight / pInfinite_ * count), count - 1)];
-        choice = pInfinite_ / static_cast<double>(count);
+    const double pInf = pInfinite(p, n);
+    if (uLight < pInf) {
+        // By weight, in order: there are few.
+        double at = uLight / pInf * infiniteTotal_;
+        size_t k = 0;
+        while (k + 1 < infinite_.size() && at >= infiniteWeight_[k]) at -= infiniteWeight_[k++];
+        index = infinite_[k];
+        choice = pInf * infiniteWeight_[k] / infiniteTotal_;
     } else {
-        const double v = std::min((uLight - pInfinite_) / (1 - pInfinite_), 0x1.fffffffffffffp-1);
+        const double v = std::min((uLight - pInf) / (1 - pInf), 0x1.fffffffffffffp-1);
         std::optional<LightTree::Choice> c = tree_.sample(p, n, v);
         if (!c) return std::nullopt;
         index = lightOfTreeLeaf_[c->light];
-        choice = (1 - pInfinite_) * c->probability;
+        choice = (1 - pInf) * c->probability;
     }
     std::optional<LightSample> s = sampleEntry(lights_[index], p, u);
     if (s) s->pdf *= choice;
@@ -138,8 +193,10 @@ std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, do
 double LightSampler::choiceProbability(size_t index, const Vec3& p, const Vec3& n) const {
     if (index >= lights_.size()) return 0;
     const uint32_t leaf = treeLeafOf_[index];
-    if (leaf == UINT32_MAX) return pInfinite_ / static_cast<double>(infinite_.size());
-    return (1 - pInfinite_) * tree_.pmf(p, n, leaf);
+    if (leaf != UINT32_MAX) return (1 - pInfinite(p, n)) * tree_.pmf(p, n, leaf);
+    for (size_t k = 0; k < infinite_.size(); ++k)
+        if (infinite_[k] == index) return pInfinite(p, n) * infiniteWeight_[k] / infiniteTotal_;
+    return 0;
 }
 
 std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3& p,
@@ -173,6 +230,9 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
             emission = emissionAt(scene_.pbr(e.texturedPbr),
                                   prims.triangleAttributes(e.index, b1, 1 - b0 - b1));
     } else if (e.kind == Kind::Sphere) {
+        if (std::optional<LightSample> s = sampleSphereCone(e, p, u)) return s;
+        if (outsideSphere(dot(p - e.center, p - e.center), e.radius))
+            return std::nullopt;  // from outside, the cone was the way: nothing arrives
         ss = sampleSphere(prims.sphere(e.index - prims.triangleCount()), u);
     } else {
         ss = sampleShape(prims.shape(e.index - prims.triangleCount() - prims.sphereCount()), u);
@@ -189,6 +249,42 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     return LightSample{wi, emission, pdf, dist, false};
 }
 
+std::optional<LightSample> LightSampler::sampleSphereCone(const Entry& e, const Vec3& p,
+                                                          Point2 u) const {
+    const Vec3 toCenter = e.center - p;
+    const double d2 = dot(toCenter, toCenter);
+    if (!outsideSphere(d2, e.radius)) return std::nullopt;
+    // A direction within the cone, uniformly: its angle theta from the axis, then the point
+    // of the sphere it meets first, by the angle alpha at the centre (pbrt-v4's derivation).
+    double sin2Max;
+    const double oneMinusCosMax = oneMinusCosCone(e.radius, d2, &sin2Max);
+    double cosTheta, sin2Theta;
+    if (sin2Max < kSmallCone) {
+        sin2Theta = sin2Max * u.x;
+        cosTheta = std::sqrt(1 - sin2Theta);
+    } else {
+        cosTheta = 1 - oneMinusCosMax * u.x;
+        sin2Theta = 1 - cosTheta * cosTheta;
+    }
+    const double cosAlpha =
+        sin2Theta / std::sqrt(sin2Max) +
+        cosTheta * std::sqrt(std::max(1 - sin2Theta / sin2Max, 0.0));
+    const double sinAlpha = std::sqrt(std::max(1 - cosAlpha * cosAlpha, 0.0));
+    const double phi = 2 * kPi * u.y;
+    // The surface normal there, in a frame whose z axis points from the centre to p.
+    const Vec3 axis = -toCenter / std::sqrt(d2);
+    const Frame frame(axis);
+    const Vec3 normal = frame.toWorld(
+        Vec3(sinAlpha * std::cos(phi), sinAlpha * std::sin(phi), cosAlpha));
+    const Vec3 q = e.center + normal * e.radius;
+    const Vec3 d = q - p;
+    const double dist = length(d);
+    if (!(dist > 0)) return std::nullopt;
+    const double pdf = 1 / (2 * kPi * oneMinusCosMax);
+    if (!std::isfinite(pdf)) return std::nullopt;
+    return LightSample{d / dist, e.emission, pdf, dist, false};
+}
+
 double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
                             const SurfaceInteraction& si) const {
     if (lightOfPrimitive_.empty() || hit.primId >= lightOfPrimitive_.size()) return 0;
@@ -197,8 +293,15 @@ double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
     const Entry& e = lights_[index];
     const Primitives& prims = scene_.primitives;
     double pdfArea = e.pdfArea;
-    if (e.kind == Kind::Sphere)
+    if (e.kind == Kind::Sphere) {
+        const double d2 = dot(e.center - from, e.center - from);
+        if (outsideSphere(d2, e.radius)) {  // sampled by its cone
+            double sin2Max;
+            return choiceProbability(index, from, fromN) /
+                   (2 * kPi * oneMinusCosCone(e.radius, d2, &sin2Max));
+        }
         pdfArea = spherePdfArea(prims.sphere(e.index - prims.triangleCount()), si.ng);
+    }
     else if (e.kind == Kind::Shape)
         pdfArea =
             shapePdfArea(prims.shape(e.index - prims.triangleCount() - prims.sphereCount()), si.ng);
@@ -209,21 +312,22 @@ double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
     return choiceProbability(index, from, fromN) * pdfArea * d2 / cosLight;
 }
 
-Vec3 LightSampler::environment(const Vec3& dir, double* pdf) const {
+Vec3 LightSampler::environment(const Vec3& dir, const Vec3& from, const Vec3& fromN,
+                               double* pdf) const {
     if (!scene_.environment) {
-        *pdf = pdfEnvironment(dir);
+        *pdf = pdfEnvironment(dir, from, fromN);
         return scene_.background.eval(dir);
     }
     const EnvironmentMap& map = *scene_.environment;
     const Point2 st = map.imageCoordinates(dir);
-    *pdf = environment_ == UINT32_MAX ? 0 : choiceProbability(environment_, {}, {}) * map.pdfAt(st);
+    *pdf = environment_ == UINT32_MAX ? 0 : choiceProbability(environment_, from, fromN) * map.pdfAt(st);
     return map.evalAt(st);
 }
 
-double LightSampler::pdfEnvironment(const Vec3& dir) const {
+double LightSampler::pdfEnvironment(const Vec3& dir, const Vec3& from, const Vec3& fromN) const {
     if (environment_ == UINT32_MAX) return 0;
     double pdf = scene_.environment ? scene_.environment->pdf(dir) : 1 / (4 * kPi);
-    return choiceProbability(environment_, {}, {}) * pdf;
+    return choiceProbability(environment_, from, fromN) * pdf;
 }
 
 }  // namespace glint

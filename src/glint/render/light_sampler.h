@@ -5,10 +5,14 @@
 /// the background as an environment light. One is chosen per shading point, then sampled:
 /// emissive surfaces uniformly by area (see geometry/surface_sampling.h), an environment map
 /// by its luminance (scene/environment.h), a constant or gradient background uniformly over
-/// the sphere. The choice is pbrt-v4's BVHLightSampler's: the lights at infinity (the
-/// environment, directional lights) each with probability 1 / (their number + 1), and
-/// otherwise one of the others through a light tree (render/light_tree.h), by its power,
-/// distance and orientation as seen from the shading point and its normal.
+/// the sphere; a round sphere, from outside, uniformly over the cone of directions it fills
+/// (pbrt-v4's Sphere::Sample), which puts every sample on the side facing the point. The
+/// choice is made in two steps: the lights at infinity (the environment,
+/// directional lights) against the others by what each group may give the shading point
+/// (the others' light tree's importance, against the irradiance the lights at infinity give
+/// in the same units), then within the group: a light at infinity by its irradiance, one of
+/// the others through the light tree (render/light_tree.h, pbrt-v4's BVHLightSampler), by its
+/// power, distance and orientation as seen from the shading point and its normal.
 ///
 /// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite, and
 /// emissive triangles of instanced meshes. pdfHit() is 0 for them, so an integrator weighting
@@ -59,15 +63,15 @@ class LightSampler {
     /// The probability with which sample() chooses light `index` (of size()) for `p`, `n`.
     double choiceProbability(size_t index, const Vec3& p, const Vec3& n) const;
 
-    /// The density (as LightSample::pdf) with which sample() draws the direction `dir` towards
-    /// the environment; 0 if the background is black.
-    double pdfEnvironment(const Vec3& dir) const;
+    /// The density (as LightSample::pdf) with which sample() from `from` with normal `fromN`
+    /// draws the direction `dir` towards the environment; 0 if the background is black.
+    double pdfEnvironment(const Vec3& dir, const Vec3& from, const Vec3& fromN) const;
 
     /// Radiance of the environment (the map, else the background) arriving from direction `dir`.
     Vec3 environment(const Vec3& dir) const { return scene_.backgroundRadiance(dir); }
 
-    /// environment(dir) and pdfEnvironment(dir) together, the map looked up once.
-    Vec3 environment(const Vec3& dir, double* pdf) const;
+    /// environment(dir) and pdfEnvironment(dir, from, fromN) together, the map looked up once.
+    Vec3 environment(const Vec3& dir, const Vec3& from, const Vec3& fromN, double* pdf) const;
 
   private:
     enum class Kind : uint8_t { Point, Directional, Triangle, Sphere, Shape, Environment };
@@ -82,15 +86,25 @@ class LightSampler {
         /// Triangles: the corner c, the edges a - c and b - c, and the unit normal of
         /// cross(b - a, c - a): a point is c + (a - c) b0 + (b - c) b1.
         Vec3 c{}, ca{}, cb{}, n{};
+        /// Spheres placed by a similarity (a round sphere in the world): its world centre and
+        /// radius, and it is sampled by its cone of directions from outside; radius 0: by area.
+        Vec3 center{};
+        double radius = 0;
     };
     std::optional<LightSample> sampleEntry(const Entry& e, const Vec3& p, Point2 u) const;
+    /// A round sphere's cone sample from `p` outside it; none from inside or if not round.
+    std::optional<LightSample> sampleSphereCone(const Entry& e, const Vec3& p, Point2 u) const;
 
     const Scene& scene_;
     std::vector<Entry> lights_;
-    /// The lights at infinity, by index, each chosen with probability pInfinite_ / their
-    /// number; the others are in the tree.
+    /// The probability of choosing one of the lights at infinity at `p`, `n`.
+    double pInfinite(const Vec3& p, const Vec3& n) const;
+
+    /// The lights at infinity, by index, and their weights (irradiance, in the units of the
+    /// light tree's importance); the others are in the tree.
     std::vector<uint32_t> infinite_;
-    double pInfinite_ = 0;
+    std::vector<double> infiniteWeight_;
+    double infiniteTotal_ = 0;
     LightTree tree_;
     std::vector<uint32_t> lightOfTreeLeaf_;  ///< Tree light k is lights_[lightOfTreeLeaf_[k]].
     std::vector<uint32_t> treeLeafOf_;       ///< And back (UINT32_MAX: at infinity).

@@ -54,6 +54,10 @@ class LightTree {
     explicit LightTree(const std::vector<LightBounds>& lights);
 
     bool empty() const { return nodes_.empty(); }
+    /// LightBounds::importance of all the lights together; 0 if there are none.
+    double importance(const Vec3& p, const Vec3& n) const {
+        return nodes_.empty() ? 0 : nodes_[0].bounds.importance(p, n);
+    }
 
     struct Choice {
         uint32_t light;

@@ -152,7 +152,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         }
         if (!found) {
             double lightPdf = 0;
-            Vec3 le = lights_.environment(ray.dir, &lightPdf);
+            Vec3 le = lights_.environment(ray.dir, from, fromN, &lightPdf);
             // Light found at depth d came through d bounces: the first two are direct.
             Vec3 light(0);
             if (depth == 0 || specularBounce)

@@ -99,6 +99,23 @@ TEST(LightSampler, TransformedSpheresCoverTheirSolidAngleTwice) {
     checkLight(scene, {1.2, 0.8, 0.6}, 2, "ellipsoid");
 }
 
+TEST(LightSampler, RoundSpheresAreSampledByTheirConeCoveringTheirSolidAngleOnce) {
+    // Turned, scaled alike on every axis and moved: a round sphere, sampled over the cone of
+    // directions it fills, so every sample is on the side facing the point. Near (a cone of
+    // 37 degrees) and far (under 1.5 degrees, where the cone's cosine comes from its sine).
+    for (double distance : {1.0, 40.0}) {
+        Scene scene;
+        const Mat4 similar =
+            Mat4::translate(0.3, -0.2, 0.1) * Mat4::rotate(1, 2, 0.5, 35) * Mat4::scale(0.7, 0.7, 0.7);
+        scene.primitives.addSphere(Sphere{{0.2, 0, 0}, 0.8, *Transform::fromMatrix(similar)},
+                                   scene.addMaterial(emitter()));
+        scene.prepare();
+        const Vec3 center = Transform::fromMatrix(similar)->point({0.2, 0, 0});
+        checkLight(scene, center + normalize(Vec3(1, 0.7, 0.5)) * distance, 1,
+                   distance < 2 ? "round sphere, near" : "round sphere, far");
+    }
+}
+
 TEST(LightSampler, TransformedShapesCoverTheirSolidAngle) {
     double k = 0;
     struct Case {
@@ -168,42 +185,38 @@ TEST(LightSampler, LightsAreChosenAsTheirProbabilitiesSay) {
     double total = 0;
     for (size_t k = 0; k < lights.size(); ++k) total += lights.choiceProbability(k, p, n);
     EXPECT_NEAR(total, 1, 1e-12);
-    // The sun and the sky: one third each (each light at infinity as likely as the tree).
+    // Indices: the sun (delta lights first), the dim and the bright lamp, the sky.
     Rng rng(5);
-    int counts[3] = {0, 0, 0};  // dim lamp, bright lamp, at infinity
+    int counts[4] = {0, 0, 0, 0};
     const int trials = 60000;
     for (int i = 0; i < trials; ++i) {
         std::optional<LightSample> s =
             lights.sample(p, n, rng.uniform(), {rng.uniform(), rng.uniform()});
         ASSERT_TRUE(s);
-        counts[std::isinf(s->distance) ? 2 : s->L.x == 3 ? 1 : 0]++;
+        const int k = s->delta ? 0 : std::isinf(s->distance) ? 3 : s->L.x == 3 ? 2 : 1;
+        counts[k]++;
     }
-    // Indices: the sun (delta lights first), the dim and the bright lamp, the sky. The sun
-    // and the sky take a third each (each light at infinity is as likely as the tree); the
-    // tree gives the bright lamp, three times the power, more than half of its third.
-    const double pDim = lights.choiceProbability(1, p, n), pBright = lights.choiceProbability(2, p, n);
-    EXPECT_DOUBLE_EQ(lights.choiceProbability(0, p, n), 1.0 / 3);
-    EXPECT_DOUBLE_EQ(lights.choiceProbability(3, p, n), 1.0 / 3);
-    EXPECT_NEAR(pDim + pBright, 1.0 / 3, 1e-12);
-    EXPECT_GT(pBright, pDim);
-    const double shares[3] = {pDim, pBright, 2.0 / 3};
-    for (int k = 0; k < 3; ++k)
-        EXPECT_NEAR(counts[k] / double(trials), shares[k],
-                    5 * std::sqrt(shares[k] * (1 - shares[k]) / trials))
-            << k;
+    for (int k = 0; k < 4; ++k) {
+        const double q = lights.choiceProbability(static_cast<size_t>(k), p, n);
+        EXPECT_NEAR(counts[k] / double(trials), q, 5 * std::sqrt(q * (1 - q) / trials)) << k;
+    }
+    // The bright lamp, three times the power, is the likelier; the sun (irradiance 2 pi)
+    // outweighs the dim sky (pi^2 0.2).
+    EXPECT_GT(lights.choiceProbability(2, p, n), lights.choiceProbability(1, p, n));
+    EXPECT_GT(lights.choiceProbability(0, p, n), lights.choiceProbability(3, p, n));
 }
 
 TEST(LightSampler, TheBackgroundIsALightUnlessBlack) {
     Scene black;
     black.prepare();
     EXPECT_TRUE(LightSampler(black).empty());
-    EXPECT_EQ(LightSampler(black).pdfEnvironment({0, 1, 0}), 0);
+    EXPECT_EQ(LightSampler(black).pdfEnvironment({0, 1, 0}, Vec3(0), Vec3(0)), 0);
     Scene sky;
     sky.background = Background{Vec3(0.1), Vec3(0.5, 0.7, 1)};
     sky.prepare();
     LightSampler lights(sky);
     ASSERT_EQ(lights.size(), 1u);
-    EXPECT_DOUBLE_EQ(lights.pdfEnvironment({0, 1, 0}), 1 / (4 * std::numbers::pi));
+    EXPECT_DOUBLE_EQ(lights.pdfEnvironment({0, 1, 0}, Vec3(0), Vec3(0)), 1 / (4 * std::numbers::pi));
     std::optional<LightSample> s = lights.sample({0, 0, 0}, Vec3(0), 0.3, {0.2, 0.7});
     ASSERT_TRUE(s);
     EXPECT_EQ(s->L, sky.background.eval(s->wi));
