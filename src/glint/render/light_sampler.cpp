@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "glint/math/sampling.h"
+#include "glint/math/spherical_triangle.h"
 
 #include "glint/geometry/surface_sampling.h"
 
@@ -224,6 +225,8 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     SurfaceSample ss;
     Vec3 emission = e.emission;
     if (e.kind == Kind::Triangle) {
+        if (const double solidAngle = sphericalSolidAngle(e, p); solidAngle > 0)
+            return sampleTriangleSolidAngle(e, p, u, solidAngle);
         auto [b0, b1] = sampleUniformTriangle(u);  // as sampleTriangle, from stored edges
         ss = {e.c + e.ca * b0 + e.cb * b1, e.n, e.pdfArea};
         if (e.texturedPbr != 0)  // the point is a b0 + b b1 + c (1 - b0 - b1)
@@ -247,6 +250,40 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     double pdf = ss.pdfArea * d2 / std::abs(cosLight);
     if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
     return LightSample{wi, emission, pdf, dist, false};
+}
+
+double LightSampler::sphericalSolidAngle(const Entry& e, const Vec3& p) {
+    // pbrt-v4's range: below, the triangle is small or far enough that area sampling is as
+    // good and the spherical construction loses digits; above, nearly a hemisphere.
+    constexpr double kMin = 3e-4, kMax = 6.22;
+    const Vec3 a = e.c + e.ca - p, b = e.c + e.cb - p, c = e.c - p;
+    const double la = length(a), lb = length(b), lc = length(c);
+    if (!(la > 0 && lb > 0 && lc > 0)) return 0;
+    const double area = sphericalTriangleArea(a / la, b / lb, c / lc);
+    return area >= kMin && area <= kMax ? area : 0;
+}
+
+std::optional<LightSample> LightSampler::sampleTriangleSolidAngle(const Entry& e, const Vec3& p,
+                                                                  Point2 u,
+                                                                  double solidAngle) const {
+    const Vec3 va = e.c + e.ca, vb = e.c + e.cb;
+    const std::optional<Vec3> wi = sampleSphericalTriangle(normalize(va - p), normalize(vb - p),
+                                                           normalize(e.c - p), u);
+    if (!wi) return std::nullopt;
+    const double cosLight = dot(*wi, e.n);  // < 0: the light's front faces p
+    if (e.frontOnly ? !(cosLight < 0) : cosLight == 0) return std::nullopt;
+    const double dist = dot(e.c - p, e.n) / cosLight;  // to the triangle's plane
+    if (!(dist > 0) || !std::isfinite(dist)) return std::nullopt;
+    Vec3 emission = e.emission;
+    if (e.texturedPbr != 0) {  // the point's barycentrics: of a (b0) and of b (b1)
+        const Vec3 q = p + *wi * dist - e.c;
+        const double twiceArea = 2 / e.pdfArea;
+        const double b0 = dot(cross(q, e.cb), e.n) / twiceArea;
+        const double b1 = dot(cross(e.ca, q), e.n) / twiceArea;
+        emission = emissionAt(scene_.pbr(e.texturedPbr),
+                              scene_.primitives.triangleAttributes(e.index, b1, 1 - b0 - b1));
+    }
+    return LightSample{*wi, emission, 1 / solidAngle, dist, false};
 }
 
 std::optional<LightSample> LightSampler::sampleSphereCone(const Entry& e, const Vec3& p,
@@ -293,6 +330,9 @@ double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
     const Entry& e = lights_[index];
     const Primitives& prims = scene_.primitives;
     double pdfArea = e.pdfArea;
+    if (e.kind == Kind::Triangle)
+        if (const double solidAngle = sphericalSolidAngle(e, from); solidAngle > 0)
+            return choiceProbability(index, from, fromN) / solidAngle;
     if (e.kind == Kind::Sphere) {
         const double d2 = dot(e.center - from, e.center - from);
         if (outsideSphere(d2, e.radius)) {  // sampled by its cone

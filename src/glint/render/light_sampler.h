@@ -5,7 +5,8 @@
 /// the background as an environment light. One is chosen per shading point, then sampled:
 /// emissive surfaces uniformly by area (see geometry/surface_sampling.h), an environment map
 /// by its luminance (scene/environment.h), a constant or gradient background uniformly over
-/// the sphere; a round sphere, from outside, uniformly over the cone of directions it fills
+/// the sphere; a triangle that is neither tiny nor huge seen from the point uniformly over the
+/// solid angle it fills (Arvo 1995: math/spherical_triangle.h); a round sphere, from outside, uniformly over the cone of directions it fills
 /// (pbrt-v4's Sphere::Sample), which puts every sample on the side facing the point. The
 /// choice is made in two steps: the lights at infinity (the environment,
 /// directional lights) against the others by what each group may give the shading point
@@ -92,6 +93,12 @@ class LightSampler {
         double radius = 0;
     };
     std::optional<LightSample> sampleEntry(const Entry& e, const Vec3& p, Point2 u) const;
+    /// The solid angle triangle `e` fills seen from `p` where it is sampled by solid angle
+    /// (neither tiny nor nearly a hemisphere); 0 where it is sampled by area.
+    static double sphericalSolidAngle(const Entry& e, const Vec3& p);
+    /// A direction uniformly within that solid angle.
+    std::optional<LightSample> sampleTriangleSolidAngle(const Entry& e, const Vec3& p, Point2 u,
+                                                        double solidAngle) const;
     /// A round sphere's cone sample from `p` outside it; none from inside or if not round.
     std::optional<LightSample> sampleSphereCone(const Entry& e, const Vec3& p, Point2 u) const;
 

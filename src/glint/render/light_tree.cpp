@@ -197,12 +197,17 @@ uint32_t LightTree::build(const std::vector<LightBounds>& lights, std::vector<ui
                 b = unite(b, lights[order[i]]);
             }
             const double kr = maxExtent / extent[dim];
+            // The buckets below and above each split, accumulated from either end.
+            std::array<LightBounds, kBuckets> below{}, above{};
+            below[0] = buckets[0];
+            for (int k = 1; k < kBuckets; ++k) below[k] = unite(below[k - 1], buckets[k]);
+            above[kBuckets - 1] = buckets[kBuckets - 1];
+            for (int k = kBuckets - 2; k >= 0; --k) above[k] = unite(buckets[k], above[k + 1]);
             for (int split = 1; split < kBuckets; ++split) {
-                LightBounds below, above;
-                for (int k = 0; k < split; ++k) below = unite(below, buckets[k]);
-                for (int k = split; k < kBuckets; ++k) above = unite(above, buckets[k]);
-                if (!(below.phi > 0) || !(above.phi > 0)) continue;
-                const double cost = splitCost(below, kr) + splitCost(above, kr);
+                const LightBounds& lo = below[split - 1];
+                const LightBounds& hi = above[split];
+                if (!(lo.phi > 0) || !(hi.phi > 0)) continue;
+                const double cost = splitCost(lo, kr) + splitCost(hi, kr);
                 if (cost < best) {
                     best = cost;
                     bestDim = dim;
