@@ -135,7 +135,22 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
                     prims.shape(id - prims.triangleCount() - prims.sphereCount()));
             }
         }
-        const double power = kPi * area * brightness(m.emission) * (e.frontOnly ? 1 : 2);
+        // A textured emitter's power is its own triangle's: the texture's mean over it,
+        // estimated at its centroid and halfway from there to each corner (an emissive map is
+        // mostly black: most of a mesh's triangles emit nothing, and leave the tree). One whose
+        // estimate is 0 is not sampled, which costs no bias: a ray that finds it counts its
+        // light in full (pdfHit 0).
+        double radiance = brightness(m.emission);
+        if (e.texturedPbr != 0) {
+            const PbrMaterial& pbr = scene.pbr(e.texturedPbr);
+            constexpr double kAt[4][2] = {{1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6},
+                                          {1.0 / 6, 2.0 / 3}, {1.0 / 6, 1.0 / 6}};
+            double sum = 0;
+            for (const auto& at : kAt)
+                sum += brightness(emissionAt(pbr, prims.triangleAttributes(id, at[0], at[1])));
+            radiance = sum / 4;
+        }
+        const double power = kPi * area * radiance * (e.frontOnly ? 1 : 2);
         if (!(power > 0)) continue;
         lightOfPrimitive_[id] = static_cast<uint32_t>(lights_.size());
         // A sphere or shape emits about every normal; a triangle about its own, from both
