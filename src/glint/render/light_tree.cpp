@@ -106,24 +106,37 @@ LightBounds LightBounds::surface(const Vec3& lo, const Vec3& hi, double phi, con
 }
 
 double LightBounds::importance(const Vec3& p, const Vec3& n) const {
-    const Vec3 pc = centroid(*this);
-    const Vec3 toP = p - pc;
+    return LightTree::Compact(*this).importance(p, n);
+}
+
+LightTree::Compact::Compact(const LightBounds& b)
+    : center(centroid(b)),
+      w(b.w),
+      radius(length(b.hi - b.lo) / 2),
+      phi(b.phi),
+      cosThetaO(b.cosThetaO),
+      sinThetaO(safeSqrt(1 - b.cosThetaO * b.cosThetaO)),
+      cosThetaE(b.cosThetaE),
+      twoSided(b.twoSided) {}
+
+double LightTree::Compact::importance(const Vec3& p, const Vec3& n) const {
+    const Vec3 toP = p - center;
     const double dist2 = dot(toP, toP);
-    const double radius = length(hi - lo) / 2;
     // Within the bounds the distance tells nothing: pbrt's floor of half the diagonal.
     const double d2 = std::max(dist2, radius);
     if (!(dist2 > 0)) return phi / std::max(d2, 1e-30);
-    const Vec3 wi = toP / std::sqrt(dist2);
+    const double dist = std::sqrt(dist2);
+    const Vec3 wi = toP / dist;
     // The angle the bounds subtend from p, about wi.
-    const double cosB = dist2 < radius * radius ? -1 : safeSqrt(1 - radius * radius / dist2);
-    const double sinB = safeSqrt(1 - cosB * cosB);
+    const bool inside = dist2 < radius * radius;
+    const double sinB = inside ? 0 : radius / dist;
+    const double cosB = inside ? -1 : safeSqrt(1 - sinB * sinB);
     // The smallest angle between an emission normal and a direction to p.
     double cosW = dot(w, wi);
     if (twoSided) cosW = std::abs(cosW);
     const double sinW = safeSqrt(1 - cosW * cosW);
-    const double sinO = safeSqrt(1 - cosThetaO * cosThetaO);
-    const double cosX = cosSubClamped(sinW, cosW, sinO, cosThetaO);
-    const double sinX = sinSubClamped(sinW, cosW, sinO, cosThetaO);
+    const double cosX = cosSubClamped(sinW, cosW, sinThetaO, cosThetaO);
+    const double sinX = sinSubClamped(sinW, cosW, sinThetaO, cosThetaO);
     const double cosP = cosSubClamped(sinX, cosX, sinB, cosB);
     if (cosP <= cosThetaE) return 0;
     double result = phi * cosP / d2;
@@ -164,7 +177,7 @@ uint32_t LightTree::build(const std::vector<LightBounds>& lights, std::vector<ui
     const uint32_t index = static_cast<uint32_t>(nodes_.size());
     nodes_.push_back({});
     if (end - begin == 1) {
-        nodes_[index] = {lights[order[begin]], order[begin], true};
+        nodes_[index] = {Compact(lights[order[begin]]), order[begin], true};
         trail_[order[begin]] = trail;
         return index;
     }
@@ -231,7 +244,7 @@ uint32_t LightTree::build(const std::vector<LightBounds>& lights, std::vector<ui
     }
     build(lights, order, begin, mid, depth + 1, trail);
     const uint32_t second = build(lights, order, mid, end, depth + 1, trail | (1ull << depth));
-    nodes_[index] = {all, second, false};
+    nodes_[index] = {Compact(all), second, false};
     return index;
 }
 

@@ -70,8 +70,21 @@ class LightTree {
     double pmf(const Vec3& p, const Vec3& n, uint32_t light) const;
 
   private:
+    /// A node's bounds as importance() reads them, what it would compute on each call done
+    /// once: the centre and radius of the box's bounding sphere, the cone's sine.
+    struct Compact {
+        Vec3 center, w;
+        double radius = 0, phi = 0, cosThetaO = 1, sinThetaO = 0, cosThetaE = 0;
+        bool twoSided = false;
+
+        explicit Compact(const LightBounds& b);
+        Compact() = default;
+        double importance(const Vec3& p, const Vec3& n) const;
+    };
+    friend struct LightBounds;
+
     struct Node {
-        LightBounds bounds;
+        Compact bounds;
         uint32_t secondOrLight = 0;  ///< Interior: the second child's index (the first follows
                                      ///< the node); leaf: the light.
         bool leaf = false;
