@@ -217,6 +217,8 @@ int main(int argc, char** argv) {
         p.normalWeight = static_cast<float>(num(("n" + s).c_str(), p.normalWeight));
         p.albedoWeight = static_cast<float>(num(("a" + s).c_str(), p.albedoWeight));
         p.depthWeight = static_cast<float>(num(("d" + s).c_str(), p.depthWeight));
+        p.firstOrder = num(("fo" + s).c_str(), p.firstOrder) != 0;
+        p.ridge = static_cast<float>(num(("ridge" + s).c_str(), p.ridge));
     };
     pass(t.first, "1");
     pass(t.second, "2");
