@@ -219,6 +219,7 @@ int main(int argc, char** argv) {
         p.depthWeight = static_cast<float>(num(("d" + s).c_str(), p.depthWeight));
         p.firstOrder = num(("fo" + s).c_str(), p.firstOrder) != 0;
         p.ridge = static_cast<float>(num(("ridge" + s).c_str(), p.ridge));
+        p.innerRadius = static_cast<int>(num(("ir" + s).c_str(), p.innerRadius));
     };
     pass(t.first, "1");
     pass(t.second, "2");
@@ -227,6 +228,8 @@ int main(int argc, char** argv) {
     t.estimatedVarianceScale = static_cast<float>(num("evs", t.estimatedVarianceScale));
     t.outlierVariance = static_cast<float>(num("ov", t.outlierVariance));
     t.albedoFloor = static_cast<float>(num("af", t.albedoFloor));
+    t.sureRadius = static_cast<int>(num("sr", t.sureRadius));
+    t.sureVarianceScale = static_cast<float>(num("svs", t.sureVarianceScale));
 
     gFireflies = num("fire", gFireflies);
     Buffers b;

@@ -60,6 +60,37 @@ float minmod(float a, float b) {
     return std::abs(a) < std::abs(b) ? a : b;
 }
 
+/// Per pixel, the better of two estimates of the irradiance `y`: the window's (`outer`, written
+/// over where the inner is better) and the inner window's, by Stein's unbiased risk estimate of
+/// each one's squared error, (f - y)^2 + 2 v df/dy - v (the weights held fixed, so that df/dy
+/// is the leverage), weighted as relMSE weighs the remodulated colour and summed over a box:
+/// one pixel's estimate is as noisy as the pixel.
+void selectBySure(const Planes& y, const Planes& v, const Planes& modulation,
+                  const Plane& outerLeverage, const Planes& inner, const Plane& innerLeverage,
+                  const DenoiseTuning& tuning, Planes& outer, ThreadPool& pool) {
+    const int width = y[0].width(), height = y[0].height(), r = tuning.sureRadius;
+    Plane difference(width, height, r), sum(width, height, 0);
+    for (int j = 0; j < height; ++j)
+        for (int i = 0; i < width; ++i) {
+            float d = 0;
+            for (int c = 0; c < 3; ++c) {
+                const float m = modulation[c].at(i, j), f = outer[c].at(i, j);
+                const float weight = m * m / (m * m * f * f + 0.01f);
+                const float eo = f - y[c].at(i, j), ei = inner[c].at(i, j) - y[c].at(i, j);
+                const float leverage = innerLeverage.at(i, j) - outerLeverage.at(i, j);
+                d += weight *
+                     (ei * ei - eo * eo + 2 * tuning.sureVarianceScale * v[c].at(i, j) * leverage);
+            }
+            difference.at(i, j) = d;
+        }
+    difference.replicateBorder();
+    boxFilter(difference, r, sum, pool);
+    for (int j = 0; j < height; ++j)
+        for (int i = 0; i < width; ++i)
+            if (sum.at(i, j) < 0)
+                for (int c = 0; c < 3; ++c) outer[c].at(i, j) = inner[c].at(i, j);
+}
+
 }  // namespace
 
 std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& options,
@@ -182,9 +213,23 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
     guide.variance = pointers(std::as_const(variance));
     const auto values = pointers(std::as_const(irradiance));
     const auto valueVariance = pointers(std::as_const(variance));
-    auto firstVarianceOut = pointers(firstVariance);
-    nlMeans(guide, values, tuning.first, pointers(first), &valueVariance,
-            twoPasses ? &firstVarianceOut : nullptr, pool);
+    NlMeansOutputs firstOut{.value = pointers(first)};
+    if (twoPasses) firstOut.variance = pointers(firstVariance);
+    const bool select = tuning.first.innerRadius > 0;
+    Planes inner;
+    Plane leverage, innerLeverage;
+    if (select) {
+        inner = makePlanes(width, height, 0);
+        leverage = Plane(width, height, 0);
+        innerLeverage = Plane(width, height, 0);
+        firstOut.inner = pointers(inner);
+        firstOut.leverage = &leverage;
+        firstOut.innerLeverage = &innerLeverage;
+    }
+    nlMeans(guide, values, tuning.first, firstOut, &valueVariance, pool);
+    if (select)
+        selectBySure(irradiance, variance, modulation, leverage, inner, innerLeverage, tuning,
+                     first, pool);
     const Planes* result = &first;
 
     // Second pass: the weights from the first pass's far less noisy result, the values again
@@ -202,7 +247,7 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
         }
         guide.color = pointers(std::as_const(first));
         guide.variance = pointers(std::as_const(firstVariance));
-        nlMeans(guide, values, tuning.second, pointers(second), nullptr, nullptr, pool);
+        nlMeans(guide, values, tuning.second, {.value = pointers(second)}, nullptr, pool);
         result = &second;
     }
 

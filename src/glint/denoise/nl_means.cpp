@@ -25,7 +25,7 @@ struct TileScratch {
     std::vector<float> distance;  // per-pixel colour distance, the tile grown by the patch
     std::vector<float> rowSum;    // its sums along rows over the patch
     std::vector<float> total;     // one row's total distances, then weights
-    std::vector<float> acc[27];   // the sums of Sum below
+    std::vector<float> acc[31];   // the sums of Sum below
 };
 
 // The sums per pixel: the weight, the weighted values, the squared weights times the values'
@@ -49,7 +49,10 @@ enum Sum {
     kRowXX,
     kRowV,  // 3 channels
     kRowXV = kRowV + 3,
-    kSumCount = kRowXV + 3
+    // The inner window's weight and weighted values.
+    kInW = kRowXV + 3,
+    kInV,  // 3 channels
+    kSumCount = kInV + 3
 };
 
 // The row loops, each over n pixels, with every pointer restrict so that they vectorise.
@@ -160,6 +163,18 @@ void accumulate(int n, float* __restrict d, float* __restrict w, float* __restri
     }
 }
 
+// Adds weights already computed, and the weighted values.
+void accumulateWeights(int n, const float* __restrict w, float* __restrict sw, float* __restrict a0,
+                       float* __restrict a1, float* __restrict a2, const float* __restrict v0,
+                       const float* __restrict v1, const float* __restrict v2) {
+    for (int x = 0; x < n; ++x) {
+        sw[x] += w[x];
+        a0[x] += w[x] * v0[x];
+        a1[x] += w[x] * v1[x];
+        a2[x] += w[x] * v2[x];
+    }
+}
+
 void accumulateSquared(int n, const float* __restrict w, float* __restrict b0, float* __restrict b1,
                        float* __restrict b2, const float* __restrict v0, const float* __restrict v1,
                        const float* __restrict v2) {
@@ -220,32 +235,34 @@ void addRowSums(size_t n, float oy, TileScratch& s) {
             syv[i] += oy * v[i];
         }
     }
-    for (int a = kRowW; a < kSumCount; ++a) std::fill(s.acc[a].begin(), s.acc[a].end(), 0.0f);
+    for (int a = kRowW; a < kInW; ++a) std::fill(s.acc[a].begin(), s.acc[a].end(), 0.0f);
 }
 
 // The value at the window's centre of the weighted least-squares plane through the values, per
 // channel, from pixel i's sums; the slopes' ridge keeps it near the weighted mean where the
 // weights do not pin a plane down (a thin line of similar pixels). In double: the 3x3 system's
 // cofactors cancel.
-void solvePlane(const TileScratch& s, size_t i, float ridge, float out[3]) {
+void solvePlane(const TileScratch& s, size_t i, float ridge, float out[3], float& leverage) {
     const double a00 = s.acc[kW][i], a01 = s.acc[kX][i], a02 = s.acc[kY][i];
     const double a11 = s.acc[kXX][i] + ridge * a00, a12 = s.acc[kXY][i];
     const double a22 = s.acc[kYY][i] + ridge * a00;
     // The first row of the inverse: the cofactors of the first column over the determinant.
     const double c0 = a11 * a22 - a12 * a12, c1 = a02 * a12 - a01 * a22, c2 = a01 * a12 - a02 * a11;
     const double det = a00 * c0 + a01 * c1 + a02 * c2;
-    for (int c = 0; c < 3; ++c) {
-        const double mean = s.acc[kV + c][i] / a00;
-        out[c] = static_cast<float>(
-            det > 1e-12 * a00 * a00 * a00
-                ? (c0 * s.acc[kV + c][i] + c1 * s.acc[kXV + c][i] + c2 * s.acc[kYV + c][i]) / det
-                : mean);
+    if (!(det > 1e-12 * a00 * a00 * a00)) {
+        for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(s.acc[kV + c][i] / a00);
+        leverage = static_cast<float>(1.0 / a00);
+        return;
     }
+    for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<float>(
+            (c0 * s.acc[kV + c][i] + c1 * s.acc[kXV + c][i] + c2 * s.acc[kYV + c][i]) / det);
+    leverage = static_cast<float>(c0 / det);  // the centre's weight is 1
 }
 
 void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values,
                 const NlMeansParams& p, const Tile& t, const std::array<const Plane*, 3>* vv,
-                TileScratch& s, std::array<Plane*, 3>& out, std::array<Plane*, 3>* outVar) {
+                TileScratch& s, const NlMeansOutputs& out) {
     const int width = g.color[0]->width(), height = g.color[0]->height();
     const int f = p.patch, tw = t.x1 - t.x0, th = t.y1 - t.y0;
     const int dw = tw + 2 * f;  // distance rows: tile columns grown by the patch
@@ -253,8 +270,9 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
     s.distance.assign(static_cast<size_t>(dw) * (th + 2 * f), 0.0f);
     s.rowSum.assign(static_cast<size_t>(tw) * (th + 2 * f), 0.0f);
     s.total.assign(static_cast<size_t>(tw), 0.0f);
+    const bool inner = out.inner[0] != nullptr;
     for (int a = 0; a < kSumCount; ++a) {
-        const bool used = a < kVar || (a < kX ? vv != nullptr : p.firstOrder);
+        const bool used = a < kVar || (a < kX ? vv != nullptr : a < kInW ? p.firstOrder : inner);
         // (kW and kV are always summed: directly, or for a first-order fit through addRowSums.)
         if (used) s.acc[a].assign(tileSize, 0.0f);
     }
@@ -325,6 +343,10 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
                                             sum(kRowX), sum(kRowXX), sum(kRowXV), sum(kRowXV + 1),
                                             sum(kRowXV + 2), values[0]->row(qy) + qx,
                                             values[1]->row(qy) + qx, values[2]->row(qy) + qx);
+                if (inner && std::abs(dx) <= p.innerRadius && std::abs(dy) <= p.innerRadius)
+                    accumulateWeights(n, dist, sum(kInW), sum(kInV), sum(kInV + 1), sum(kInV + 2),
+                                      values[0]->row(qy) + qx, values[1]->row(qy) + qx,
+                                      values[2]->row(qy) + qx);
                 if (vv)
                     accumulateSquared(n, dist, sum(kVar), sum(kVar + 1), sum(kVar + 2),
                                       (*vv)[0]->row(qy) + qx, (*vv)[1]->row(qy) + qx,
@@ -337,25 +359,30 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
         for (int x = t.x0; x < t.x1; ++x) {
             const size_t i = static_cast<size_t>(y - t.y0) * tw + (x - t.x0);
             const float inv = 1.0f / s.acc[kW][i];  // the centre's own weight is 1: never 0
+            float fit[3], leverage = inv;
             if (p.firstOrder) {
-                float fit[3];
-                solvePlane(s, i, p.ridge, fit);
-                for (int c = 0; c < 3; ++c) out[c]->at(x, y) = fit[c];
+                solvePlane(s, i, p.ridge, fit, leverage);
             } else {
-                for (int c = 0; c < 3; ++c) out[c]->at(x, y) = s.acc[kV + c][i] * inv;
+                for (int c = 0; c < 3; ++c) fit[c] = s.acc[kV + c][i] * inv;
             }
-            if (outVar)
+            for (int c = 0; c < 3; ++c) out.value[c]->at(x, y) = fit[c];
+            if (out.leverage) out.leverage->at(x, y) = leverage;
+            if (out.variance[0])
                 for (int c = 0; c < 3; ++c)
-                    (*outVar)[c]->at(x, y) = s.acc[kVar + c][i] * inv * inv;
+                    out.variance[c]->at(x, y) = s.acc[kVar + c][i] * inv * inv;
+            if (inner) {
+                const float innerInv = 1.0f / s.acc[kInW][i];
+                for (int c = 0; c < 3; ++c) out.inner[c]->at(x, y) = s.acc[kInV + c][i] * innerInv;
+                if (out.innerLeverage) out.innerLeverage->at(x, y) = innerInv;
+            }
         }
 }
 
 }  // namespace
 
 void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& values,
-             const NlMeansParams& params, std::array<Plane*, 3> out,
-             const std::array<const Plane*, 3>* valueVariance, std::array<Plane*, 3>* outVariance,
-             ThreadPool& pool) {
+             const NlMeansParams& params, const NlMeansOutputs& out,
+             const std::array<const Plane*, 3>* valueVariance, ThreadPool& pool) {
     const int width = guide.color[0]->width(), height = guide.color[0]->height();
     const int tilesX = (width + kTileWidth - 1) / kTileWidth;
     const int tilesY = (height + kTileHeight - 1) / kTileHeight;
@@ -367,8 +394,8 @@ void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& value
             const int tx = static_cast<int>(i % tilesX), ty = static_cast<int>(i / tilesX);
             Tile t{tx * kTileWidth, std::min(width, (tx + 1) * kTileWidth), ty * kTileHeight,
                    std::min(height, (ty + 1) * kTileHeight)};
-            filterTile(guide, values, p, t, valueVariance, scratch, out,
-                       outVariance ? outVariance : nullptr);
+            filterTile(guide, values, p, t, out.variance[0] ? valueVariance : nullptr, scratch,
+                       out);
         }
     });
 }

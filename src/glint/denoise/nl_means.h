@@ -43,15 +43,30 @@ struct NlMeansParams {
     /// pulled towards its other side's mean.
     bool firstOrder = false;
     float ridge = 0.01f;  // the fit's slopes' ridge, times the weights' sum
+    /// With NlMeansOutputs::inner: the radius of the smaller window whose weighted mean (same
+    /// weights, zero order) is also written, a less biased, noisier candidate.
+    int innerRadius = 0;
 };
 
-/// Filters `values` (three unpadded-or-padded planes of the guide's size) into `out`; with
-/// `outVariance`, also writes the variance of each result from the variances `valueVariance`
-/// of the values, as if they were independent (the weighted mean's, also for a first-order
-/// fit). Deterministic for any pool.
+/// Where nlMeans writes; only `value` is required.
+struct NlMeansOutputs {
+    std::array<Plane*, 3> value{};
+    /// The variance of each result from the variances of the values, as if they were
+    /// independent (the weighted mean's, also for a first-order fit).
+    std::array<Plane*, 3> variance{};
+    /// Each result's derivative by its own pixel's value (the weights held fixed): 1 / the
+    /// weights' sum for a weighted mean, the fit's hat-matrix diagonal for a first-order fit.
+    Plane* leverage = nullptr;
+    /// The inner window's weighted mean (params.innerRadius), and its leverage.
+    std::array<Plane*, 3> inner{};
+    Plane* innerLeverage = nullptr;
+};
+
+/// Filters `values` (three unpadded-or-padded planes of the guide's size) into `out`, whose
+/// variance output needs `valueVariance`, the variances of the values. Deterministic for any
+/// pool.
 void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& values,
-             const NlMeansParams& params, std::array<Plane*, 3> out,
-             const std::array<const Plane*, 3>* valueVariance, std::array<Plane*, 3>* outVariance,
-             ThreadPool& pool);
+             const NlMeansParams& params, const NlMeansOutputs& out,
+             const std::array<const Plane*, 3>* valueVariance, ThreadPool& pool);
 
 }  // namespace glint::denoise_detail

@@ -32,7 +32,16 @@ struct DenoiseTuning {
                         .alpha = 1.0f,
                         .normalWeight = 20.0f,
                         .albedoWeight = 5.0f,
-                        .depthWeight = 100.0f};
+                        .depthWeight = 100.0f,
+                        .firstOrder = true,
+                        .ridge = 0.01f,
+                        .innerRadius = 3};
+    /// With first.innerRadius > 0, each pixel takes the inner window's mean where Stein's
+    /// unbiased risk estimate, summed over a box of this radius, says it is the better one
+    /// (selectBySure in denoise.cpp) ...
+    int sureRadius = 4;
+    /// ... the variance in the estimate being this times the smoothed variance.
+    float sureVarianceScale = 2.0f;
     /// A second pass, guided by the first's result (none if its radius is 0): it measured worse
     /// than one pass on the synthetic scenes (bench/denoise_eval), so it is off.
     NlMeansParams second{.radius = 0,
