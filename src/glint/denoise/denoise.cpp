@@ -206,30 +206,37 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
         guide.depthDy = &depthDy;
     }
 
+    // One pass of the filter over the noisy irradiance, weighted as `guide` says, into `out`
+    // (and the variance of its weighted mean into `outVariance`, if given); where the pass has
+    // an inner window, each pixel the better of the two by selectBySure.
+    const auto values = pointers(std::as_const(irradiance));
+    const auto valueVariance = pointers(std::as_const(variance));
+    auto pass = [&](const NlMeansParams& params, Planes& out, Planes* outVariance) {
+        NlMeansOutputs o{.value = pointers(out)};
+        if (outVariance) o.variance = pointers(*outVariance);
+        const bool select = params.innerRadius > 0;
+        Planes inner;
+        Plane leverage, innerLeverage;
+        if (select) {
+            inner = makePlanes(width, height, 0);
+            leverage = Plane(width, height, 0);
+            innerLeverage = Plane(width, height, 0);
+            o.inner = pointers(inner);
+            o.leverage = &leverage;
+            o.innerLeverage = &innerLeverage;
+        }
+        nlMeans(guide, values, params, o, &valueVariance, pool);
+        if (select)
+            selectBySure(irradiance, variance, modulation, leverage, inner, innerLeverage, tuning,
+                         out, pool);
+    };
+
     // First pass: guided by the noisy irradiance.
     Planes first = makePlanes(width, height, pad);
     Planes firstVariance = makePlanes(width, height, pad);
     guide.color = pointers(std::as_const(irradiance));
     guide.variance = pointers(std::as_const(variance));
-    const auto values = pointers(std::as_const(irradiance));
-    const auto valueVariance = pointers(std::as_const(variance));
-    NlMeansOutputs firstOut{.value = pointers(first)};
-    if (twoPasses) firstOut.variance = pointers(firstVariance);
-    const bool select = tuning.first.innerRadius > 0;
-    Planes inner;
-    Plane leverage, innerLeverage;
-    if (select) {
-        inner = makePlanes(width, height, 0);
-        leverage = Plane(width, height, 0);
-        innerLeverage = Plane(width, height, 0);
-        firstOut.inner = pointers(inner);
-        firstOut.leverage = &leverage;
-        firstOut.innerLeverage = &innerLeverage;
-    }
-    nlMeans(guide, values, tuning.first, firstOut, &valueVariance, pool);
-    if (select)
-        selectBySure(irradiance, variance, modulation, leverage, inner, innerLeverage, tuning,
-                     first, pool);
+    pass(tuning.first, first, twoPasses ? &firstVariance : nullptr);
     const Planes* result = &first;
 
     // Second pass: the weights from the first pass's far less noisy result, the values again
@@ -247,7 +254,7 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
         }
         guide.color = pointers(std::as_const(first));
         guide.variance = pointers(std::as_const(firstVariance));
-        nlMeans(guide, values, tuning.second, {.value = pointers(second)}, nullptr, pool);
+        pass(tuning.second, second, nullptr);
         result = &second;
     }
 

@@ -367,9 +367,12 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
             }
             for (int c = 0; c < 3; ++c) out.value[c]->at(x, y) = fit[c];
             if (out.leverage) out.leverage->at(x, y) = leverage;
-            if (out.variance[0])
-                for (int c = 0; c < 3; ++c)
-                    out.variance[c]->at(x, y) = s.acc[kVar + c][i] * inv * inv;
+            // The weighted mean's variance; a fit's is larger by about the ratio of their
+            // leverages (exactly so for equal weights and variances), most where it extrapolates.
+            if (out.variance[0]) {
+                const float scale = inv * inv * (leverage / inv);
+                for (int c = 0; c < 3; ++c) out.variance[c]->at(x, y) = s.acc[kVar + c][i] * scale;
+            }
             if (inner) {
                 const float innerInv = 1.0f / s.acc[kInW][i];
                 for (int c = 0; c < 3; ++c) out.inner[c]->at(x, y) = s.acc[kInV + c][i] * innerInv;

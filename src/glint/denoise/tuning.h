@@ -25,34 +25,49 @@ struct DenoiseTuning {
     /// better than 4 on the real renders (room at 16 spp: 87x against 71x, its mean -0.5%
     /// against -1.5%; glass unchanged).
     float outlierVariance = 2.0f;
-    /// The first pass: guided by the noisy colour itself.
-    NlMeansParams first{.radius = 8,
+    /// The first pass, guided by the noisy colour itself: a small window, whose result only
+    /// guides the second pass's weights. Measured on the five renders at 16 spp (docs/denoise.md):
+    /// one pass of radius 8 (first order, with the inner window) gave glass 7.0x, room 81.5x,
+    /// lamps 33.1x, helmet 3.6x, bottle 9.9x, its weights tied to the noise (room's mean -1.0%,
+    /// -2.6% at 4 spp); these two passes give 7.4x, 73.9x, 32.1x, 3.9x, 13.6x, means within
+    /// 0.2% (-1.7% on room at 4 spp), in about the same time (radius 3 and 7 against 8).
+    NlMeansParams first{.radius = 3,
                         .patch = 1,
-                        .k = 0.55f,
+                        .k = 0.8f,
                         .alpha = 1.0f,
                         .normalWeight = 20.0f,
                         .albedoWeight = 5.0f,
                         .depthWeight = 100.0f,
                         .firstOrder = true,
-                        .ridge = 0.01f,
-                        .innerRadius = 3};
-    /// With first.innerRadius > 0, each pixel takes the inner window's mean where Stein's
-    /// unbiased risk estimate, summed over a box of this radius, says it is the better one
-    /// (selectBySure in denoise.cpp) ...
-    int sureRadius = 4;
-    /// ... the variance in the estimate being this times the smoothed variance.
-    float sureVarianceScale = 2.0f;
-    /// A second pass, guided by the first's result (none if its radius is 0): it measured worse
-    /// than one pass on the synthetic scenes (bench/denoise_eval), so it is off.
-    NlMeansParams second{.radius = 0,
+                        .ridge = 0.01f};
+    /// The second pass (none if its radius is 0): the weights from the first's result, far less
+    /// noisy than the colour, so they no longer pick the pixels whose noise is low (which darkened
+    /// the image); the values again the noisy irradiance. First order (lamps 25.7x without), and
+    /// each pixel the better of the fit and the 7x7 inner window's mean (selectBySure: bottle
+    /// 12.0x against 11.4x, helmet 3.8x against 3.7x).
+    NlMeansParams second{.radius = 7,
                          .patch = 1,
-                         .k = 0.45f,
+                         .k = 1.0f,
                          .alpha = 1.0f,
-                         .normalWeight = 20.0f,
-                         .albedoWeight = 20.0f,
-                         .depthWeight = 400.0f};
-    /// The variance the second pass assumes of its guide: this times the first pass's own.
-    float secondGuideVarianceScale = 1.0f;
+                         .normalWeight = 10.0f,
+                         .albedoWeight = 5.0f,
+                         .depthWeight = 400.0f,
+                         .firstOrder = true,
+                         .ridge = 0.1f,
+                         .innerRadius = 3};
+    /// With an inner radius, each pixel takes the inner window's mean where Stein's unbiased
+    /// risk estimate, summed over a box of this radius, says it is the better one (selectBySure
+    /// in denoise.cpp) ...
+    int sureRadius = 4;
+    /// ... the variance in the estimate being this times the smoothed variance (it leaves out
+    /// how the weights change with the pixel's own value, which the larger scale stands for:
+    /// 1 chose the inner window too often, room 67x against 74x).
+    float sureVarianceScale = 2.0f;
+    /// The variance the second pass assumes of its guide: this times the first pass's own
+    /// (its weighted mean's, times the ratio of the fit's leverage to the mean's). Smaller keeps
+    /// more detail: 1 gave helmet 3.6x and room 79x at 16 spp, 0.8 3.8x and 74x, 0.5 3.9x and
+    /// 60x.
+    float secondGuideVarianceScale = 0.8f;
 };
 
 /// denoise() with explicit parameters.
