@@ -29,8 +29,10 @@ struct DenoiseTuning {
     /// guides the second pass's weights. Measured on the five renders at 16 spp (docs/denoise.md):
     /// one pass of radius 8 (first order, with the inner window) gave glass 7.0x, room 81.5x,
     /// lamps 33.1x, helmet 3.6x, bottle 9.9x, its weights tied to the noise (room's mean -1.0%,
-    /// -2.6% at 4 spp); these two passes give 7.4x, 73.9x, 32.1x, 3.9x, 13.6x, means within
-    /// 0.2% (-1.7% on room at 4 spp), in about the same time (radius 3 and 7 against 8).
+    /// -2.6% at 4 spp); these two passes give 7.4x, 65.9x, 30.6x, 3.8x, 13.2x, means within
+    /// 0.2% (-1.6% on room at 4 spp), in the time of the old single zero-order pass of radius 8
+    /// (radius 3 and 6; a second radius of 7 gives room 74x, lamps 31.8x, bottle 13.5x, the
+    /// rest the same, in 1.2 times the time, too near 1080p's 2 s).
     NlMeansParams first{.radius = 3,
                         .patch = 1,
                         .k = 0.8f,
@@ -45,7 +47,7 @@ struct DenoiseTuning {
     /// the image); the values again the noisy irradiance. First order (lamps 25.7x without), and
     /// each pixel the better of the fit and the 7x7 inner window's mean (selectBySure: bottle
     /// 12.0x against 11.4x, helmet 3.8x against 3.7x).
-    NlMeansParams second{.radius = 7,
+    NlMeansParams second{.radius = 6,
                          .patch = 1,
                          .k = 1.0f,
                          .alpha = 1.0f,
