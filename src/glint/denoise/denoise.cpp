@@ -149,7 +149,9 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
                     }
                     variance[c].at(x, y) = m * (tuning.estimatedVarianceScale / (1.5f * 0.1208f));
                 }
-    // The variance is as noisy as the colour: smooth it.
+    // The variance is as noisy as the colour: smooth it. `outliers` keeps the outliers' own
+    // variance (0 elsewhere) for the second pass.
+    Planes outliers = makePlanes(width, height, 0);
     {
         Planes smooth = makePlanes(width, height, pad);
         for (int c = 0; c < 3; ++c) {
@@ -159,8 +161,10 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
                 for (int y = 0; y < height; ++y)
                     for (int x = 0; x < width; ++x) {
                         const float raw = variance[c].at(x, y);
-                        if (raw > tuning.outlierVariance * smooth[c].at(x, y))
+                        if (raw > tuning.outlierVariance * smooth[c].at(x, y)) {
                             smooth[c].at(x, y) = raw;
+                            outliers[c].at(x, y) = raw;
+                        }
                     }
             smooth[c].replicateBorder();
         }
@@ -246,10 +250,14 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
         second = makePlanes(width, height, 0);
         for (int c = 0; c < 3; ++c) {
             first[c].replicateBorder();
-            if (tuning.secondGuideVarianceScale != 1.0f)
-                for (int y = 0; y < height; ++y)
-                    for (int x = 0; x < width; ++x)
-                        firstVariance[c].at(x, y) *= tuning.secondGuideVarianceScale;
+            // An outlier's guide variance stays near its own, so that its neighbours take it in
+            // as in the first pass rather than leave its energy out.
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) {
+                    float& v = firstVariance[c].at(x, y);
+                    v = std::max(v * tuning.secondGuideVarianceScale,
+                                 tuning.secondOutlierVariance * outliers[c].at(x, y));
+                }
             firstVariance[c].replicateBorder();
         }
         guide.color = pointers(std::as_const(first));
