@@ -10,11 +10,10 @@
 //
 // Keys: ref=PATH (another reference), threads=N (2), runs=N (timing runs, the median is printed;
 // 1), out=PATH|none, and the parameters of denoise_detail::DenoiseTuning: r1 p1 k1 al1 n1 a1 d1
-// fo1 ridge1 ir1 (first pass: radius, patch, k, alpha, normal, albedo, depth weights, first
-// order 0/1, ridge, inner radius), r2 ... ir2 (second; r2=0: one pass), gvs (second guide's
-// variance scale), sov (second guide's outlier variance), sr svs (the inner-window selection's
-// box radius and variance scale), vr (variance smoothing radius), ov (outlier variance ratio), evs
-// (estimated variance scale), af (albedo floor), fire=P (synthetic:
+// fo1 ridge1 (first pass: radius, patch, k, alpha, normal, albedo, depth weights, first order
+// 0/1, its ridge), r2 ... ridge2 (second; r2=0: one pass), gvs (second guide's variance scale),
+// sov (second guide's outlier variance), vr (variance smoothing radius), ov (outlier variance
+// ratio), evs (estimated variance scale), af (albedo floor), fire=P (synthetic:
 // the probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1 to
 // leave a buffer out. relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
 
@@ -221,7 +220,6 @@ int main(int argc, char** argv) {
         p.depthWeight = static_cast<float>(num(("d" + s).c_str(), p.depthWeight));
         p.firstOrder = num(("fo" + s).c_str(), p.firstOrder) != 0;
         p.ridge = static_cast<float>(num(("ridge" + s).c_str(), p.ridge));
-        p.innerRadius = static_cast<int>(num(("ir" + s).c_str(), p.innerRadius));
     };
     pass(t.first, "1");
     pass(t.second, "2");
@@ -231,8 +229,6 @@ int main(int argc, char** argv) {
     t.outlierVariance = static_cast<float>(num("ov", t.outlierVariance));
     t.albedoFloor = static_cast<float>(num("af", t.albedoFloor));
     t.secondOutlierVariance = static_cast<float>(num("sov", t.secondOutlierVariance));
-    t.sureRadius = static_cast<int>(num("sr", t.sureRadius));
-    t.sureVarianceScale = static_cast<float>(num("svs", t.sureVarianceScale));
 
     gFireflies = num("fire", gFireflies);
     Buffers b;

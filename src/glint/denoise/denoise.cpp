@@ -60,37 +60,6 @@ float minmod(float a, float b) {
     return std::abs(a) < std::abs(b) ? a : b;
 }
 
-/// Per pixel, the better of two estimates of the irradiance `y`: the window's (`outer`, written
-/// over where the inner is better) and the inner window's, by Stein's unbiased risk estimate of
-/// each one's squared error, (f - y)^2 + 2 v df/dy - v (the weights held fixed, so that df/dy
-/// is the leverage), weighted as relMSE weighs the remodulated colour and summed over a box:
-/// one pixel's estimate is as noisy as the pixel.
-void selectBySure(const Planes& y, const Planes& v, const Planes& modulation,
-                  const Plane& outerLeverage, const Planes& inner, const Plane& innerLeverage,
-                  const DenoiseTuning& tuning, Planes& outer, ThreadPool& pool) {
-    const int width = y[0].width(), height = y[0].height(), r = tuning.sureRadius;
-    Plane difference(width, height, r), sum(width, height, 0);
-    for (int j = 0; j < height; ++j)
-        for (int i = 0; i < width; ++i) {
-            float d = 0;
-            for (int c = 0; c < 3; ++c) {
-                const float m = modulation[c].at(i, j), f = outer[c].at(i, j);
-                const float weight = m * m / (m * m * f * f + 0.01f);
-                const float eo = f - y[c].at(i, j), ei = inner[c].at(i, j) - y[c].at(i, j);
-                const float leverage = innerLeverage.at(i, j) - outerLeverage.at(i, j);
-                d += weight *
-                     (ei * ei - eo * eo + 2 * tuning.sureVarianceScale * v[c].at(i, j) * leverage);
-            }
-            difference.at(i, j) = d;
-        }
-    difference.replicateBorder();
-    boxFilter(difference, r, sum, pool);
-    for (int j = 0; j < height; ++j)
-        for (int i = 0; i < width; ++i)
-            if (sum.at(i, j) < 0)
-                for (int c = 0; c < 3; ++c) outer[c].at(i, j) = inner[c].at(i, j);
-}
-
 }  // namespace
 
 std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& options,
@@ -211,28 +180,13 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
     }
 
     // One pass of the filter over the noisy irradiance, weighted as `guide` says, into `out`
-    // (and the variance of its weighted mean into `outVariance`, if given); where the pass has
-    // an inner window, each pixel the better of the two by selectBySure.
+    // (and the variance of each result into `outVariance`, if given).
     const auto values = pointers(std::as_const(irradiance));
     const auto valueVariance = pointers(std::as_const(variance));
     auto pass = [&](const NlMeansParams& params, Planes& out, Planes* outVariance) {
         NlMeansOutputs o{.value = pointers(out)};
         if (outVariance) o.variance = pointers(*outVariance);
-        const bool select = params.innerRadius > 0;
-        Planes inner;
-        Plane leverage, innerLeverage;
-        if (select) {
-            inner = makePlanes(width, height, 0);
-            leverage = Plane(width, height, 0);
-            innerLeverage = Plane(width, height, 0);
-            o.inner = pointers(inner);
-            o.leverage = &leverage;
-            o.innerLeverage = &innerLeverage;
-        }
         nlMeans(guide, values, params, o, &valueVariance, pool);
-        if (select)
-            selectBySure(irradiance, variance, modulation, leverage, inner, innerLeverage, tuning,
-                         out, pool);
     };
 
     // First pass: guided by the noisy irradiance.

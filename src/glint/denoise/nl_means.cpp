@@ -25,7 +25,7 @@ struct TileScratch {
     std::vector<float> distance;  // per-pixel colour distance, the tile grown by the patch
     std::vector<float> rowSum;    // its sums along rows over the patch
     std::vector<float> total;     // one row's total distances, then weights
-    std::vector<float> acc[31];   // the sums of Sum below
+    std::vector<float> acc[27];   // the sums of Sum below
 };
 
 // The sums per pixel: the weight, the weighted values, the squared weights times the values'
@@ -49,10 +49,7 @@ enum Sum {
     kRowXX,
     kRowV,  // 3 channels
     kRowXV = kRowV + 3,
-    // The inner window's weight and weighted values.
-    kInW = kRowXV + 3,
-    kInV,  // 3 channels
-    kSumCount = kInV + 3
+    kSumCount = kRowXV + 3
 };
 
 // The row loops, each over n pixels, with every pointer restrict so that they vectorise.
@@ -163,18 +160,6 @@ void accumulate(int n, float* __restrict d, float* __restrict w, float* __restri
     }
 }
 
-// Adds weights already computed, and the weighted values.
-void accumulateWeights(int n, const float* __restrict w, float* __restrict sw, float* __restrict a0,
-                       float* __restrict a1, float* __restrict a2, const float* __restrict v0,
-                       const float* __restrict v1, const float* __restrict v2) {
-    for (int x = 0; x < n; ++x) {
-        sw[x] += w[x];
-        a0[x] += w[x] * v0[x];
-        a1[x] += w[x] * v1[x];
-        a2[x] += w[x] * v2[x];
-    }
-}
-
 void accumulateSquared(int n, const float* __restrict w, float* __restrict b0, float* __restrict b1,
                        float* __restrict b2, const float* __restrict v0, const float* __restrict v1,
                        const float* __restrict v2) {
@@ -235,7 +220,7 @@ void addRowSums(size_t n, float oy, TileScratch& s) {
             syv[i] += oy * v[i];
         }
     }
-    for (int a = kRowW; a < kInW; ++a) std::fill(s.acc[a].begin(), s.acc[a].end(), 0.0f);
+    for (int a = kRowW; a < kSumCount; ++a) std::fill(s.acc[a].begin(), s.acc[a].end(), 0.0f);
 }
 
 // The value at the window's centre of the weighted least-squares plane through the values, per
@@ -270,9 +255,8 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
     s.distance.assign(static_cast<size_t>(dw) * (th + 2 * f), 0.0f);
     s.rowSum.assign(static_cast<size_t>(tw) * (th + 2 * f), 0.0f);
     s.total.assign(static_cast<size_t>(tw), 0.0f);
-    const bool inner = out.inner[0] != nullptr;
     for (int a = 0; a < kSumCount; ++a) {
-        const bool used = a < kVar || (a < kX ? vv != nullptr : a < kInW ? p.firstOrder : inner);
+        const bool used = a < kVar || (a < kX ? vv != nullptr : p.firstOrder);
         // (kW and kV are always summed: directly, or for a first-order fit through addRowSums.)
         if (used) s.acc[a].assign(tileSize, 0.0f);
     }
@@ -343,10 +327,6 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
                                             sum(kRowX), sum(kRowXX), sum(kRowXV), sum(kRowXV + 1),
                                             sum(kRowXV + 2), values[0]->row(qy) + qx,
                                             values[1]->row(qy) + qx, values[2]->row(qy) + qx);
-                if (inner && std::abs(dx) <= p.innerRadius && std::abs(dy) <= p.innerRadius)
-                    accumulateWeights(n, dist, sum(kInW), sum(kInV), sum(kInV + 1), sum(kInV + 2),
-                                      values[0]->row(qy) + qx, values[1]->row(qy) + qx,
-                                      values[2]->row(qy) + qx);
                 if (vv)
                     accumulateSquared(n, dist, sum(kVar), sum(kVar + 1), sum(kVar + 2),
                                       (*vv)[0]->row(qy) + qx, (*vv)[1]->row(qy) + qx,
@@ -366,17 +346,11 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
                 for (int c = 0; c < 3; ++c) fit[c] = s.acc[kV + c][i] * inv;
             }
             for (int c = 0; c < 3; ++c) out.value[c]->at(x, y) = fit[c];
-            if (out.leverage) out.leverage->at(x, y) = leverage;
             // The weighted mean's variance; a fit's is larger by about the ratio of their
             // leverages (exactly so for equal weights and variances), most where it extrapolates.
             if (out.variance[0]) {
                 const float scale = inv * inv * (leverage / inv);
                 for (int c = 0; c < 3; ++c) out.variance[c]->at(x, y) = s.acc[kVar + c][i] * scale;
-            }
-            if (inner) {
-                const float innerInv = 1.0f / s.acc[kInW][i];
-                for (int c = 0; c < 3; ++c) out.inner[c]->at(x, y) = s.acc[kInV + c][i] * innerInv;
-                if (out.innerLeverage) out.innerLeverage->at(x, y) = innerInv;
             }
         }
 }

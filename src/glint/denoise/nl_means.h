@@ -43,23 +43,16 @@ struct NlMeansParams {
     /// pulled towards its other side's mean.
     bool firstOrder = false;
     float ridge = 0.01f;  // the fit's slopes' ridge, times the weights' sum
-    /// With NlMeansOutputs::inner: the radius of the smaller window whose weighted mean (same
-    /// weights, zero order) is also written, a less biased, noisier candidate.
-    int innerRadius = 0;
 };
 
 /// Where nlMeans writes; only `value` is required.
 struct NlMeansOutputs {
     std::array<Plane*, 3> value{};
     /// The variance of each result from the variances of the values, as if they were
-    /// independent (the weighted mean's, also for a first-order fit).
+    /// independent: the weighted mean's, for a first-order fit times the ratio of the fit's
+    /// leverage (the result's derivative by its own pixel's value, the weights held fixed) to
+    /// the mean's, exact for equal weights and variances.
     std::array<Plane*, 3> variance{};
-    /// Each result's derivative by its own pixel's value (the weights held fixed): 1 / the
-    /// weights' sum for a weighted mean, the fit's hat-matrix diagonal for a first-order fit.
-    Plane* leverage = nullptr;
-    /// The inner window's weighted mean (params.innerRadius), and its leverage.
-    std::array<Plane*, 3> inner{};
-    Plane* innerLeverage = nullptr;
 };
 
 /// Filters `values` (three unpadded-or-padded planes of the guide's size) into `out`, whose

@@ -27,12 +27,12 @@ struct DenoiseTuning {
     float outlierVariance = 2.0f;
     /// The first pass, guided by the noisy colour itself: a small window, whose result only
     /// guides the second pass's weights. Measured on the five renders at 16 spp (docs/denoise.md):
-    /// one pass of radius 8 (first order, with the inner window) gave glass 7.0x, room 81.5x,
-    /// lamps 33.1x, helmet 3.6x, bottle 9.9x, its weights tied to the noise (room's mean -1.0%,
-    /// -2.6% at 4 spp); these two passes give 7.4x, 65.9x, 30.6x, 3.8x, 13.2x, means within
-    /// 0.2% (-1.6% on room at 4 spp), in the time of the old single zero-order pass of radius 8
-    /// (radius 3 and 6; a second radius of 7 gives room 74x, lamps 31.8x, bottle 13.5x, the
-    /// rest the same, in 1.2 times the time, too near 1080p's 2 s).
+    /// one first-order pass of radius 8 gave glass 6.8x, room 82.7x, lamps 33.5x, helmet 3.6x,
+    /// bottle 9.0x, its weights tied to the noise (room's mean -1.0%, -2.6% at 4 spp); these two
+    /// passes give 7.4x, 68.8x, 31.1x, 3.8x, 13.3x, means within 0.2% (-1.4% on room at 4 spp),
+    /// in the time of the old single zero-order pass of radius 8 (radius 3 and 6; a second
+    /// radius of 7 gives room 74x, lamps 31.8x, bottle 13.5x, the rest the same, in 1.2 times
+    /// the time, too near 1080p's 2 s).
     NlMeansParams first{.radius = 3,
                         .patch = 1,
                         .k = 0.8f,
@@ -44,9 +44,7 @@ struct DenoiseTuning {
                         .ridge = 0.01f};
     /// The second pass (none if its radius is 0): the weights from the first's result, far less
     /// noisy than the colour, so they no longer pick the pixels whose noise is low (which darkened
-    /// the image); the values again the noisy irradiance. First order (lamps 25.7x without), and
-    /// each pixel the better of the fit and the 7x7 inner window's mean (selectBySure: bottle
-    /// 12.0x against 11.4x, helmet 3.8x against 3.7x).
+    /// the image); the values again the noisy irradiance. First order (lamps 25.7x without).
     NlMeansParams second{.radius = 6,
                          .patch = 1,
                          .k = 1.0f,
@@ -55,16 +53,7 @@ struct DenoiseTuning {
                          .albedoWeight = 5.0f,
                          .depthWeight = 400.0f,
                          .firstOrder = true,
-                         .ridge = 0.1f,
-                         .innerRadius = 3};
-    /// With an inner radius, each pixel takes the inner window's mean where Stein's unbiased
-    /// risk estimate, summed over a box of this radius, says it is the better one (selectBySure
-    /// in denoise.cpp) ...
-    int sureRadius = 4;
-    /// ... the variance in the estimate being this times the smoothed variance (it leaves out
-    /// how the weights change with the pixel's own value, which the larger scale stands for:
-    /// 1 chose the inner window too often, room 67x against 74x).
-    float sureVarianceScale = 2.0f;
+                         .ridge = 0.1f};
     /// The variance the second pass assumes of its guide: this times the first pass's own
     /// (its weighted mean's, times the ratio of the fit's leverage to the mean's). Smaller keeps
     /// more detail: 1 gave helmet 3.6x and room 79x at 16 spp, 0.8 3.8x and 74x, 0.5 3.9x and

@@ -66,36 +66,32 @@ TEST(NlMeans, AFirstOrderFitReproducesAPlaneUpToTheImageCorners) {
     }
 }
 
-TEST(NlMeans, WritesEachResultsLeverageForBothWindows) {
+TEST(NlMeans, AFitsVarianceGrowsWhereItExtrapolates) {
     const FlatGuide flat;
     const std::array<Plane, 3> values =
         planes(FlatGuide::kW, FlatGuide::kH, 1,
                [](int x, int y, int) { return 0.01f * static_cast<float>(x * y); });
+    const std::array<Plane, 3> unit =
+        planes(FlatGuide::kW, FlatGuide::kH, 1, [](int, int, int) { return 1.0f; });
+    const auto valueVariance = view(unit);
     ThreadPool pool(2);
     for (bool firstOrder : {false, true}) {
         std::array<Plane, 3> out =
             planes(FlatGuide::kW, FlatGuide::kH, 0, [](int, int, int) { return 0.0f; });
-        std::array<Plane, 3> inner = out;
-        Plane leverage(FlatGuide::kW, FlatGuide::kH, 0), innerLeverage = leverage;
-        NlMeansParams params{.radius = 4, .patch = 1, .firstOrder = firstOrder, .innerRadius = 2};
+        std::array<Plane, 3> variance = out;
+        NlMeansParams params{.radius = 4, .patch = 1, .firstOrder = firstOrder, .ridge = 1e-6f};
         nlMeans(flat.guide(), view(values), params,
-                {.value = view(out),
-                 .leverage = &leverage,
-                 .inner = view(inner),
-                 .innerLeverage = &innerLeverage},
-                nullptr, pool);
-        // Inside, all 81 weights are 1: the mean's leverage is 1/81, and so is the plane's (the
-        // offsets' mean is 0: its constant is the mean); the inner window's is 1/25.
-        EXPECT_NEAR(leverage.at(20, 15), 1.0f / 81, 1e-6f);
-        EXPECT_NEAR(innerLeverage.at(20, 15), 1.0f / 25, 1e-6f);
-        EXPECT_NEAR(inner[0].at(20, 15), values[0].at(20, 15), 1e-4f);  // a product is linear
-        // In the corner the window holds 25 pixels: the mean's leverage is 1/25; the plane
-        // extrapolates to the window's corner and leans on it more.
+                {.value = view(out), .variance = view(variance)}, &valueVariance, pool);
+        // Inside, all 81 weights are 1: the mean's variance is 1/81, and so is the plane's (the
+        // offsets' mean is 0: its constant is the mean).
+        EXPECT_NEAR(variance[0].at(20, 15), 1.0f / 81, 1e-6f);
+        // In the corner the window holds 25 pixels: the mean's variance is 1/25; the plane
+        // extrapolates to the window's corner, its constant far noisier: for an unregularised
+        // fit 1/25 (1 + 2^2 / 2 + 2^2 / 2) = 1/5 (the offsets' mean 2, their variance 2).
         if (firstOrder)
-            EXPECT_GT(leverage.at(0, 0), 2.0f / 25);
+            EXPECT_NEAR(variance[0].at(0, 0), 0.2f, 1e-4f);
         else
-            EXPECT_NEAR(leverage.at(0, 0), 1.0f / 25, 1e-6f);
-        EXPECT_NEAR(innerLeverage.at(0, 0), 1.0f / 9, 1e-6f);
+            EXPECT_NEAR(variance[0].at(0, 0), 1.0f / 25, 1e-6f);
     }
 }
 
