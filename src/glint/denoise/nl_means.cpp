@@ -348,10 +348,9 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
             for (int c = 0; c < 3; ++c) out.value[c]->at(x, y) = fit[c];
             // The weighted mean's variance; a fit's is larger by about the ratio of their
             // leverages (exactly so for equal weights and variances), most where it extrapolates.
-            if (out.variance[0]) {
-                const float scale = inv * inv * (leverage / inv);
-                for (int c = 0; c < 3; ++c) out.variance[c]->at(x, y) = s.acc[kVar + c][i] * scale;
-            }
+            if (out.variance[0])
+                for (int c = 0; c < 3; ++c)
+                    out.variance[c]->at(x, y) = s.acc[kVar + c][i] * inv * leverage;
         }
 }
 
