@@ -10,9 +10,10 @@
 //
 // Keys: ref=PATH (another reference), threads=N (2), runs=N (timing runs, the median is printed;
 // 1), out=PATH|none, and the parameters of denoise_detail::DenoiseTuning: r1 p1 k1 al1 n1 a1 d1
-// (first pass: radius, patch, k, alpha, normal, albedo, depth weights), r2 p2 k2 al2 n2 a2 d2
-// (second; r2=0: one pass), gvs (second guide's variance scale), vr (variance smoothing radius), ov
-// (outlier variance ratio), evs (estimated variance scale), af (albedo floor), fire=P (synthetic:
+// fo1 ridge1 (first pass: radius, patch, k, alpha, normal, albedo, depth weights, first order
+// 0/1, its ridge), r2 ... ridge2 (second; r2=0: one pass), gvs (second guide's variance scale),
+// sov (second guide's outlier variance), vr (variance smoothing radius), ov (outlier variance
+// ratio), evs (estimated variance scale), af (albedo floor), fire=P (synthetic:
 // the probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1 to
 // leave a buffer out. relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
 
@@ -217,6 +218,8 @@ int main(int argc, char** argv) {
         p.normalWeight = static_cast<float>(num(("n" + s).c_str(), p.normalWeight));
         p.albedoWeight = static_cast<float>(num(("a" + s).c_str(), p.albedoWeight));
         p.depthWeight = static_cast<float>(num(("d" + s).c_str(), p.depthWeight));
+        p.firstOrder = num(("fo" + s).c_str(), p.firstOrder) != 0;
+        p.ridge = static_cast<float>(num(("ridge" + s).c_str(), p.ridge));
     };
     pass(t.first, "1");
     pass(t.second, "2");
@@ -225,6 +228,7 @@ int main(int argc, char** argv) {
     t.estimatedVarianceScale = static_cast<float>(num("evs", t.estimatedVarianceScale));
     t.outlierVariance = static_cast<float>(num("ov", t.outlierVariance));
     t.albedoFloor = static_cast<float>(num("af", t.albedoFloor));
+    t.secondOutlierVariance = static_cast<float>(num("sov", t.secondOutlierVariance));
 
     gFireflies = num("fire", gFireflies);
     Buffers b;

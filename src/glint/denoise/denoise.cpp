@@ -118,7 +118,9 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
                     }
                     variance[c].at(x, y) = m * (tuning.estimatedVarianceScale / (1.5f * 0.1208f));
                 }
-    // The variance is as noisy as the colour: smooth it.
+    // The variance is as noisy as the colour: smooth it. `outliers` keeps the outliers' own
+    // variance (0 elsewhere) for the second pass.
+    Planes outliers = makePlanes(width, height, 0);
     {
         Planes smooth = makePlanes(width, height, pad);
         for (int c = 0; c < 3; ++c) {
@@ -128,8 +130,10 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
                 for (int y = 0; y < height; ++y)
                     for (int x = 0; x < width; ++x) {
                         const float raw = variance[c].at(x, y);
-                        if (raw > tuning.outlierVariance * smooth[c].at(x, y))
+                        if (raw > tuning.outlierVariance * smooth[c].at(x, y)) {
                             smooth[c].at(x, y) = raw;
+                            outliers[c].at(x, y) = raw;
+                        }
                     }
             smooth[c].replicateBorder();
         }
@@ -175,16 +179,22 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
         guide.depthDy = &depthDy;
     }
 
+    // One pass of the filter over the noisy irradiance, weighted as `guide` says, into `out`
+    // (and the variance of each result into `outVariance`, if given).
+    const auto values = pointers(std::as_const(irradiance));
+    const auto valueVariance = pointers(std::as_const(variance));
+    auto pass = [&](const NlMeansParams& params, Planes& out, Planes* outVariance) {
+        NlMeansOutputs o{.value = pointers(out)};
+        if (outVariance) o.variance = pointers(*outVariance);
+        nlMeans(guide, values, params, o, &valueVariance, pool);
+    };
+
     // First pass: guided by the noisy irradiance.
     Planes first = makePlanes(width, height, pad);
     Planes firstVariance = makePlanes(width, height, pad);
     guide.color = pointers(std::as_const(irradiance));
     guide.variance = pointers(std::as_const(variance));
-    const auto values = pointers(std::as_const(irradiance));
-    const auto valueVariance = pointers(std::as_const(variance));
-    auto firstVarianceOut = pointers(firstVariance);
-    nlMeans(guide, values, tuning.first, pointers(first), &valueVariance,
-            twoPasses ? &firstVarianceOut : nullptr, pool);
+    pass(tuning.first, first, twoPasses ? &firstVariance : nullptr);
     const Planes* result = &first;
 
     // Second pass: the weights from the first pass's far less noisy result, the values again
@@ -194,15 +204,19 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
         second = makePlanes(width, height, 0);
         for (int c = 0; c < 3; ++c) {
             first[c].replicateBorder();
-            if (tuning.secondGuideVarianceScale != 1.0f)
-                for (int y = 0; y < height; ++y)
-                    for (int x = 0; x < width; ++x)
-                        firstVariance[c].at(x, y) *= tuning.secondGuideVarianceScale;
+            // An outlier's guide variance stays near its own, so that its neighbours take it in
+            // as in the first pass rather than leave its energy out.
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x) {
+                    float& v = firstVariance[c].at(x, y);
+                    v = std::max(v * tuning.secondGuideVarianceScale,
+                                 tuning.secondOutlierVariance * outliers[c].at(x, y));
+                }
             firstVariance[c].replicateBorder();
         }
         guide.color = pointers(std::as_const(first));
         guide.variance = pointers(std::as_const(firstVariance));
-        nlMeans(guide, values, tuning.second, pointers(second), nullptr, nullptr, pool);
+        pass(tuning.second, second, nullptr);
         result = &second;
     }
 

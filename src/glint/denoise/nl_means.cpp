@@ -25,7 +25,31 @@ struct TileScratch {
     std::vector<float> distance;  // per-pixel colour distance, the tile grown by the patch
     std::vector<float> rowSum;    // its sums along rows over the patch
     std::vector<float> total;     // one row's total distances, then weights
-    std::vector<float> acc[7];    // the weight, the weighted values, the weighted variances
+    std::vector<float> acc[27];   // the sums of Sum below
+};
+
+// The sums per pixel: the weight, the weighted values, the squared weights times the values'
+// variances, and for a first-order fit the weighted moments of the offset (x, y) over the
+// window's radius and of the values times it.
+enum Sum {
+    kW,
+    kV,  // 3 channels
+    kVar = kV + 3,
+    kX = kVar + 3,
+    kY,
+    kXX,
+    kXY,
+    kYY,
+    kXV,  // 3 channels
+    kYV = kXV + 3,
+    // A first-order fit's sums over one row of offsets (dy fixed): weight, times x, times x^2,
+    // times the values, times x and the values (addRowSums).
+    kRowW = kYV + 3,
+    kRowX,
+    kRowXX,
+    kRowV,  // 3 channels
+    kRowXV = kRowV + 3,
+    kSumCount = kRowXV + 3
 };
 
 // The row loops, each over n pixels, with every pointer restrict so that they vectorise.
@@ -147,9 +171,83 @@ void accumulateSquared(int n, const float* __restrict w, float* __restrict b0, f
     }
 }
 
+// The first-order sums of one row of offsets (dy fixed), for the offset dx (ox over the
+// radius) of every pixel in the row: the weight times ox, times ox^2 and times the values.
+void accumulateRowFirstOrder(int n, const float* __restrict w, float ox, float* __restrict sx,
+                             float* __restrict sxx, float* __restrict x0, float* __restrict x1,
+                             float* __restrict x2, const float* __restrict v0,
+                             const float* __restrict v1, const float* __restrict v2) {
+    for (int x = 0; x < n; ++x) {
+        const float wx = w[x] * ox;
+        sx[x] += wx;
+        sxx[x] += wx * ox;
+        x0[x] += wx * v0[x];
+        x1[x] += wx * v1[x];
+        x2[x] += wx * v2[x];
+    }
+}
+
+// Adds a row of offsets' sums (dy fixed: oy over the radius) to the window's, and clears them:
+// the moments in y follow from the row's sums times oy, so the loop over the offsets keeps
+// 9 sums per pixel instead of 15.
+void addRowSums(size_t n, float oy, TileScratch& s) {
+    float* __restrict w = s.acc[kRowW].data();
+    float* __restrict wx = s.acc[kRowX].data();
+    float* __restrict wxx = s.acc[kRowXX].data();
+    float* __restrict sw = s.acc[kW].data();
+    float* __restrict sx = s.acc[kX].data();
+    float* __restrict sy = s.acc[kY].data();
+    float* __restrict sxx = s.acc[kXX].data();
+    float* __restrict sxy = s.acc[kXY].data();
+    float* __restrict syy = s.acc[kYY].data();
+    for (size_t i = 0; i < n; ++i) {
+        sw[i] += w[i];
+        sx[i] += wx[i];
+        sy[i] += oy * w[i];
+        sxx[i] += wxx[i];
+        sxy[i] += oy * wx[i];
+        syy[i] += oy * oy * w[i];
+    }
+    for (int c = 0; c < 3; ++c) {
+        float* __restrict v = s.acc[kRowV + c].data();
+        float* __restrict xv = s.acc[kRowXV + c].data();
+        float* __restrict sv = s.acc[kV + c].data();
+        float* __restrict sxv = s.acc[kXV + c].data();
+        float* __restrict syv = s.acc[kYV + c].data();
+        for (size_t i = 0; i < n; ++i) {
+            sv[i] += v[i];
+            sxv[i] += xv[i];
+            syv[i] += oy * v[i];
+        }
+    }
+    for (int a = kRowW; a < kSumCount; ++a) std::fill(s.acc[a].begin(), s.acc[a].end(), 0.0f);
+}
+
+// The value at the window's centre of the weighted least-squares plane through the values, per
+// channel, from pixel i's sums; the slopes' ridge keeps it near the weighted mean where the
+// weights do not pin a plane down (a thin line of similar pixels). In double: the 3x3 system's
+// cofactors cancel.
+void solvePlane(const TileScratch& s, size_t i, float ridge, float out[3], float& leverage) {
+    const double a00 = s.acc[kW][i], a01 = s.acc[kX][i], a02 = s.acc[kY][i];
+    const double a11 = s.acc[kXX][i] + ridge * a00, a12 = s.acc[kXY][i];
+    const double a22 = s.acc[kYY][i] + ridge * a00;
+    // The first row of the inverse: the cofactors of the first column over the determinant.
+    const double c0 = a11 * a22 - a12 * a12, c1 = a02 * a12 - a01 * a22, c2 = a01 * a12 - a02 * a11;
+    const double det = a00 * c0 + a01 * c1 + a02 * c2;
+    if (!(det > 1e-12 * a00 * a00 * a00)) {
+        for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(s.acc[kV + c][i] / a00);
+        leverage = static_cast<float>(1.0 / a00);
+        return;
+    }
+    for (int c = 0; c < 3; ++c)
+        out[c] = static_cast<float>(
+            (c0 * s.acc[kV + c][i] + c1 * s.acc[kXV + c][i] + c2 * s.acc[kYV + c][i]) / det);
+    leverage = static_cast<float>(c0 / det);  // the centre's weight is 1
+}
+
 void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values,
                 const NlMeansParams& p, const Tile& t, const std::array<const Plane*, 3>* vv,
-                TileScratch& s, std::array<Plane*, 3>& out, std::array<Plane*, 3>* outVar) {
+                TileScratch& s, const NlMeansOutputs& out) {
     const int width = g.color[0]->width(), height = g.color[0]->height();
     const int f = p.patch, tw = t.x1 - t.x0, th = t.y1 - t.y0;
     const int dw = tw + 2 * f;  // distance rows: tile columns grown by the patch
@@ -157,8 +255,12 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
     s.distance.assign(static_cast<size_t>(dw) * (th + 2 * f), 0.0f);
     s.rowSum.assign(static_cast<size_t>(tw) * (th + 2 * f), 0.0f);
     s.total.assign(static_cast<size_t>(tw), 0.0f);
-    const int accCount = vv ? 7 : 4;
-    for (int a = 0; a < accCount; ++a) s.acc[a].assign(tileSize, 0.0f);
+    for (int a = 0; a < kSumCount; ++a) {
+        const bool used = a < kVar || (a < kX ? vv != nullptr : p.firstOrder);
+        // (kW and kV are always summed: directly, or for a first-order fit through addRowSums.)
+        if (used) s.acc[a].assign(tileSize, 0.0f);
+    }
+    const float offsetScale = 1.0f / static_cast<float>(std::max(1, p.radius));
 
     const float k2 = p.k * p.k;
     const float patchNorm = 1.0f / static_cast<float>(3 * (2 * f + 1) * (2 * f + 1));
@@ -214,32 +316,49 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
                     addDepthDistance(n, dist, g.depth->row(y) + xa, g.depth->row(qy) + qx,
                                      g.depthDx->row(y) + xa, g.depthDy->row(y) + xa,
                                      static_cast<float>(dx), static_cast<float>(dy), p.depthWeight);
-                accumulate(n, dist, s.acc[0].data() + o, s.acc[1].data() + o, s.acc[2].data() + o,
-                           s.acc[3].data() + o, values[0]->row(qy) + qx, values[1]->row(qy) + qx,
+                auto sum = [&](int a) { return s.acc[a].data() + o; };
+                // A first-order fit sums a row of offsets first (addRowSums).
+                const int w0 = p.firstOrder ? kRowW : kW, v0 = p.firstOrder ? kRowV : kV;
+                accumulate(n, dist, sum(w0), sum(v0), sum(v0 + 1), sum(v0 + 2),
+                           values[0]->row(qy) + qx, values[1]->row(qy) + qx,
                            values[2]->row(qy) + qx);
+                if (p.firstOrder)
+                    accumulateRowFirstOrder(n, dist, static_cast<float>(dx) * offsetScale,
+                                            sum(kRowX), sum(kRowXX), sum(kRowXV), sum(kRowXV + 1),
+                                            sum(kRowXV + 2), values[0]->row(qy) + qx,
+                                            values[1]->row(qy) + qx, values[2]->row(qy) + qx);
                 if (vv)
-                    accumulateSquared(n, dist, s.acc[4].data() + o, s.acc[5].data() + o,
-                                      s.acc[6].data() + o, (*vv)[0]->row(qy) + qx,
-                                      (*vv)[1]->row(qy) + qx, (*vv)[2]->row(qy) + qx);
+                    accumulateSquared(n, dist, sum(kVar), sum(kVar + 1), sum(kVar + 2),
+                                      (*vv)[0]->row(qy) + qx, (*vv)[1]->row(qy) + qx,
+                                      (*vv)[2]->row(qy) + qx);
             }
         }
+        if (p.firstOrder) addRowSums(tileSize, static_cast<float>(dy) * offsetScale, s);
     }
     for (int y = t.y0; y < t.y1; ++y)
         for (int x = t.x0; x < t.x1; ++x) {
             const size_t i = static_cast<size_t>(y - t.y0) * tw + (x - t.x0);
-            const float inv = 1.0f / s.acc[0][i];  // the centre's own weight is 1: never 0
-            for (int c = 0; c < 3; ++c) out[c]->at(x, y) = s.acc[1 + c][i] * inv;
-            if (outVar)
-                for (int c = 0; c < 3; ++c) (*outVar)[c]->at(x, y) = s.acc[4 + c][i] * inv * inv;
+            const float inv = 1.0f / s.acc[kW][i];  // the centre's own weight is 1: never 0
+            float fit[3], leverage = inv;
+            if (p.firstOrder) {
+                solvePlane(s, i, p.ridge, fit, leverage);
+            } else {
+                for (int c = 0; c < 3; ++c) fit[c] = s.acc[kV + c][i] * inv;
+            }
+            for (int c = 0; c < 3; ++c) out.value[c]->at(x, y) = fit[c];
+            // The weighted mean's variance; a fit's is larger by about the ratio of their
+            // leverages (exactly so for equal weights and variances), most where it extrapolates.
+            if (out.variance[0])
+                for (int c = 0; c < 3; ++c)
+                    out.variance[c]->at(x, y) = s.acc[kVar + c][i] * inv * leverage;
         }
 }
 
 }  // namespace
 
 void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& values,
-             const NlMeansParams& params, std::array<Plane*, 3> out,
-             const std::array<const Plane*, 3>* valueVariance, std::array<Plane*, 3>* outVariance,
-             ThreadPool& pool) {
+             const NlMeansParams& params, const NlMeansOutputs& out,
+             const std::array<const Plane*, 3>* valueVariance, ThreadPool& pool) {
     const int width = guide.color[0]->width(), height = guide.color[0]->height();
     const int tilesX = (width + kTileWidth - 1) / kTileWidth;
     const int tilesY = (height + kTileHeight - 1) / kTileHeight;
@@ -251,8 +370,8 @@ void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& value
             const int tx = static_cast<int>(i % tilesX), ty = static_cast<int>(i / tilesX);
             Tile t{tx * kTileWidth, std::min(width, (tx + 1) * kTileWidth), ty * kTileHeight,
                    std::min(height, (ty + 1) * kTileHeight)};
-            filterTile(guide, values, p, t, valueVariance, scratch, out,
-                       outVariance ? outVariance : nullptr);
+            filterTile(guide, values, p, t, out.variance[0] ? valueVariance : nullptr, scratch,
+                       out);
         }
     });
 }

@@ -37,14 +37,29 @@ struct NlMeansParams {
     float normalWeight = 0.0f;  // times |n_p - n_q|^2
     float albedoWeight = 0.0f;  // times |a_p - a_q|^2
     float depthWeight = 0.0f;   // times (depth residual / depth_p)^2
+    /// First order: each result is the value at p of a weighted least-squares fit of the values
+    /// in the window as a linear function of the position (a plane), not their weighted mean,
+    /// so that a gradient is not flattened and a window that meets an edge on one side is not
+    /// pulled towards its other side's mean.
+    bool firstOrder = false;
+    float ridge = 0.01f;  // the fit's slopes' ridge, times the weights' sum
 };
 
-/// Filters `values` (three unpadded-or-padded planes of the guide's size) into `out`; with
-/// `outVariance`, also writes the variance of each result from the variances `valueVariance`
-/// of the values, as if they were independent. Deterministic for any pool.
+/// Where nlMeans writes; only `value` is required.
+struct NlMeansOutputs {
+    std::array<Plane*, 3> value{};
+    /// The variance of each result from the variances of the values, as if they were
+    /// independent: the weighted mean's, for a first-order fit times the ratio of the fit's
+    /// leverage (the result's derivative by its own pixel's value, the weights held fixed) to
+    /// the mean's, exact for equal weights and variances.
+    std::array<Plane*, 3> variance{};
+};
+
+/// Filters `values` (three unpadded-or-padded planes of the guide's size) into `out`, whose
+/// variance output needs `valueVariance`, the variances of the values. Deterministic for any
+/// pool.
 void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& values,
-             const NlMeansParams& params, std::array<Plane*, 3> out,
-             const std::array<const Plane*, 3>* valueVariance, std::array<Plane*, 3>* outVariance,
-             ThreadPool& pool);
+             const NlMeansParams& params, const NlMeansOutputs& out,
+             const std::array<const Plane*, 3>* valueVariance, ThreadPool& pool);
 
 }  // namespace glint::denoise_detail

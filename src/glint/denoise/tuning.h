@@ -25,25 +25,45 @@ struct DenoiseTuning {
     /// better than 4 on the real renders (room at 16 spp: 87x against 71x, its mean -0.5%
     /// against -1.5%; glass unchanged).
     float outlierVariance = 2.0f;
-    /// The first pass: guided by the noisy colour itself.
-    NlMeansParams first{.radius = 8,
+    /// The first pass, guided by the noisy colour itself: a small window, whose result only
+    /// guides the second pass's weights. Measured on the five renders at 16 spp (docs/denoise.md):
+    /// one first-order pass of radius 8 gave glass 6.8x, room 82.7x, lamps 33.5x, helmet 3.6x,
+    /// bottle 9.0x, its weights tied to the noise (room's mean -1.0%, -2.6% at 4 spp); these two
+    /// passes give 7.4x, 68.8x, 31.1x, 3.8x, 13.3x, means within 0.2% (-1.4% on room at 4 spp),
+    /// in the time of the old single zero-order pass of radius 8 (radius 3 and 6; a second
+    /// radius of 7 gives glass 7.5x, room 77.4x, lamps 32.3x, bottle 13.6x, helmet the same, in
+    /// 1.2 times the time, too near 1080p's 2 s).
+    NlMeansParams first{.radius = 3,
                         .patch = 1,
-                        .k = 0.55f,
+                        .k = 0.8f,
                         .alpha = 1.0f,
                         .normalWeight = 20.0f,
                         .albedoWeight = 5.0f,
-                        .depthWeight = 100.0f};
-    /// A second pass, guided by the first's result (none if its radius is 0): it measured worse
-    /// than one pass on the synthetic scenes (bench/denoise_eval), so it is off.
-    NlMeansParams second{.radius = 0,
+                        .depthWeight = 100.0f,
+                        .firstOrder = true,
+                        .ridge = 0.01f};
+    /// The second pass (none if its radius is 0): the weights from the first's result, far less
+    /// noisy than the colour, so they no longer pick the pixels whose noise is low (which darkened
+    /// the image); the values again the noisy irradiance. First order (lamps 25.7x without).
+    NlMeansParams second{.radius = 6,
                          .patch = 1,
-                         .k = 0.45f,
+                         .k = 1.0f,
                          .alpha = 1.0f,
-                         .normalWeight = 20.0f,
-                         .albedoWeight = 20.0f,
-                         .depthWeight = 400.0f};
-    /// The variance the second pass assumes of its guide: this times the first pass's own.
-    float secondGuideVarianceScale = 1.0f;
+                         .normalWeight = 10.0f,
+                         .albedoWeight = 5.0f,
+                         .depthWeight = 400.0f,
+                         .firstOrder = true,
+                         .ridge = 0.1f};
+    /// The variance the second pass assumes of its guide: this times the first pass's own
+    /// (its weighted mean's, times the ratio of the fit's leverage to the mean's). Smaller keeps
+    /// more detail: 1 gave helmet 3.6x and room 79x at 16 spp, 0.8 3.8x and 74x, 0.5 3.9x and
+    /// 60x.
+    float secondGuideVarianceScale = 0.8f;
+    /// ... but at least this times an outlier's own variance (outlierVariance), so that the
+    /// second pass spreads a firefly's energy as the first does. Without it (0) the synthetic
+    /// scene (fireflies of 100 times the mean) lost 0.75% of its mean and room measured 65.9x at
+    /// 16 spp; with 0.03 0.62% and 68.5x, the rest the same (0.1: helmet 3.8x -> 3.7x).
+    float secondOutlierVariance = 0.03f;
 };
 
 /// denoise() with explicit parameters.

@@ -115,13 +115,21 @@ TEST(Denoise, PreservesTheMeanOfANoisyGradient) {
     addNoise(s, 8);
     const std::vector<Vec3> out = denoise(s.input());
     EXPECT_NEAR(meanValue(out) / meanValue(s.color), 1.0, 0.01);
-    // And locally: away from the image's sides (where every neighbour lies up or down the slope:
-    // a known weakness of a weighted mean), each column's mean stays within 6% of the truth's.
-    for (int x = 8; x < s.width - 8; x += 8) {
+    // And locally: each column's mean stays within 6% of the truth's ...
+    auto columnRatio = [&](int x) {
         double a = 0, b = 0;
         for (int y = 0; y < s.height; ++y) a += out[s.index(x, y)].x, b += s.truth[s.index(x, y)].x;
-        EXPECT_NEAR(a / b, 1.0, 0.06) << "column " << x;
-    }
+        return a / b;
+    };
+    for (int x = 8; x < s.width - 8; x += 8)
+        EXPECT_NEAR(columnRatio(x), 1.0, 0.06) << "column " << x;
+    // ... and near it at the image's sides, where every neighbour lies up or down the slope:
+    // there a weighted mean drifts (column 0 by +67%, 1 by +38%, 2 by +26%), the first-order
+    // fit far less (column 0, the darkest, by +14%: a seventh of a pixel's step; the others
+    // within 8%). The darkest column's noise alone (48 pixels at 8 spp) is about 5%.
+    EXPECT_NEAR(columnRatio(0), 1.0, 0.25);
+    for (int x : {1, 2, 4, s.width - 5, s.width - 3, s.width - 2, s.width - 1})
+        EXPECT_NEAR(columnRatio(x), 1.0, 0.1) << "column " << x;
 }
 
 TEST(Denoise, KeepsAGeometricEdgeSharp) {
