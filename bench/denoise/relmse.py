@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
-"""relMSE of a PFM image against a reference PFM: the mean over pixels and channels of
-(x - ref)^2 / (ref^2 + 0.01), as bench/denoise_eval computes it. Plain Python (no NumPy).
-Usage: relmse.py IMAGE.pfm REFERENCE.pfm"""
+"""Errors of a PFM image against a reference PFM, per channel over all pixels:
+  relMSE       mean of (x - ref)^2 / (ref^2 + 0.01), as bench/denoise_eval computes it;
+  relMSE-trim  the same without the 0.1% of pixels of largest error (so that a handful of
+               fireflies cannot decide it), and how many pixels are off by more than 4x
+               (|x - ref| > 4 (ref + 0.01) in some channel: the fireflies, counted apart);
+  MARE         mean absolute relative error, |x - ref| / (ref + 0.01).
+Plain Python (no NumPy).
+Usage: relmse.py IMAGE.pfm REFERENCE.pfm [--all]   (without --all: relMSE alone)"""
 import array
 import sys
 
@@ -25,8 +30,26 @@ def main():
     rw, rh, ref = read_pfm(sys.argv[2])
     if (w, h) != (rw, rh):
         sys.exit('the images differ in size')
-    total = sum((x - r) ** 2 / (r * r + 0.01) for x, r in zip(image, ref))
-    print(f'{total / len(image):.5f}')
+    n = w * h
+    per_pixel, absolute, fireflies = [], 0.0, 0
+    for i in range(n):
+        e, off = 0.0, False
+        for c in range(3):
+            x, r = image[3 * i + c], ref[3 * i + c]
+            e += (x - r) ** 2 / (r * r + 0.01)
+            absolute += abs(x - r) / (r + 0.01)
+            off = off or abs(x - r) > 4 * (r + 0.01)
+        per_pixel.append(e)
+        fireflies += off
+    relmse = sum(per_pixel) / (3 * n)
+    if '--all' not in sys.argv[3:]:
+        print(f'{relmse:.5f}')
+        return
+    per_pixel.sort()
+    kept = per_pixel[:n - n // 1000]
+    trimmed = sum(kept) / (3 * len(kept))
+    print(f'relMSE {relmse:.6f} relMSE-trim {trimmed:.6f} MARE {absolute / (3 * n):.6f} '
+          f'fireflies {fireflies}')
 
 
 if __name__ == '__main__':

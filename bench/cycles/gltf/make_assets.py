@@ -6,7 +6,7 @@ Radiance .hdr skies. Python's standard library only (json, struct, zlib, math).
     bench/cycles/gltf/make_assets.py OUT_DIR [NAME ...]
 
 writes into OUT_DIR (all of them, or the NAMEs: metal, dielectric, normalmap, normaltilt,
-emissive, sky, sky_low, sky_low_nosun, night):
+emissive, lamps, sky, sky_low, sky_low_nosun, night):
 
   metal.gltf       a UV sphere (64 x 32 segments), metallic 1, roughness 0.3, base colour from
                    a texture of coloured metal stripes (gold, copper, silver, blue, green)
@@ -19,6 +19,8 @@ emissive, sky, sky_low, sky_low_nosun, night):
                    towards the low sun; the same tilted away; a patch really tilted towards it
   emissive.gltf    a sphere emitting a striped texture (KHR_materials_emissive_strength 4) over
                    a diffuse grey floor
+  lamps.gltf       36 small emissive spheres in six colours (strength 200, 9216 emissive
+                   triangles) over a diffuse floor, beside a diffuse sphere (many lights)
   sky.hdr          sky gradient, brown ground, a sun 2.5 degrees in radius 40 degrees up,
                    behind the cameras' left shoulder
   sky_low.hdr      the same with the sun 8 degrees above the horizon (grazing light)
@@ -417,6 +419,32 @@ def emissive(out):
     g.write(out)
 
 
+def lamps(out):
+    """(6) Many lights: 36 small emissive spheres of six colours (16 x 8 segments each, 256
+    triangles: 9216 emissive triangles in all) in a 6 x 6 grid over a diffuse floor, around a
+    diffuse sphere, under a dim sky (issue 22)."""
+    g = Gltf("lamps")
+    floor = g.material({"name": "floor", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.6, 0.6, 0.6, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    ball = g.material({"name": "ball", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    colours = [(1.0, 0.3, 0.3), (1.0, 0.6, 0.2), (0.9, 0.9, 0.3),
+               (0.3, 1.0, 0.4), (0.3, 0.6, 1.0), (0.8, 0.4, 1.0)]
+    lamp_materials = [g.material({"name": f"lamp{k}", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
+        "emissiveFactor": list(c),
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 200.0}}})
+        for k, c in enumerate(colours)]
+    g.mesh("floor", plane(12.0, 12), floor)
+    g.mesh("ball", uv_sphere(0.6), ball, (-1.0, 0.6, 0.0))
+    for i in range(6):
+        for j in range(6):
+            x, z = -3.0 + 1.2 * i, -3.0 + 1.2 * j
+            y = 1.8 + 0.3 * ((i + 2 * j) % 3)
+            g.mesh(f"lamp{i}_{j}", uv_sphere(0.06, 16, 8), lamp_materials[(i + j) % 6], (x, y, z))
+    g.write(out)
+
+
 def normaltilt(out):
     """(3b) Four 1 x 1 m patches in a row along x, grey 0.8, roughness 0.5, to take the normal
     map apart: flat; flat with a constant normal map tilted 31 degrees towards -x (towards
@@ -451,7 +479,7 @@ def normaltilt(out):
 # sky_low's (150 degrees) skims the plane from the back left.
 WRITERS = {
     "metal": metal, "dielectric": dielectric, "normalmap": normalmap,
-    "normaltilt": normaltilt, "emissive": emissive,
+    "normaltilt": normaltilt, "emissive": emissive, "lamps": lamps,
     "sky": lambda out: write_hdr(os.path.join(out, "sky.hdr"), *sky(40, 230)),
     "sky_low": lambda out: write_hdr(os.path.join(out, "sky_low.hdr"), *sky(8, 150)),
     "sky_low_nosun": lambda out: write_hdr(os.path.join(out, "sky_low_nosun.hdr"),
