@@ -6,7 +6,7 @@ Radiance .hdr skies. Python's standard library only (json, struct, zlib, math).
     bench/cycles/gltf/make_assets.py OUT_DIR [NAME ...]
 
 writes into OUT_DIR (all of them, or the NAMEs: metal, dielectric, normalmap, normaltilt,
-emissive, lamps, sky, sky_low, sky_low_nosun, night):
+emissive, lamps, caustic, room, sky, sky_low, sky_low_nosun, night):
 
   metal.gltf       a UV sphere (64 x 32 segments), metallic 1, roughness 0.3, base colour from
                    a texture of coloured metal stripes (gold, copper, silver, blue, green)
@@ -19,6 +19,9 @@ emissive, lamps, sky, sky_low, sky_low_nosun, night):
                    towards the low sun; the same tilted away; a patch really tilted towards it
   emissive.gltf    a sphere emitting a striped texture (KHR_materials_emissive_strength 4) over
                    a diffuse grey floor
+  caustic.gltf     a glass ball (transmission 1, index 1.5) and a metal ball on a diffuse floor
+  room.gltf        a closed room of separate wall quads sharing their edges, a window in its
+                   -x wall, a ball inside
   lamps.gltf       36 small emissive spheres in six colours (strength 200, 9216 emissive
                    triangles) over a diffuse floor, beside a diffuse sphere (many lights)
   sky.hdr          sky gradient, brown ground, a sun 2.5 degrees in radius 40 degrees up,
@@ -215,6 +218,21 @@ def plane(size, n=20, y=0.0):
             # clockwise as a, d, c and a, c, b.
             idx += [a, d, c, a, c, b]
     return pos, nrm, uv, tan, idx
+
+
+def quad(corner, e1, e2):
+    """The parallelogram corner + u e1 + v e2 (u, v in [0, 1]), facing cross(e1, e2): its
+    triangles are counter-clockwise seen from there."""
+    cx = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+          e1[0] * e2[1] - e1[1] * e2[0]]
+    n = math.sqrt(sum(v * v for v in cx))
+    normal = tuple(v / n for v in cx)
+    l1 = math.sqrt(sum(v * v for v in e1))
+    tangent = tuple(v / l1 for v in e1) + (1.0,)
+    pos = [tuple(c + u * a + v * b for c, a, b in zip(corner, e1, e2))
+           for u, v in ((0, 0), (1, 0), (1, 1), (0, 1))]
+    uv = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+    return pos, [normal] * 4, uv, [tangent] * 4, [0, 1, 2, 0, 2, 3]
 
 
 # --- Textures. ---------------------------------------------------------------------------------
@@ -445,6 +463,50 @@ def lamps(out):
     g.write(out)
 
 
+def caustic(out):
+    """(7) Caustics: a glass ball (KHR_materials_transmission, index 1.5) and a metal one on a
+    diffuse floor under sky.hdr's sun, which the glass focuses onto the floor (issue 22)."""
+    g = Gltf("caustic")
+    floor = g.material({"name": "floor", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.7, 0.7, 0.7, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    glass = g.material({"name": "glass", "pbrMetallicRoughness": {
+        "baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
+        "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                       "KHR_materials_ior": {"ior": 1.5}}})
+    metal = g.material({"name": "metal", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.95, 0.8, 0.55, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.2}})
+    g.mesh("floor", plane(10.0, 10), floor)
+    g.mesh("glass", uv_sphere(0.5), glass, (0.0, 0.5, 0.0))
+    g.mesh("metal", uv_sphere(0.4), metal, (1.2, 0.4, -0.6))
+    g.write(out)
+
+
+def room(out):
+    """(8) An interior: a closed room of separate wall quads that share their edges (6 x 5 x
+    2.5 m), lit only through a window in its -x wall by sky.hdr's sun and sky (issue 22:
+    nearly all of its light is indirect; corners show any leak)."""
+    g = Gltf("room")
+    wall = g.material({"name": "wall", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.75, 0.72, 0.68, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    x0, x1, y0, y1, z0, z1 = -3.0, 3.0, 0.0, 2.5, -2.5, 2.5
+    # Inward faces: floor, ceiling, +x wall, both z walls.
+    g.mesh("floor", quad((x0, y0, z0), (0, 0, z1 - z0), (x1 - x0, 0, 0)), wall)
+    g.mesh("ceiling", quad((x0, y1, z0), (x1 - x0, 0, 0), (0, 0, z1 - z0)), wall)
+    g.mesh("east", quad((x1, y0, z0), (0, 0, z1 - z0), (0, y1 - y0, 0)), wall)
+    g.mesh("north", quad((x0, y0, z0), (x1 - x0, 0, 0), (0, y1 - y0, 0)), wall)
+    g.mesh("south", quad((x0, y0, z1), (0, y1 - y0, 0), (x1 - x0, 0, 0)), wall)
+    # The -x wall, facing +x, around a window from y 1.0 to 2.0 and z -0.8 to 0.8.
+    wy0, wy1, wz0, wz1 = 1.0, 2.0, -0.8, 0.8
+    parts = [((y0, z0), (wy0 - y0, z1 - z0)), ((wy1, z0), (y1 - wy1, z1 - z0)),
+             ((wy0, z0), (wy1 - wy0, wz0 - z0)), ((wy0, wz1), (wy1 - wy0, z1 - wz1))]
+    for k, ((py, pz), (hy, hz)) in enumerate(parts):
+        g.mesh(f"west{k}", quad((x0, py, pz), (0, hy, 0), (0, 0, hz)), wall)
+    furniture = g.material({"name": "table", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.55, 0.3, 0.15, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.6}})
+    g.mesh("ball", uv_sphere(0.4), furniture, (0.5, 0.4, -0.8))
+    g.write(out)
+
+
 def normaltilt(out):
     """(3b) Four 1 x 1 m patches in a row along x, grey 0.8, roughness 0.5, to take the normal
     map apart: flat; flat with a constant normal map tilted 31 degrees towards -x (towards
@@ -479,7 +541,8 @@ def normaltilt(out):
 # sky_low's (150 degrees) skims the plane from the back left.
 WRITERS = {
     "metal": metal, "dielectric": dielectric, "normalmap": normalmap,
-    "normaltilt": normaltilt, "emissive": emissive, "lamps": lamps,
+    "normaltilt": normaltilt, "emissive": emissive, "lamps": lamps, "caustic": caustic,
+    "room": room,
     "sky": lambda out: write_hdr(os.path.join(out, "sky.hdr"), *sky(40, 230)),
     "sky_low": lambda out: write_hdr(os.path.join(out, "sky_low.hdr"), *sky(8, 150)),
     "sky_low_nosun": lambda out: write_hdr(os.path.join(out, "sky_low_nosun.hdr"),
