@@ -151,14 +151,16 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
         if (!found) {
-            double lightPdf = 0;
-            Vec3 le = lights_.environment(ray.dir, from, fromN, &lightPdf);
-            // Light found at depth d came through d bounces: the first two are direct.
+            // Light found at depth d came through d bounces: the first two are direct. Seen
+            // by the camera or through a mirror it counts in full: no density is needed.
             Vec3 light(0);
-            if (depth == 0 || specularBounce)
-                light = beta * le;
-            else if (!(le == Vec3(0)))
-                light = beta * le * bsdfWeight(bsdfPdf, lightPdf);
+            if (depth == 0 || specularBounce) {
+                light = beta * lights_.environment(ray.dir);
+            } else {
+                double lightPdf = 0;
+                const Vec3 le = lights_.environment(ray.dir, from, fromN, &lightPdf);
+                if (!(le == Vec3(0))) light = beta * le * bsdfWeight(bsdfPdf, lightPdf);
+            }
             L += depth >= 2 ? clampedIndirect(light) : light;
             break;
         }
