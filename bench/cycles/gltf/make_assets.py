@@ -464,7 +464,7 @@ def lamps(out):
 
 
 def caustic(out):
-    """(7) Caustics: a glass ball (KHR_materials_transmission, index 1.5) and a metal one on a
+    """(7) Caustics: a solid glass ball (KHR_materials_transmission and _volume, index 1.5) and a metal one on a
     diffuse floor under sky.hdr's sun, which the glass focuses onto the floor (issue 22)."""
     g = Gltf("caustic")
     floor = g.material({"name": "floor", "pbrMetallicRoughness": {
@@ -472,7 +472,10 @@ def caustic(out):
     glass = g.material({"name": "glass", "pbrMetallicRoughness": {
         "baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.0},
         "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
-                       "KHR_materials_ior": {"ior": 1.5}}})
+                       "KHR_materials_ior": {"ior": 1.5},
+                       # A solid ball: without a volume glTF's transmission is thin-walled
+                       # (no refraction), which Blender's importer does not follow.
+                       "KHR_materials_volume": {"thicknessFactor": 1.0}}})
     metal = g.material({"name": "metal", "pbrMetallicRoughness": {
         "baseColorFactor": [0.95, 0.8, 0.55, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.2}})
     g.mesh("floor", plane(10.0, 10), floor)
