@@ -112,40 +112,53 @@ double LightBounds::importance(const Vec3& p, const Vec3& n) const {
 LightTree::Compact::Compact(const LightBounds& b)
     : center(centroid(b)),
       w(b.w),
-      radius(length(b.hi - b.lo) / 2),
-      phi(b.phi),
-      cosThetaO(b.cosThetaO),
-      sinThetaO(safeSqrt(1 - b.cosThetaO * b.cosThetaO)),
-      cosThetaE(b.cosThetaE),
+      radius(static_cast<float>(length(b.hi - b.lo) / 2)),
+      phi(static_cast<float>(b.phi)),
+      cosThetaO(static_cast<float>(b.cosThetaO)),
+      sinThetaO(static_cast<float>(safeSqrt(1 - b.cosThetaO * b.cosThetaO))),
+      cosThetaE(static_cast<float>(b.cosThetaE)),
       twoSided(b.twoSided) {}
 
-double LightTree::Compact::importance(const Vec3& p, const Vec3& n) const {
-    const Vec3 toP = p - center;
-    const double dist2 = dot(toP, toP);
+namespace {
+
+float sqrtf0(float x) { return std::sqrt(std::max(x, 0.0f)); }
+float cosSubClampedF(float sinA, float cosA, float sinB, float cosB) {
+    return cosA > cosB ? 1 : cosA * cosB + sinA * sinB;
+}
+float sinSubClampedF(float sinA, float cosA, float sinB, float cosB) {
+    return cosA > cosB ? 0 : sinA * cosB - cosA * sinB;
+}
+
+}  // namespace
+
+double LightTree::Compact::importance(const Vec3& pd, const Vec3& nd) const {
+    const Vec3f toP = Vec3f(pd) - center;
+    const float dist2 = dot(toP, toP);
     // Within the bounds the distance tells nothing: pbrt's floor of half the diagonal.
-    const double d2 = std::max(dist2, radius);
-    if (!(dist2 > 0)) return phi / std::max(d2, 1e-30);
-    const double dist = std::sqrt(dist2);
-    const Vec3 wi = toP / dist;
+    const float d2 = std::max(dist2, radius);
+    if (!(dist2 > 0)) return phi / std::max(static_cast<double>(d2), 1e-30);
+    const float dist = std::sqrt(dist2);
+    const Vec3f wi = toP * (1 / dist);
     // The angle the bounds subtend from p, about wi.
     const bool inside = dist2 < radius * radius;
-    const double sinB = inside ? 0 : radius / dist;
-    const double cosB = inside ? -1 : safeSqrt(1 - sinB * sinB);
+    const float sinB = inside ? 0 : radius / dist;
+    const float cosB = inside ? -1 : sqrtf0(1 - sinB * sinB);
     // The smallest angle between an emission normal and a direction to p.
-    double cosW = dot(w, wi);
+    float cosW = dot(w, wi);
     if (twoSided) cosW = std::abs(cosW);
-    const double sinW = safeSqrt(1 - cosW * cosW);
-    const double cosX = cosSubClamped(sinW, cosW, sinThetaO, cosThetaO);
-    const double sinX = sinSubClamped(sinW, cosW, sinThetaO, cosThetaO);
-    const double cosP = cosSubClamped(sinX, cosX, sinB, cosB);
+    const float sinW = sqrtf0(1 - cosW * cosW);
+    const float cosX = cosSubClampedF(sinW, cosW, sinThetaO, cosThetaO);
+    const float sinX = sinSubClampedF(sinW, cosW, sinThetaO, cosThetaO);
+    const float cosP = cosSubClampedF(sinX, cosX, sinB, cosB);
     if (cosP <= cosThetaE) return 0;
-    double result = phi * cosP / d2;
-    if (!(n == Vec3(0))) {  // the receiving cosine, at best over the bounds
-        const double cosI = std::abs(dot(wi, n));
-        const double sinI = safeSqrt(1 - cosI * cosI);
-        result *= cosSubClamped(sinI, cosI, sinB, cosB);
+    float cosines = cosP;
+    if (!(nd == Vec3(0))) {  // the receiving cosine, at best over the bounds
+        const float cosI = std::abs(dot(wi, Vec3f(nd)));
+        const float sinI = sqrtf0(1 - cosI * cosI);
+        cosines *= cosSubClampedF(sinI, cosI, sinB, cosB);
     }
-    return std::max(result, 0.0);
+    // In double: a bright point light a hair away must not overflow a float.
+    return std::max(static_cast<double>(phi) * cosines / d2, 0.0);
 }
 
 LightBounds unite(const LightBounds& a, const LightBounds& b) {

@@ -71,10 +71,13 @@ class LightTree {
 
   private:
     /// A node's bounds as importance() reads them, what it would compute on each call done
-    /// once: the centre and radius of the box's bounding sphere, the cone's sine.
+    /// once: the centre and radius of the box's bounding sphere, the cone's sine. In single
+    /// precision, which a choice among lights needs no more than (importance() is most of
+    /// the time a many-light scene spends choosing): a float square root or division costs
+    /// half a double's.
     struct Compact {
-        Vec3 center, w;
-        double radius = 0, phi = 0, cosThetaO = 1, sinThetaO = 0, cosThetaE = 0;
+        Vec3f center, w;
+        float radius = 0, phi = 0, cosThetaO = 1, sinThetaO = 0, cosThetaE = 0;
         bool twoSided = false;
 
         explicit Compact(const LightBounds& b);
