@@ -62,6 +62,10 @@ def parse_args():
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--multiscatter", action="store_true",
                    help="keep Blender's Multiscatter GGX instead of GGX (for comparison)")
+    p.add_argument("--lambert", action="store_true",
+                   help="diagnostic: replace every Principled BSDF of metallic 0, no "
+                        "transmission and no texture by a Diffuse BSDF (Lambert) of its base "
+                        "colour, to tell the Principled BSDF's Burley diffuse from the rest")
     a = p.parse_args(argv)
     if a.spp < 1 or a.threads < 1:
         p.error("--spp and --threads must be at least 1")
@@ -183,6 +187,26 @@ def describe_material(m):
     return "\n".join(lines)
 
 
+def plain_dielectric(n):
+    """A Principled BSDF of metallic 0, no transmission, no emission and no linked inputs but
+    its output: what --lambert replaces."""
+    inputs = n.inputs
+    linked = [i.name for i in inputs if i.is_linked]
+    return (not linked and inputs["Metallic"].default_value == 0 and
+            inputs["Transmission"].default_value == 0 and
+            max(inputs["Emission"].default_value[:3]) == 0)
+
+
+def lambert(tree, n):
+    """Replaces Principled BSDF `n` by a Diffuse BSDF (roughness 0: Lambert) of its base colour."""
+    d = tree.nodes.new("ShaderNodeBsdfDiffuse")
+    d.inputs["Color"].default_value = n.inputs["Base Color"].default_value
+    d.inputs["Roughness"].default_value = 0.0
+    for link in list(n.outputs["BSDF"].links):
+        tree.links.new(d.outputs["BSDF"], link.to_socket)
+    tree.nodes.remove(n)
+
+
 def set_world(scene, hdr, scale, rotation):
     world = scene.world or bpy.data.worlds.new("World")
     scene.world = world
@@ -287,9 +311,11 @@ def main():
     materials = sorted({slot.material for o in objs for slot in o.material_slots
                         if slot.material}, key=lambda m: m.name)
     for m in materials:
-        for n in m.node_tree.nodes:
+        for n in list(m.node_tree.nodes):
             if n.type == "BSDF_PRINCIPLED" and not a.multiscatter:
                 n.distribution = "GGX"
+            if a.lambert and n.type == "BSDF_PRINCIPLED" and plain_dielectric(n):
+                lambert(m.node_tree, n)
     set_world(scene, *s["environment"])
     add_camera(scene, conv, s["camera"], *s["size"])
     bounces = s["maxdepth"] - 1
