@@ -93,9 +93,11 @@ class LightTree {
         bool leaf = false;
     };
     /// Builds the subtree over lights[begin, end) of `order`, whose path from the root is
-    /// `trail` (bit d: the second child at depth d); returns its root's index.
-    uint32_t build(const std::vector<LightBounds>& lights, std::vector<uint32_t>& order,
-                   size_t begin, size_t end, int depth, uint64_t trail);
+    /// `trail` (bit d: the second child at depth d); returns its root's index, and its lights'
+    /// bounds in `bounds`.
+    uint32_t build(const std::vector<LightBounds>& lights, const std::vector<Vec3>& centroids,
+                   std::vector<uint32_t>& order, size_t begin, size_t end, int depth,
+                   uint64_t trail, LightBounds& bounds);
 
     std::vector<Node> nodes_;
     std::vector<uint64_t> trail_;  ///< Of each light: its path from the root.
