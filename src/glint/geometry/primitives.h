@@ -128,6 +128,9 @@ class Primitives {
     bool isInstance(uint32_t id) const {
         return id < boundedCount() && id >= triangleCount() + sphereCount() + shapeCount();
     }
+    /// Instance `id`'s shared mesh (an index for sharedMesh()) and placement (isInstance(id)).
+    uint32_t instanceMesh(uint32_t id) const { return instance(id).search.mesh(); }
+    const Transform& instanceTransform(uint32_t id) const { return instance(id).worldFromObject; }
     /// Triangles the instances place, each counted once per instance (stored once per mesh).
     size_t instancedTriangleCount() const;
     /// Triangles with per-corner texture coordinates.
@@ -208,6 +211,9 @@ class Primitives {
         ShapeSearch search;  ///< Kind Instance: objectFromWorld and the mesh index.
     };
 
+    const Instance& instance(uint32_t id) const {
+        return instances_[id - triangleCount() - sphereCount() - shapeCount()];
+    }
     /// intersect() for an instance: every triangle of its mesh, one at a time (a reference
     /// for accelerators, which search the mesh's BVH instead).
     [[gnu::noinline]] bool intersectInstance(uint32_t id, const TraversalRay& ray, Hit& hit) const;

@@ -96,8 +96,67 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         return m != Primitives::kMixedMaterials && brightness(scene.materials[m].emission) > 0;
     };
     const uint32_t boundedCount = prims.boundedCount();
+    // A triangle's entry and bounds from its world corners; false if it has no area.
+    auto triangleEntry = [&](Entry& e, const Vec3& va, const Vec3& vb, const Vec3& vc,
+                             LightBounds& lb, double& area) {
+        const Vec3 cr = cross(vb - va, vc - va);
+        area = 0.5 * length(cr);
+        if (!(area > 0)) return false;
+        e.pdfArea = 1 / area;
+        e.c = vc;
+        e.ca = va - vc;
+        e.cb = vb - vc;
+        e.n = cr / (2 * area);
+        lb.lo = min(va, min(vb, vc));
+        lb.hi = max(va, max(vb, vc));
+        return true;
+    };
+    // Its power: a textured emitter's is its own triangle's, the texture's mean over it
+    // estimated at its centroid and halfway from there to each corner (an emissive map is
+    // mostly black: most of a mesh's triangles emit nothing, and leave the tree). One whose
+    // estimate is 0 is not sampled, which costs no bias: a ray that finds it counts its light
+    // in full (pdfHit 0).
+    auto power = [&](const Entry& e, const Material& m, double area) {
+        double radiance = brightness(m.emission);
+        if (e.texturedPbr != 0) {
+            constexpr double kAt[4][2] = {{1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6},
+                                          {1.0 / 6, 2.0 / 3}, {1.0 / 6, 1.0 / 6}};
+            double sum = 0;
+            for (const auto& at : kAt) sum += brightness(texturedEmission(e, at[0], at[1]));
+            radiance = sum / 4;
+        }
+        return kPi * area * radiance * (e.frontOnly ? 1 : 2);
+    };
     for (uint32_t id = 0; id < boundedCount; ++id) {
-        if (prims.isInstance(id) || !emits(id)) continue;
+        if (prims.isInstance(id)) {
+            // Each emissive triangle of the placed mesh, placed.
+            const Primitives& mesh = prims.sharedMesh(prims.instanceMesh(id));
+            const Transform& t = prims.instanceTransform(id);
+            for (uint32_t k = 0; k < mesh.triangleCount(); ++k) {
+                const uint32_t mi = mesh.materialOf(k);
+                if (mi == Primitives::kMixedMaterials ||
+                    !(brightness(scene.materials[mi].emission) > 0))
+                    continue;
+                const Material& m = scene.materials[mi];
+                Entry e{Kind::Triangle, id, m.frontEmissionOnly};
+                e.sub = k;
+                e.emission = m.emission;
+                if (m.pbr != 0 && scene.pbr(m.pbr).emissiveTexture) e.texturedPbr = m.pbr;
+                auto v = mesh.triangleVertices(k);
+                LightBounds lb;
+                double area;
+                if (!triangleEntry(e, t.point(Vec3(v[0])), t.point(Vec3(v[1])),
+                                   t.point(Vec3(v[2])), lb, area))
+                    continue;
+                const double phi = power(e, m, area);
+                if (!(phi > 0)) continue;
+                lightOfInstanced_[static_cast<uint64_t>(id) << 32 | k] =
+                    static_cast<uint32_t>(lights_.size());
+                addBounded(e, LightBounds::surface(lb.lo, lb.hi, phi, e.n, !e.frontOnly));
+            }
+            continue;
+        }
+        if (!emits(id)) continue;
         if (lightOfPrimitive_.empty()) lightOfPrimitive_.assign(boundedCount, UINT32_MAX);
         const Material& m = scene.materials[prims.materialOf(id)];
         Entry e{Kind::Triangle, id, m.frontEmissionOnly};
@@ -108,17 +167,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         Vec3 lo, hi, normal(0);
         if (id < prims.triangleCount()) {
             auto v = prims.triangleVertices(id);
-            const Vec3 va(v[0]), vb(v[1]), vc(v[2]);
-            Vec3 cr = cross(vb - va, vc - va);
-            area = 0.5 * length(cr);
-            if (!(area > 0)) continue;
-            e.pdfArea = 1 / area;
-            e.c = vc;
-            e.ca = va - vc;
-            e.cb = vb - vc;
-            e.n = cr / (2 * area);
-            lo = min(va, min(vb, vc));
-            hi = max(va, max(vb, vc));
+            LightBounds lb;
+            if (!triangleEntry(e, Vec3(v[0]), Vec3(v[1]), Vec3(v[2]), lb, area)) continue;
+            lo = lb.lo;
+            hi = lb.hi;
             normal = e.n;
         } else {
             const Bounds3f box = prims.bounds(id);
@@ -135,27 +187,12 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
                     prims.shape(id - prims.triangleCount() - prims.sphereCount()));
             }
         }
-        // A textured emitter's power is its own triangle's: the texture's mean over it,
-        // estimated at its centroid and halfway from there to each corner (an emissive map is
-        // mostly black: most of a mesh's triangles emit nothing, and leave the tree). One whose
-        // estimate is 0 is not sampled, which costs no bias: a ray that finds it counts its
-        // light in full (pdfHit 0).
-        double radiance = brightness(m.emission);
-        if (e.texturedPbr != 0) {
-            const PbrMaterial& pbr = scene.pbr(e.texturedPbr);
-            constexpr double kAt[4][2] = {{1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6},
-                                          {1.0 / 6, 2.0 / 3}, {1.0 / 6, 1.0 / 6}};
-            double sum = 0;
-            for (const auto& at : kAt)
-                sum += brightness(emissionAt(pbr, prims.triangleAttributes(id, at[0], at[1])));
-            radiance = sum / 4;
-        }
-        const double power = kPi * area * radiance * (e.frontOnly ? 1 : 2);
-        if (!(power > 0)) continue;
+        const double phi = power(e, m, area);
+        if (!(phi > 0)) continue;
         lightOfPrimitive_[id] = static_cast<uint32_t>(lights_.size());
         // A sphere or shape emits about every normal; a triangle about its own, from both
         // sides unless front-only.
-        addBounded(e, LightBounds::surface(lo, hi, power, normal, !e.frontOnly));
+        addBounded(e, LightBounds::surface(lo, hi, phi, normal, !e.frontOnly));
     }
 
     // The environment map, or the background if it is not black: its mean radiance L gives
@@ -245,8 +282,7 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
         auto [b0, b1] = sampleUniformTriangle(u);  // as sampleTriangle, from stored edges
         ss = {e.c + e.ca * b0 + e.cb * b1, e.n, e.pdfArea};
         if (e.texturedPbr != 0)  // the point is a b0 + b b1 + c (1 - b0 - b1)
-            emission = emissionAt(scene_.pbr(e.texturedPbr),
-                                  prims.triangleAttributes(e.index, b1, 1 - b0 - b1));
+            emission = texturedEmission(e, b1, 1 - b0 - b1);
     } else if (e.kind == Kind::Sphere) {
         if (std::optional<LightSample> s = sampleSphereCone(e, p, u)) return s;
         if (outsideSphere(dot(p - e.center, p - e.center), e.radius))
@@ -295,8 +331,7 @@ std::optional<LightSample> LightSampler::sampleTriangleSolidAngle(const Entry& e
         const double twiceArea = 2 / e.pdfArea;
         const double b0 = dot(cross(q, e.cb), e.n) / twiceArea;
         const double b1 = dot(cross(e.ca, q), e.n) / twiceArea;
-        emission = emissionAt(scene_.pbr(e.texturedPbr),
-                              scene_.primitives.triangleAttributes(e.index, b1, 1 - b0 - b1));
+        emission = texturedEmission(e, b1, 1 - b0 - b1);
     }
     return LightSample{*wi, emission, 1 / solidAngle, dist, false};
 }
@@ -337,10 +372,24 @@ std::optional<LightSample> LightSampler::sampleSphereCone(const Entry& e, const 
     return LightSample{d / dist, e.emission, pdf, dist, false};
 }
 
+Vec3 LightSampler::texturedEmission(const Entry& e, double b1, double b2) const {
+    const Primitives& prims = scene_.primitives;
+    const SurfaceInteraction at =
+        e.sub == UINT32_MAX
+            ? prims.triangleAttributes(e.index, b1, b2)
+            : prims.sharedMesh(prims.instanceMesh(e.index)).triangleAttributes(e.sub, b1, b2);
+    return emissionAt(scene_.pbr(e.texturedPbr), at);
+}
+
 double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
                             const SurfaceInteraction& si) const {
-    if (lightOfPrimitive_.empty() || hit.primId >= lightOfPrimitive_.size()) return 0;
-    uint32_t index = lightOfPrimitive_[hit.primId];
+    uint32_t index = UINT32_MAX;
+    if (!lightOfInstanced_.empty() && scene_.primitives.isInstance(hit.primId)) {
+        const auto it = lightOfInstanced_.find(static_cast<uint64_t>(hit.primId) << 32 | hit.subId);
+        if (it != lightOfInstanced_.end()) index = it->second;
+    } else if (hit.primId < lightOfPrimitive_.size()) {
+        index = lightOfPrimitive_[hit.primId];
+    }
     if (index == UINT32_MAX) return 0;
     const Entry& e = lights_[index];
     const Primitives& prims = scene_.primitives;

@@ -15,11 +15,13 @@
 /// the others through the light tree (render/light_tree.h, pbrt-v4's BVHLightSampler), by its
 /// power, distance and orientation as seen from the shading point and its normal.
 ///
-/// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite, and
-/// emissive triangles of instanced meshes. pdfHit() is 0 for them, so an integrator weighting
-/// by multiple importance sampling counts them in full.
+/// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite.
+/// pdfHit() is 0 for them, so an integrator weighting by multiple importance sampling counts
+/// them in full. Emissive triangles that instances place are sampled as the scene's own, each
+/// placement a light of its own.
 
 #include <cstdint>
+#include <unordered_map>
 #include <optional>
 #include <vector>
 
@@ -84,6 +86,9 @@ class LightSampler {
         Vec3 emission{};         ///< Emissive surfaces: their radiance (textured: the mean).
         /// Triangles with an emissive texture: their physically based material's id.
         uint32_t texturedPbr = 0;
+        /// Triangles an instance places (`index` the instance): the triangle of its mesh;
+        /// UINT32_MAX for the scene's own.
+        uint32_t sub = UINT32_MAX;
         /// Triangles: the corner c, the edges a - c and b - c, and the unit normal of
         /// cross(b - a, c - a): a point is c + (a - c) b0 + (b - c) b1.
         Vec3 c{}, ca{}, cb{}, n{};
@@ -93,6 +98,8 @@ class LightSampler {
         double radius = 0;
     };
     std::optional<LightSample> sampleEntry(const Entry& e, const Vec3& p, Point2 u) const;
+    /// The emission of textured triangle `e` at barycentrics (b1, b2) of its b and c corners.
+    Vec3 texturedEmission(const Entry& e, double b1, double b2) const;
     /// The solid angle triangle `e` fills seen from `p` where it is sampled by solid angle
     /// (neither tiny nor nearly a hemisphere); 0 where it is sampled by area.
     static double sphericalSolidAngle(const Entry& e, const Vec3& p);
@@ -117,6 +124,9 @@ class LightSampler {
     std::vector<uint32_t> treeLeafOf_;       ///< And back (UINT32_MAX: at infinity).
     /// Light index of each bounded primitive (none: UINT32_MAX); empty if no surface emits.
     std::vector<uint32_t> lightOfPrimitive_;
+    /// Light index of each emissive triangle instances place, by (instance id << 32 | its
+    /// triangle in the mesh).
+    std::unordered_map<uint64_t, uint32_t> lightOfInstanced_;
     uint32_t environment_ = UINT32_MAX;  ///< Index of the environment light, if any.
     double sceneRadius_ = 1;
 };

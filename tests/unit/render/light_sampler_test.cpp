@@ -91,6 +91,21 @@ TEST(LightSampler, TrianglesCoverTheirSolidAngle) {
     checkLight(scene, {0.2, 0.6, 0.3}, 1, "triangle");
 }
 
+TEST(LightSampler, TrianglesThatAnInstancePlacesAreLightsToo) {
+    // A shared mesh of one emissive triangle (and a plain one), placed once, turned and moved:
+    // the placed triangle is sampled, and a ray that meets it gets the same density.
+    Scene scene;
+    const uint32_t glow = scene.addMaterial(emitter());
+    Primitives mesh;
+    mesh.addTriangle({-1, 0, -1}, {1, 0.5, -1}, {0, 1, 1}, nullptr, glow);
+    mesh.addTriangle({3, 0, 0}, {4, 0, 0}, {3, 1, 0}, nullptr, scene.addMaterial(Material{}));
+    const uint32_t index = scene.addSharedMesh(std::move(mesh));
+    scene.primitives.addInstance(
+        index, *Transform::fromMatrix(Mat4::translate(0.2, -0.1, 0.3) * Mat4::rotate(0, 1, 0, 30)));
+    scene.prepare();
+    checkLight(scene, {0.3, 0.7, 0.4}, 1, "instanced triangle");
+}
+
 TEST(LightSampler, TransformedSpheresCoverTheirSolidAngleTwice) {
     Scene scene;
     scene.primitives.addSphere(Sphere{{0.2, 0, 0}, 0.8, placed(Mat4())},
