@@ -104,8 +104,8 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
     if (!opt.aov.empty()) parseAovList(opt.aov, aovs);  // checked with the options
     if (aovs.any() && glint::imageFormatFor(prepared.output) != glint::ImageFormat::Exr) {
         if (root)
-            usageError("--aov writes the passes as layers of an OpenEXR file: '" +
-                       prepared.output + "' is not an .exr file");
+            usageError("--aov writes the passes as layers of an OpenEXR file: '" + prepared.output +
+                       "' is not an .exr file");
         return root ? kExitUsage : 0;
     }
     work.options.spp = plan.threshold > 0 ? plan.maxSpp : plan.spp;

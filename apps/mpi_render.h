@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "glint/render/film.h"
 #include "glint/render/adaptive.h"
+#include "glint/render/film.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
 #include "mpi_load.h"

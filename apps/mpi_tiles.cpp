@@ -60,8 +60,8 @@ void TileRenderers::loop() {
             auto start = std::chrono::steady_clock::now();
             // Each pixel's adaptive stop depends on its own samples: a tile's pixels are the
             // whole frame's.
-            RenderResult r = adaptive_.threshold > 0 ? renderAdaptive(scene_, o, adaptive_)
-                                                     : render(scene_, o);
+            RenderResult r =
+                adaptive_.threshold > 0 ? renderAdaptive(scene_, o, adaptive_) : render(scene_, o);
             double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (!r.complete) break;  // cancelled

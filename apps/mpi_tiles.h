@@ -54,9 +54,8 @@ class TileRenderers {
 
     /// Starts `threads` render threads (none if 0), rendering each tile with `options`, or
     /// adaptively with `adaptive` when its threshold is above 0.
-    TileRenderers(const Scene& scene, const RenderOptions& options,
-                  const AdaptiveOptions& adaptive, int threads, Mailbox& mailbox, Take take,
-                  Deliver deliver);
+    TileRenderers(const Scene& scene, const RenderOptions& options, const AdaptiveOptions& adaptive,
+                  int threads, Mailbox& mailbox, Take take, Deliver deliver);
     /// Cancels and waits.
     ~TileRenderers();
     TileRenderers(const TileRenderers&) = delete;

@@ -15,7 +15,8 @@ namespace glint::cli {
 bool wantsPiece(const Options& opt);
 
 /// The checks that need no scene: a piece goes to `-o FILE.exr`, is reproducible (no --time),
-/// adaptive only when split by pixels (not --samples), and raw (no --denoise). Returns kGoOn, or the exit code of the usage error it printed.
+/// adaptive only when split by pixels (not --samples), and raw (no --denoise). Returns kGoOn, or
+/// the exit code of the usage error it printed.
 int checkPieceOptions(const Options& opt);
 
 /// The piece the options ask for of the prepared scene, rendered at `spp` samples per pixel

@@ -113,8 +113,9 @@ TEST(CliCleanImages, AdaptivePiecesWithPassesMergeToTheWholeRendersBytes) {
     const std::string common = "-q s.test --noise-threshold 0.05 --min-spp 4 --spp 64 --aov all";
     CommandResult r = runGlint(common + " -o whole.exr", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const char* piece : {"--crop 0,40,0,16 --part 0/2 -o a.exr",
-                              "--crop 0,40,0,16 --part 1/2 -o b.exr", "--crop 0,40,16,30 -o c.exr"}) {
+    for (const char* piece :
+         {"--crop 0,40,0,16 --part 0/2 -o a.exr", "--crop 0,40,0,16 --part 1/2 -o b.exr",
+          "--crop 0,40,16,30 -o c.exr"}) {
         r = runGlint(common + " -t 1 " + piece, dir);
         ASSERT_EQ(r.exitCode, 0) << piece << ": " << r.err;
     }
@@ -129,9 +130,10 @@ TEST(CliCleanImages, AdaptivePiecesWithPassesMergeToTheWholeRendersBytes) {
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "only an .exr output holds")) << r.err;
     // Pieces with other passes, or without adaptive sampling, are not of one frame.
-    r = runGlint("-q s.test --noise-threshold 0.05 --min-spp 4 --spp 64 --aov albedo -t 1 "
-                 "--crop 0,40,16,30 -o d.exr",
-                 dir);
+    r = runGlint(
+        "-q s.test --noise-threshold 0.05 --min-spp 4 --spp 64 --aov albedo -t 1 "
+        "--crop 0,40,16,30 -o d.exr",
+        dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     r = runGlint("merge -o m.exr a.exr b.exr d.exr", dir);
     EXPECT_EQ(r.exitCode, 1);

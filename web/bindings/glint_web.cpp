@@ -301,7 +301,8 @@ class Session {
     /// the RGBA bytes through the display transform.
     void resolveTile(int x0, int y0, int x1, int y1, bool show) {
         for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) film_.at(x, y) = pixelValue(sums_.sum(x, y), sums_.weight(x, y));
+            for (int x = x0; x < x1; ++x)
+                film_.at(x, y) = pixelValue(sums_.sum(x, y), sums_.weight(x, y));
         if (show) showTile(film_, x0, y0, x1, y1);
     }
 
@@ -334,8 +335,8 @@ class Session {
     ThreadPool pool_;
     std::unique_ptr<Scene> scene_;
     CameraSpec home_;
-    Film film_;       // the image so far: the average of the passes' samples (denoised)
-    FilmSums sums_;   // every pass's samples summed (and their render passes, to denoise)
+    Film film_;      // the image so far: the average of the passes' samples (denoised)
+    FilmSums sums_;  // every pass's samples summed (and their render passes, to denoise)
     std::vector<uint8_t> rgba_;
     DisplayTransform display_;
     int spp_ = 1, tiles_ = 0, tilesX_ = 0, next_ = 0, batch_ = 1, pass_ = 0, samples_ = 0;

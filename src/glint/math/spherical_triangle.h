@@ -33,7 +33,9 @@ inline std::optional<Vec3> sampleSphericalTriangle(const Vec3& a, const Vec3& b,
     const std::optional<Vec3> nab = unit(cross(a, b)), nbc = unit(cross(b, c)),
                               nca = unit(cross(c, a));
     if (!nab || !nbc || !nca) return std::nullopt;
-    auto angle = [](const Vec3& x, const Vec3& y) { return std::acos(std::clamp(dot(x, y), -1.0, 1.0)); };
+    auto angle = [](const Vec3& x, const Vec3& y) {
+        return std::acos(std::clamp(dot(x, y), -1.0, 1.0));
+    };
     const double alpha = angle(*nab, -*nca), beta = angle(*nbc, -*nab), gamma = angle(*nca, -*nbc);
     const double area = alpha + beta + gamma - std::numbers::pi;
     if (!(area > 0)) return std::nullopt;

@@ -5,10 +5,9 @@
 #include <tuple>
 #include <utility>
 
+#include "glint/geometry/surface_sampling.h"
 #include "glint/math/sampling.h"
 #include "glint/math/spherical_triangle.h"
-
-#include "glint/geometry/surface_sampling.h"
 
 namespace glint {
 namespace {
@@ -119,8 +118,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     auto power = [&](const Entry& e, const Material& m, double area) {
         double radiance = brightness(m.emission);
         if (e.texturedPbr != 0) {
-            constexpr double kAt[4][2] = {{1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6},
-                                          {1.0 / 6, 2.0 / 3}, {1.0 / 6, 1.0 / 6}};
+            constexpr double kAt[4][2] = {
+                {1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}, {1.0 / 6, 1.0 / 6}};
             double sum = 0;
             for (const auto& at : kAt) sum += brightness(texturedEmission(e, at[0], at[1]));
             radiance = sum / 4;
@@ -145,8 +144,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
                 auto v = mesh.triangleVertices(k);
                 LightBounds lb;
                 double area;
-                if (!triangleEntry(e, t.point(Vec3(v[0])), t.point(Vec3(v[1])),
-                                   t.point(Vec3(v[2])), lb, area))
+                if (!triangleEntry(e, t.point(Vec3(v[0])), t.point(Vec3(v[1])), t.point(Vec3(v[2])),
+                                   lb, area))
                     continue;
                 const double phi = power(e, m, area);
                 if (!(phi > 0)) continue;
@@ -183,8 +182,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
                 std::tie(e.center, e.radius) = roundSphere(s);
             } else {
                 e.kind = Kind::Shape;
-                area = approximateArea(
-                    prims.shape(id - prims.triangleCount() - prims.sphereCount()));
+                area =
+                    approximateArea(prims.shape(id - prims.triangleCount() - prims.sphereCount()));
             }
         }
         const double phi = power(e, m, area);
@@ -318,8 +317,8 @@ std::optional<LightSample> LightSampler::sampleTriangleSolidAngle(const Entry& e
                                                                   Point2 u,
                                                                   double solidAngle) const {
     const Vec3 va = e.c + e.ca, vb = e.c + e.cb;
-    const std::optional<Vec3> wi = sampleSphericalTriangle(normalize(va - p), normalize(vb - p),
-                                                           normalize(e.c - p), u);
+    const std::optional<Vec3> wi =
+        sampleSphericalTriangle(normalize(va - p), normalize(vb - p), normalize(e.c - p), u);
     if (!wi) return std::nullopt;
     const double cosLight = dot(*wi, e.n);  // < 0: the light's front faces p
     if (e.frontOnly ? !(cosLight < 0) : cosLight == 0) return std::nullopt;
@@ -353,16 +352,15 @@ std::optional<LightSample> LightSampler::sampleSphereCone(const Entry& e, const 
         cosTheta = 1 - oneMinusCosMax * u.x;
         sin2Theta = 1 - cosTheta * cosTheta;
     }
-    const double cosAlpha =
-        sin2Theta / std::sqrt(sin2Max) +
-        cosTheta * std::sqrt(std::max(1 - sin2Theta / sin2Max, 0.0));
+    const double cosAlpha = sin2Theta / std::sqrt(sin2Max) +
+                            cosTheta * std::sqrt(std::max(1 - sin2Theta / sin2Max, 0.0));
     const double sinAlpha = std::sqrt(std::max(1 - cosAlpha * cosAlpha, 0.0));
     const double phi = 2 * kPi * u.y;
     // The surface normal there, in a frame whose z axis points from the centre to p.
     const Vec3 axis = -toCenter / std::sqrt(d2);
     const Frame frame(axis);
-    const Vec3 normal = frame.toWorld(
-        Vec3(sinAlpha * std::cos(phi), sinAlpha * std::sin(phi), cosAlpha));
+    const Vec3 normal =
+        frame.toWorld(Vec3(sinAlpha * std::cos(phi), sinAlpha * std::sin(phi), cosAlpha));
     const Vec3 q = e.center + normal * e.radius;
     const Vec3 d = q - p;
     const double dist = length(d);
@@ -405,8 +403,7 @@ double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
                    (2 * kPi * oneMinusCosCone(e.radius, d2, &sin2Max));
         }
         pdfArea = spherePdfArea(prims.sphere(e.index - prims.triangleCount()), si.ng);
-    }
-    else if (e.kind == Kind::Shape)
+    } else if (e.kind == Kind::Shape)
         pdfArea =
             shapePdfArea(prims.shape(e.index - prims.triangleCount() - prims.sphereCount()), si.ng);
     Vec3 d = si.p - from;
@@ -424,7 +421,9 @@ Vec3 LightSampler::environment(const Vec3& dir, const Vec3& from, const Vec3& fr
     }
     const EnvironmentMap& map = *scene_.environment;
     const Point2 st = map.imageCoordinates(dir);
-    *pdf = environment_ == UINT32_MAX ? 0 : choiceProbability(environment_, from, fromN) * map.pdfAt(st);
+    *pdf = environment_ == UINT32_MAX
+               ? 0
+               : choiceProbability(environment_, from, fromN) * map.pdfAt(st);
     return map.evalAt(st);
 }
 

@@ -6,11 +6,11 @@
 /// emissive surfaces uniformly by area (see geometry/surface_sampling.h), an environment map
 /// by its luminance (scene/environment.h), a constant or gradient background uniformly over
 /// the sphere; a triangle that is neither tiny nor huge seen from the point uniformly over the
-/// solid angle it fills (Arvo 1995: math/spherical_triangle.h); a round sphere, from outside, uniformly over the cone of directions it fills
-/// (pbrt-v4's Sphere::Sample), which puts every sample on the side facing the point. The
-/// choice is made in two steps: the lights at infinity (the environment,
-/// directional lights) against the others by what each group may give the shading point
-/// (the others' light tree's importance, against the irradiance the lights at infinity give
+/// solid angle it fills (Arvo 1995: math/spherical_triangle.h); a round sphere, from outside,
+/// uniformly over the cone of directions it fills (pbrt-v4's Sphere::Sample), which puts every
+/// sample on the side facing the point. The choice is made in two steps: the lights at infinity
+/// (the environment, directional lights) against the others by what each group may give the shading
+/// point (the others' light tree's importance, against the irradiance the lights at infinity give
 /// in the same units), then within the group: a light at infinity by its irradiance, one of
 /// the others through the light tree (render/light_tree.h, pbrt-v4's BVHLightSampler), by its
 /// power, distance and orientation as seen from the shading point and its normal.
@@ -21,8 +21,8 @@
 /// placement a light of its own.
 
 #include <cstdint>
-#include <unordered_map>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "glint/math/distribution.h"
@@ -54,8 +54,7 @@ class LightSampler {
     /// receives from every side, behind glass or in a medium) and samples a direction towards
     /// it with `u`. None if nothing arrives (p behind a one-sided emitter, on the light itself,
     /// ...).
-    std::optional<LightSample> sample(const Vec3& p, const Vec3& n, double uLight,
-                                      Point2 u) const;
+    std::optional<LightSample> sample(const Vec3& p, const Vec3& n, double uLight, Point2 u) const;
 
     /// The density (as LightSample::pdf) with which sample() from `from` with normal `fromN`
     /// would have drawn the direction to `hit`, a point on an emissive surface that a ray from

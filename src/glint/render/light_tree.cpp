@@ -68,10 +68,10 @@ double splitCost(const LightBounds& b, double kr) {
     const double thetaO = safeAcos(b.cosThetaO), thetaE = safeAcos(b.cosThetaE);
     const double thetaW = std::min(thetaO + thetaE, kPi);
     const double sinO = safeSqrt(1 - b.cosThetaO * b.cosThetaO);
-    const double mOmega = 2 * kPi * (1 - b.cosThetaO) +
-                          kPi / 2 *
-                              (2 * thetaW * sinO - std::cos(thetaO - 2 * thetaW) -
-                               2 * thetaO * sinO + b.cosThetaO);
+    const double mOmega =
+        2 * kPi * (1 - b.cosThetaO) +
+        kPi / 2 *
+            (2 * thetaW * sinO - std::cos(thetaO - 2 * thetaW) - 2 * thetaO * sinO + b.cosThetaO);
     return b.phi * mOmega * kr * surfaceMeasure(b);
 }
 
@@ -228,7 +228,9 @@ uint32_t LightTree::build(const std::vector<LightBounds>& lights,
         cHi = max(cHi, centroids[order[i]]);
     }
     const Vec3 spread = cHi - cLo;
-    const int widest = spread.x >= spread.y && spread.x >= spread.z ? 0 : spread.y >= spread.z ? 1 : 2;
+    const int widest = spread.x >= spread.y && spread.x >= spread.z ? 0
+                       : spread.y >= spread.z                       ? 1
+                                                                    : 2;
     const auto first = order.begin() + static_cast<std::ptrdiff_t>(begin);
     const auto last = order.begin() + static_cast<std::ptrdiff_t>(end);
 
@@ -244,8 +246,9 @@ uint32_t LightTree::build(const std::vector<LightBounds>& lights,
             const double cLoDim = cLo[dim], span = spread[dim];
             if (!(span > 0) || !(extent[dim] > 0)) continue;
             auto bucketOf = [&](uint32_t light) {
-                return std::min(static_cast<int>((centroids[light][dim] - cLoDim) / span * kBuckets),
-                                kBuckets - 1);
+                return std::min(
+                    static_cast<int>((centroids[light][dim] - cLoDim) / span * kBuckets),
+                    kBuckets - 1);
             };
             std::array<LightBounds, kBuckets> buckets{};
             for (size_t i = begin; i < end; ++i) {
@@ -333,8 +336,7 @@ double LightTree::pmf(const Vec3& p, const Vec3& n, uint32_t light) const {
     for (;;) {
         const Node& node = nodes_[index];
         if (node.leaf)
-            return node.secondOrLight == light &&
-                           (index > 0 || node.bounds.importance(p, n) > 0)
+            return node.secondOrLight == light && (index > 0 || node.bounds.importance(p, n) > 0)
                        ? probability
                        : 0;
         const double a = nodes_[index + 1].bounds.importance(p, n);

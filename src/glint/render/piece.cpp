@@ -108,8 +108,7 @@ void checkBelongTogether(const std::vector<PieceInfo>& pieces,
         }
         if (p.noiseThreshold != f.noiseThreshold || p.minSpp != f.minSpp)
             add(adaptiveText(p) + ", but " + first + " has " + adaptiveText(f));
-        if (p.aovs != f.aovs)
-            add(passesText(p) + ", but " + first + " has " + passesText(f));
+        if (p.aovs != f.aovs) add(passesText(p) + ", but " + first + " has " + passesText(f));
         if (p.version != f.version)
             add("rendered by glint " + p.version + ", but " + first + " by glint " + f.version);
     }

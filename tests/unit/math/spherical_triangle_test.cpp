@@ -46,11 +46,11 @@ TEST(SphericalTriangle, SamplesMeetTheTriangleUniformlyOverItsSolidAngle) {
     struct Case {
         Vec3 p, A, B, C;
     } cases[] = {
-        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},                 // an octant
+        {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},                     // an octant
         {{0.2, 0.3, -1}, {-1, -1, 0}, {2, -0.5, 0.3}, {0.1, 1.5, -0.2}},  // near and large
-        {{0, 5, 0}, {-0.3, 0, -0.2}, {0.4, 0.1, 0}, {0, 0, 0.5}},     // far and small
-        {{0, 0.05, 0}, {-3, 0, -3}, {3, 0, -3}, {0, 0, 3}},            // nearly a hemisphere
-        {{2, 0.01, 0}, {0, 0, 0}, {1, 0, 0}, {0, 0, 1}},              // seen edge-on
+        {{0, 5, 0}, {-0.3, 0, -0.2}, {0.4, 0.1, 0}, {0, 0, 0.5}},         // far and small
+        {{0, 0.05, 0}, {-3, 0, -3}, {3, 0, -3}, {0, 0, 3}},               // nearly a hemisphere
+        {{2, 0.01, 0}, {0, 0, 0}, {1, 0, 0}, {0, 0, 1}},                  // seen edge-on
     };
     Rng rng(9);
     for (const Case& k : cases) {
@@ -70,7 +70,8 @@ TEST(SphericalTriangle, SamplesMeetTheTriangleUniformlyOverItsSolidAngle) {
         const int n = 40000;
         int counts[4] = {0, 0, 0, 0}, missed = 0;
         for (int i = 0; i < n; ++i) {
-            const std::optional<Vec3> d = sampleSphericalTriangle(a, b, c, {rng.uniform(), rng.uniform()});
+            const std::optional<Vec3> d =
+                sampleSphericalTriangle(a, b, c, {rng.uniform(), rng.uniform()});
             ASSERT_TRUE(d);
             EXPECT_NEAR(length(*d), 1, 1e-9);
             double bc[2];
@@ -89,8 +90,8 @@ TEST(SphericalTriangle, SamplesMeetTheTriangleUniformlyOverItsSolidAngle) {
             const double e = expected[s] * (n - missed);
             chi2 += (counts[s] - e) * (counts[s] - e) / e;
         }
-        EXPECT_LT(chi2, 16.3) << "3 degrees of freedom, 99.9%: triangle seen from " << k.p.x
-                              << "," << k.p.y << "," << k.p.z;
+        EXPECT_LT(chi2, 16.3) << "3 degrees of freedom, 99.9%: triangle seen from " << k.p.x << ","
+                              << k.p.y << "," << k.p.z;
     }
 }
 

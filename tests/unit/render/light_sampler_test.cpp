@@ -61,8 +61,9 @@ void checkLight(const Scene& scene, const Vec3& p, int surfaces, const char* wha
                 SurfaceInteraction si = scene.primitives.interaction(ray, hit);
                 // Points within rounding of an edge may be given the neighbouring face's
                 // normal by the hit, and grazing ones lose digits: a few may differ.
-                (std::abs(lights.pdfHit(p, Vec3(0), hit, si) - s->pdf) <= 1e-6 * s->pdf ? consistent
-                                                                               : inconsistent)++;
+                (std::abs(lights.pdfHit(p, Vec3(0), hit, si) - s->pdf) <= 1e-6 * s->pdf
+                     ? consistent
+                     : inconsistent)++;
             }
         }
         // Independently: the solid angle, by uniformly distributed rays.
@@ -120,8 +121,8 @@ TEST(LightSampler, RoundSpheresAreSampledByTheirConeCoveringTheirSolidAngleOnce)
     // 37 degrees) and far (under 1.5 degrees, where the cone's cosine comes from its sine).
     for (double distance : {1.0, 40.0}) {
         Scene scene;
-        const Mat4 similar =
-            Mat4::translate(0.3, -0.2, 0.1) * Mat4::rotate(1, 2, 0.5, 35) * Mat4::scale(0.7, 0.7, 0.7);
+        const Mat4 similar = Mat4::translate(0.3, -0.2, 0.1) * Mat4::rotate(1, 2, 0.5, 35) *
+                             Mat4::scale(0.7, 0.7, 0.7);
         scene.primitives.addSphere(Sphere{{0.2, 0, 0}, 0.8, *Transform::fromMatrix(similar)},
                                    scene.addMaterial(emitter()));
         scene.prepare();
@@ -231,7 +232,8 @@ TEST(LightSampler, TheBackgroundIsALightUnlessBlack) {
     sky.prepare();
     LightSampler lights(sky);
     ASSERT_EQ(lights.size(), 1u);
-    EXPECT_DOUBLE_EQ(lights.pdfEnvironment({0, 1, 0}, Vec3(0), Vec3(0)), 1 / (4 * std::numbers::pi));
+    EXPECT_DOUBLE_EQ(lights.pdfEnvironment({0, 1, 0}, Vec3(0), Vec3(0)),
+                     1 / (4 * std::numbers::pi));
     std::optional<LightSample> s = lights.sample({0, 0, 0}, Vec3(0), 0.3, {0.2, 0.7});
     ASSERT_TRUE(s);
     EXPECT_EQ(s->L, sky.background.eval(s->wi));

@@ -45,8 +45,8 @@ std::vector<LightBounds> mixedLights(int n, uint64_t seed) {
             case 2: {
                 const Vec3 a = c + randomIn(rng, -0.3, 0.3), b = c + randomIn(rng, -0.3, 0.3);
                 const Vec3 n = normalize(cross(a - c, b - c));
-                lights.push_back(LightBounds::surface(min(c, min(a, b)), max(c, max(a, b)), phi,
-                                                      n, i % 4 == 2));
+                lights.push_back(
+                    LightBounds::surface(min(c, min(a, b)), max(c, max(a, b)), phi, n, i % 4 == 2));
                 break;
             }
             default:
@@ -78,11 +78,9 @@ TEST(LightTree, EveryLightThatReachesAPointHasAProbabilityAndSampleReturnsIt) {
             EXPECT_LE(total, 1 + 1e-9) << n << " lights, trial " << trial;
             mean += total / trials;
             for (int draw = 0; draw < 20; ++draw) {
-                const std::optional<LightTree::Choice> c =
-                    tree.sample(p, normal, rng.uniform());
+                const std::optional<LightTree::Choice> c = tree.sample(p, normal, rng.uniform());
                 if (!c) continue;
-                EXPECT_NEAR(c->probability, tree.pmf(p, normal, c->light),
-                            1e-12 * c->probability);
+                EXPECT_NEAR(c->probability, tree.pmf(p, normal, c->light), 1e-12 * c->probability);
                 EXPECT_GT(c->probability, 0);
             }
         }

@@ -270,7 +270,8 @@ TEST(PathCorners, NoPathLeavesAClosedRoomThroughItsCorners) {
             for (int i = 0; i < 2000; ++i) {
                 RayCounts counts;
                 PathContext ctx{Rng(77 + i), counts};
-                ctx.pixelSeed = 77 + static_cast<uint64_t>(gap * 1e5) + static_cast<uint64_t>(z * 10);
+                ctx.pixelSeed =
+                    77 + static_cast<uint64_t>(gap * 1e5) + static_cast<uint64_t>(z * 10);
                 ctx.sampleIndex = static_cast<uint32_t>(i);
                 const Vec3 L = integrator.li(ray, &hit, ctx);
                 mostGreen = std::max(mostGreen, L.y - L.x);
@@ -289,8 +290,7 @@ TEST(PathCorners, NoPathLeavesAClosedRoomThroughItsCorners) {
 TEST(PathClampIndirect, ClampsLightAfterTwoBouncesOnly) {
     Scene scene;
     lightsAndGloss(scene);
-    const Ray ray{Vec3(0, 1.5, 5), normalize(Vec3(0.2, 0, 2) - Vec3(0, 1.5, 5)), 0,
-                  kInfinity};
+    const Ray ray{Vec3(0, 1.5, 5), normalize(Vec3(0.2, 0, 2) - Vec3(0, 1.5, 5)), 0, kInfinity};
     Hit hit;
     ASSERT_TRUE(scene.bvh().intersect(ray, hit));
     auto sample = [&](int i) {

@@ -34,16 +34,14 @@ constexpr int kPieceFormat = 2;
 /// beauty's sums, then, in a piece with passes, their sums (PassSums).
 constexpr int kSumValues = 3, kPassValues = 11;
 const char* const kExactNames[kSumValues + kPassValues] = {
-    "sumR",        "sumG",        "sumB",        "passSquaresR", "passSquaresG",
+    "sumR",         "sumG",        "sumB",        "passSquaresR", "passSquaresG",
     "passSquaresB", "passAlbedoR", "passAlbedoG", "passAlbedoB",  "passNormalX",
-    "passNormalY", "passNormalZ", "passDepth",   "passHits"};
+    "passNormalY",  "passNormalZ", "passDepth",   "passHits"};
 const char* const kWeightChannel = "weight";
 const char* const kPreviewChannels[3] = {"R", "G", "B"};
 
 /// How many exact values a pixel of `info`'s piece has.
-int exactValues(const PieceInfo& info) {
-    return kSumValues + (info.aovs.any() ? kPassValues : 0);
-}
+int exactValues(const PieceInfo& info) { return kSumValues + (info.aovs.any() ? kPassValues : 0); }
 
 /// A pixel's exact values in the order of kExactNames, `n` of them.
 void getExact(const FilmSums& s, int x, int y, int n, double* out) {
@@ -75,7 +73,9 @@ void setExact(FilmSums& s, int x, int y, int n, const double* in) {
 }
 
 /// The UINT channel names of exact value k: NAME.hi, NAME.lo.
-std::string wordChannel(int k, bool high) { return std::string(kExactNames[k]) + (high ? ".hi" : ".lo"); }
+std::string wordChannel(int k, bool high) {
+    return std::string(kExactNames[k]) + (high ? ".hi" : ".lo");
+}
 
 /// The bits of a double and back (memcpy: std::bit_cast is missing from some standard
 /// libraries Glint builds with).
@@ -175,9 +175,8 @@ PieceInfo readInfo(const Imf::Header& h) {
         throw Bad{"glint.noiseThreshold is missing or out of range"};
     info.noiseThreshold = threshold->value();
     info.minSpp = intAttr(h, "glint.minSpp");
-    if (info.noiseThreshold > 0 &&
-        (info.minSpp < 1 || info.minSpp > info.spp || info.sampleBegin != 0 ||
-         info.sampleEnd != info.spp))
+    if (info.noiseThreshold > 0 && (info.minSpp < 1 || info.minSpp > info.spp ||
+                                    info.sampleBegin != 0 || info.sampleEnd != info.spp))
         throw Bad{"glint.minSpp or glint.samples do not fit adaptive sampling to glint.spp"};
     if (std::string aovs = stringAttr(h, "glint.aovs"); !aovs.empty())
         if (std::string e = parseAovList(aovs, info.aovs); !e.empty())
@@ -341,9 +340,9 @@ PieceData decodePiece(std::string_view bytes, const std::string& name) {
         const size_t stride = words * sizeof(uint32_t);
         Imf::FrameBuffer frame;
         for (int k = 0; k < words; ++k)
-            frame.insert(wordChannel(k / 2, k % 2 == 0),
-                         Imf::Slice::Make(Imf::UINT, bits.data() + k, origin, w, h, stride,
-                                          stride * w));
+            frame.insert(
+                wordChannel(k / 2, k % 2 == 0),
+                Imf::Slice::Make(Imf::UINT, bits.data() + k, origin, w, h, stride, stride * w));
         frame.insert(kWeightChannel, Imf::Slice::Make(Imf::UINT, weight.data(), origin, w, h,
                                                       sizeof(uint32_t), sizeof(uint32_t) * w));
         file.setFrameBuffer(frame);
