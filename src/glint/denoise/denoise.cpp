@@ -26,6 +26,16 @@ Planes makePlanes(int width, int height, int pad) {
     return {Plane(width, height, pad), Plane(width, height, pad), Plane(width, height, pad)};
 }
 
+/// A buffer of width x height colours as three planes (no border), non-finite values as 0.
+Planes planesOf(const Vec3* v, int width, int height) {
+    Planes p = makePlanes(width, height, 0);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c)
+                p[c].at(x, y) = finite(v[static_cast<size_t>(y) * width + x][c]);
+    return p;
+}
+
 std::array<const Plane*, 3> pointers(const Planes& p) { return {&p[0], &p[1], &p[2]}; }
 std::array<Plane*, 3> pointers(Planes& p) { return {&p[0], &p[1], &p[2]}; }
 
@@ -145,19 +155,11 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
     Planes normal, albedo;
     Plane depth, depthDx, depthDy;
     if (in.normal) {
-        normal = makePlanes(width, height, 0);
-        for (size_t i = 0; i < count; ++i)
-            for (int c = 0; c < 3; ++c)
-                normal[c].at(static_cast<int>(i % width), static_cast<int>(i / width)) =
-                    finite(in.normal[i][c]);
+        normal = planesOf(in.normal, width, height);
         guide.normal = pointers(std::as_const(normal));
     }
     if (in.albedo) {
-        albedo = makePlanes(width, height, 0);
-        for (size_t i = 0; i < count; ++i)
-            for (int c = 0; c < 3; ++c)
-                albedo[c].at(static_cast<int>(i % width), static_cast<int>(i / width)) =
-                    finite(in.albedo[i][c]);
+        albedo = planesOf(in.albedo, width, height);
         guide.albedo = pointers(std::as_const(albedo));
     }
     if (in.depth) {

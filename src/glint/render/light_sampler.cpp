@@ -57,8 +57,6 @@ double brightness(const Vec3& c) {
 
 LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     const Primitives& prims = scene.primitives;
-    Bounds3f b = prims.bounds();
-    if (!b.empty()) sceneRadius_ = std::max(length(Vec3(b.hi) - Vec3(b.lo)) / 2, 1e-6);
     std::vector<LightBounds> bounded;
     auto addBounded = [&](const Entry& e, const LightBounds& lb) {
         lightOfTreeLeaf_.push_back(static_cast<uint32_t>(lights_.size()));
@@ -68,9 +66,9 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     // A light at infinity's weight is the irradiance it gives a surface facing it, times pi
     // as the light tree's importance has it (a Lambertian emitter of power phi gives pi times
     // the irradiance at normal incidence).
-    auto addInfinite = [&](const Entry& e, double weight) {
+    auto addInfinite = [&](Entry e, double weight) {
+        e.weight = weight;
         infinite_.push_back(static_cast<uint32_t>(lights_.size()));
-        infiniteWeight_.push_back(weight);
         infiniteTotal_ += weight;
         lights_.push_back(e);
     };
@@ -197,9 +195,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     // The environment map, or the background if it is not black: its mean radiance L gives
     // pi L from a hemisphere.
     const double meanRadiance =
-        scene.environment
-            ? scene.environment->power(sceneRadius_) / (4 * kPi * kPi * sceneRadius_ * sceneRadius_)
-            : brightness((scene.background.down + scene.background.up) * 0.5);
+        brightness(scene.environment ? scene.environment->averageRadiance()
+                                     : (scene.background.down + scene.background.up) * 0.5);
     if (meanRadiance > 0) {
         environment_ = static_cast<uint32_t>(lights_.size());
         addInfinite({Kind::Environment, 0}, kPi * kPi * meanRadiance);
@@ -227,9 +224,10 @@ std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, do
         // By weight, in order: there are few.
         double at = uLight / pInf * infiniteTotal_;
         size_t k = 0;
-        while (k + 1 < infinite_.size() && at >= infiniteWeight_[k]) at -= infiniteWeight_[k++];
+        while (k + 1 < infinite_.size() && at >= lights_[infinite_[k]].weight)
+            at -= lights_[infinite_[k++]].weight;
         index = infinite_[k];
-        choice = pInf * infiniteWeight_[k] / infiniteTotal_;
+        choice = pInf * lights_[index].weight / infiniteTotal_;
     } else {
         const double v = std::min((uLight - pInf) / (1 - pInf), 0x1.fffffffffffffp-1);
         std::optional<LightTree::Choice> c = tree_.sample(p, n, v);
@@ -246,9 +244,7 @@ double LightSampler::choiceProbability(size_t index, const Vec3& p, const Vec3& 
     if (index >= lights_.size()) return 0;
     const uint32_t leaf = treeLeafOf_[index];
     if (leaf != UINT32_MAX) return (1 - pInfinite(p, n)) * tree_.pmf(p, n, leaf);
-    for (size_t k = 0; k < infinite_.size(); ++k)
-        if (infinite_[k] == index) return pInfinite(p, n) * infiniteWeight_[k] / infiniteTotal_;
-    return 0;
+    return pInfinite(p, n) * lights_[index].weight / infiniteTotal_;
 }
 
 std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3& p,
@@ -276,8 +272,8 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     SurfaceSample ss;
     Vec3 emission = e.emission;
     if (e.kind == Kind::Triangle) {
-        if (const double solidAngle = sphericalSolidAngle(e, p); solidAngle > 0)
-            return sampleTriangleSolidAngle(e, p, u, solidAngle);
+        if (const SphericalTriangle t = sphericalTriangle(e, p); t.solidAngle > 0)
+            return sampleTriangleSolidAngle(e, p, u, t);
         auto [b0, b1] = sampleUniformTriangle(u);  // as sampleTriangle, from stored edges
         ss = {e.c + e.ca * b0 + e.cb * b1, e.n, e.pdfArea};
         if (e.texturedPbr != 0)  // the point is a b0 + b b1 + c (1 - b0 - b1)
@@ -302,23 +298,22 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
     return LightSample{wi, emission, pdf, dist, false};
 }
 
-double LightSampler::sphericalSolidAngle(const Entry& e, const Vec3& p) {
+LightSampler::SphericalTriangle LightSampler::sphericalTriangle(const Entry& e, const Vec3& p) {
     // pbrt-v4's range: below, the triangle is small or far enough that area sampling is as
     // good and the spherical construction loses digits; above, nearly a hemisphere.
     constexpr double kMin = 3e-4, kMax = 6.22;
     const Vec3 a = e.c + e.ca - p, b = e.c + e.cb - p, c = e.c - p;
     const double la = length(a), lb = length(b), lc = length(c);
-    if (!(la > 0 && lb > 0 && lc > 0)) return 0;
-    const double area = sphericalTriangleArea(a / la, b / lb, c / lc);
-    return area >= kMin && area <= kMax ? area : 0;
+    if (!(la > 0 && lb > 0 && lc > 0)) return {};
+    SphericalTriangle t{a / la, b / lb, c / lc, 0};
+    const double area = sphericalTriangleArea(t.a, t.b, t.c);
+    if (area >= kMin && area <= kMax) t.solidAngle = area;
+    return t;
 }
 
-std::optional<LightSample> LightSampler::sampleTriangleSolidAngle(const Entry& e, const Vec3& p,
-                                                                  Point2 u,
-                                                                  double solidAngle) const {
-    const Vec3 va = e.c + e.ca, vb = e.c + e.cb;
-    const std::optional<Vec3> wi =
-        sampleSphericalTriangle(normalize(va - p), normalize(vb - p), normalize(e.c - p), u);
+std::optional<LightSample> LightSampler::sampleTriangleSolidAngle(
+    const Entry& e, const Vec3& p, Point2 u, const SphericalTriangle& t) const {
+    const std::optional<Vec3> wi = sampleSphericalTriangle(t.a, t.b, t.c, u);
     if (!wi) return std::nullopt;
     const double cosLight = dot(*wi, e.n);  // < 0: the light's front faces p
     if (e.frontOnly ? !(cosLight < 0) : cosLight == 0) return std::nullopt;
@@ -332,7 +327,7 @@ std::optional<LightSample> LightSampler::sampleTriangleSolidAngle(const Entry& e
         const double b1 = dot(cross(e.ca, q), e.n) / twiceArea;
         emission = texturedEmission(e, b1, 1 - b0 - b1);
     }
-    return LightSample{*wi, emission, 1 / solidAngle, dist, false};
+    return LightSample{*wi, emission, 1 / t.solidAngle, dist, false};
 }
 
 std::optional<LightSample> LightSampler::sampleSphereCone(const Entry& e, const Vec3& p,
@@ -393,7 +388,7 @@ double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
     const Primitives& prims = scene_.primitives;
     double pdfArea = e.pdfArea;
     if (e.kind == Kind::Triangle)
-        if (const double solidAngle = sphericalSolidAngle(e, from); solidAngle > 0)
+        if (const double solidAngle = sphericalTriangle(e, from).solidAngle; solidAngle > 0)
             return choiceProbability(index, from, fromN) / solidAngle;
     if (e.kind == Kind::Sphere) {
         const double d2 = dot(e.center - from, e.center - from);

@@ -95,16 +95,24 @@ class LightSampler {
         /// radius, and it is sampled by its cone of directions from outside; radius 0: by area.
         Vec3 center{};
         double radius = 0;
+        /// Lights at infinity: the weight they are chosen by among themselves and against the
+        /// tree (the irradiance they give, in the tree's units).
+        double weight = 0;
     };
     std::optional<LightSample> sampleEntry(const Entry& e, const Vec3& p, Point2 u) const;
     /// The emission of textured triangle `e` at barycentrics (b1, b2) of its b and c corners.
     Vec3 texturedEmission(const Entry& e, double b1, double b2) const;
-    /// The solid angle triangle `e` fills seen from `p` where it is sampled by solid angle
-    /// (neither tiny nor nearly a hemisphere); 0 where it is sampled by area.
-    static double sphericalSolidAngle(const Entry& e, const Vec3& p);
+    /// Triangle `e` seen from `p`: the unit directions to its corners, and the solid angle
+    /// it fills where it is sampled by solid angle (neither tiny nor nearly a hemisphere); 0
+    /// where it is sampled by area.
+    struct SphericalTriangle {
+        Vec3 a, b, c;
+        double solidAngle = 0;
+    };
+    static SphericalTriangle sphericalTriangle(const Entry& e, const Vec3& p);
     /// A direction uniformly within that solid angle.
     std::optional<LightSample> sampleTriangleSolidAngle(const Entry& e, const Vec3& p, Point2 u,
-                                                        double solidAngle) const;
+                                                        const SphericalTriangle& t) const;
     /// A round sphere's cone sample from `p` outside it; none from inside or if not round.
     std::optional<LightSample> sampleSphereCone(const Entry& e, const Vec3& p, Point2 u) const;
 
@@ -113,10 +121,8 @@ class LightSampler {
     /// The probability of choosing one of the lights at infinity at `p`, `n`.
     double pInfinite(const Vec3& p, const Vec3& n) const;
 
-    /// The lights at infinity, by index, and their weights (irradiance, in the units of the
-    /// light tree's importance); the others are in the tree.
+    /// The lights at infinity, by index, and their weights' sum; the others are in the tree.
     std::vector<uint32_t> infinite_;
-    std::vector<double> infiniteWeight_;
     double infiniteTotal_ = 0;
     LightTree tree_;
     std::vector<uint32_t> lightOfTreeLeaf_;  ///< Tree light k is lights_[lightOfTreeLeaf_[k]].
@@ -127,7 +133,6 @@ class LightSampler {
     /// triangle in the mesh).
     std::unordered_map<uint64_t, uint32_t> lightOfInstanced_;
     uint32_t environment_ = UINT32_MAX;  ///< Index of the environment light, if any.
-    double sceneRadius_ = 1;
 };
 
 }  // namespace glint
