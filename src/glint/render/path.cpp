@@ -100,10 +100,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
     if (scene.shadowCatcher) catcher_.emplace(scene);
 }
 
-Vec3 PathIntegrator::clampedIndirect(const Vec3& c) const {
-    const double most = maxComponent(c);
+Vec3 PathIntegrator::clamped(const Vec3& light, int bounces) const {
     const double limit = scene_.clampIndirect;
-    return limit > 0 && most > limit ? c * (limit / most) : c;
+    if (bounces < 2 || !(limit > 0)) return light;  // direct light, or no clamp
+    const double most = maxComponent(light);
+    return most > limit ? light * (limit / most) : light;
 }
 
 double PathIntegrator::bsdfWeight(double bsdfPdf, double lightPdf) const {
@@ -151,8 +152,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
         if (!found) {
-            // Light found at depth d came through d bounces: the first two are direct. Seen
-            // by the camera or through a mirror it counts in full: no density is needed.
+            // Seen by the camera or through a mirror it counts in full: no density is needed.
             Vec3 light(0);
             if (depth == 0 || specularBounce) {
                 light = beta * lights_.environment(ray.dir);
@@ -161,7 +161,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                 const Vec3 le = lights_.environment(ray.dir, from, fromN, &lightPdf);
                 if (!(le == Vec3(0))) light = beta * le * bsdfWeight(bsdfPdf, lightPdf);
             }
-            L += depth >= 2 ? clampedIndirect(light) : light;
+            L += clamped(light, depth);  // light found at depth d came through d bounces
             break;
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
@@ -216,7 +216,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                 depth == 0 || specularBounce
                     ? beta * emission
                     : beta * emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, fromN, hit, si));
-            L += depth >= 2 ? clampedIndirect(light) : light;
+            L += clamped(light, depth);
         }
         if (depth >= scene_.maxDepth) break;
 
@@ -254,7 +254,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                                        ? 1
                                        : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
                         const Vec3 light = beta * f * ls->L * (w / ls->pdf);
-                        L += depth >= 1 ? clampedIndirect(light) : light;
+                        L += clamped(light, depth + 1);
                     }
                 }
             }

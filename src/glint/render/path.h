@@ -31,9 +31,9 @@ class PathIntegrator final : public Integrator {
     bool usesRandomNumbers() const override { return true; }
 
   private:
-    /// `c`, light that reached the camera through two or more bounces, under the scene's
-    /// clampIndirect.
-    Vec3 clampedIndirect(const Vec3& c) const;
+    /// `light` that reached the camera through `bounces` bounces, under the scene's
+    /// clampIndirect if it is indirect (two or more).
+    Vec3 clamped(const Vec3& light, int bounces) const;
 
     /// Weight of light a BSDF-sampled ray found on a light that next-event estimation samples
     /// with density `lightPdf` (0: it does not).
