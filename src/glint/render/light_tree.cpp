@@ -15,15 +15,6 @@ constexpr double kPi = std::numbers::pi;
 double safeSqrt(double x) { return std::sqrt(std::max(x, 0.0)); }
 double safeAcos(double x) { return std::acos(std::clamp(x, -1.0, 1.0)); }
 
-/// cos(max(0, a - b)) and sin(max(0, a - b)) of two angles in [0, pi] given by their sines and
-/// cosines (a below b: the difference is 0).
-double cosSubClamped(double sinA, double cosA, double sinB, double cosB) {
-    return cosA > cosB ? 1 : cosA * cosB + sinA * sinB;
-}
-double sinSubClamped(double sinA, double cosA, double sinB, double cosB) {
-    return cosA > cosB ? 0 : sinA * cosB - cosA * sinB;
-}
-
 /// `v` turned by `angle` about the unit axis `k` (Rodrigues' formula).
 Vec3 rotate(const Vec3& v, const Vec3& k, double angle) {
     const double c = std::cos(angle), s = std::sin(angle);

@@ -44,9 +44,9 @@ std::vector<LightBounds> mixedLights(int n, uint64_t seed) {
             case 1:
             case 2: {
                 const Vec3 a = c + randomIn(rng, -0.3, 0.3), b = c + randomIn(rng, -0.3, 0.3);
-                const Vec3 n = normalize(cross(a - c, b - c));
-                lights.push_back(
-                    LightBounds::surface(min(c, min(a, b)), max(c, max(a, b)), phi, n, i % 4 == 2));
+                const Vec3 facing = normalize(cross(a - c, b - c));
+                lights.push_back(LightBounds::surface(min(c, min(a, b)), max(c, max(a, b)), phi,
+                                                      facing, i % 4 == 2));
                 break;
             }
             default:
@@ -72,8 +72,9 @@ TEST(LightTree, EveryLightThatReachesAPointHasAProbabilityAndSampleReturnsIt) {
             for (uint32_t k = 0; k < lights.size(); ++k) {
                 const double q = tree.pmf(p, normal, k);
                 total += q;
-                if (lights[k].importance(p, normal) > 0)
+                if (lights[k].importance(p, normal) > 0) {
                     EXPECT_GT(q, 0) << n << " lights: light " << k << " reaches p but has none";
+                }
             }
             EXPECT_LE(total, 1 + 1e-9) << n << " lights, trial " << trial;
             mean += total / trials;
