@@ -269,6 +269,7 @@ int prepare(const Options& opt, Prepared& out) {
     }
     if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
     scene->clampIndirect = opt.clampIndirect;
+    scene->caustics = opt.caustics == "on";
     if (!opt.integrator.empty()) scene->integrator = opt.integrator;
     if (opt.clampIndirect > 0 && scene->integrator != "path")
         std::fprintf(stderr,
@@ -406,6 +407,14 @@ void addOptions(CLI::App& app, Options& opt) {
         ->group(render)
         ->check(numberIn(0, 1e30))
         ->type_name("X");
+
+    app.add_option("--caustics", opt.caustics,
+                   "Path tracer: trace the light that glass and mirrors focus onto what the "
+                   "camera sees from the lights (a light pass beside the camera's paths; "
+                   "unbiased either way); default on")
+        ->group(render)
+        ->check(CLI::IsMember({"on", "off"}))
+        ->type_name("on|off");
 
     app.add_option(
            "--integrator", opt.integrator,

@@ -36,9 +36,10 @@ struct Options {
     std::string kernels = "auto";
     std::string size;
     int maxDepth = -1;
-    double clampIndirect = 0;  ///< --clamp-indirect; 0: none.
-    std::string integrator;    ///< Empty: the scene's `integrator`, else whitted.
-    int spp = 0;               ///< 0: the scene's `spp`, else 1.
+    double clampIndirect = 0;     ///< --clamp-indirect; 0: none.
+    std::string caustics = "on";  ///< --caustics: the path tracer's light pass, on or off.
+    std::string integrator;       ///< Empty: the scene's `integrator`, else whitted.
+    int spp = 0;                  ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;
     double exposure = 0;      ///< EV: radiance times 2^exposure before writing.
     int srgb = 0;             ///< sRGB curve for 8-bit outputs: 1 on, -1 off, 0 the scene's.

@@ -138,6 +138,7 @@ std::string pixelSettings(const Options& opt, const Scene& scene) {
            " maxdepth=" + std::to_string(scene.maxDepth) +
            (scene.clampIndirect > 0 ? " clamp-indirect=" + exactText(scene.clampIndirect)
                                     : std::string()) +
+           (scene.caustics ? std::string() : std::string(" caustics=off")) +
            " environment=" + orDefault(environment) + " ground=" + orDefault(opt.ground) +
            " camera=" + orDefault(opt.camera) + " lenient=" + (opt.lenient ? "yes" : "no");
 }

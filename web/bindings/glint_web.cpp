@@ -123,6 +123,7 @@ class Session {
         r.set("maxDepth", scene->maxDepth);
         r.set("integrator", scene->integrator);
         if (scene->prepared()) {
+            integrator_.reset();  // of the scene replaced
             scene_ = std::move(scene);
             home_ = *scene_->camera;
             film_ = Film();
@@ -188,6 +189,7 @@ class Session {
         tilesX_ = (s.width + kTile - 1) / kTile;
         tiles_ = tilesX_ * ((s.height + kTile - 1) / kTile);
         next_ = 0;
+        integrator_.reset();  // made for the scene as it is now (camera, size, integrator)
         batch_ = pool_.threads() * 2;
         pass_ = 0;
         samples_ = 0;
@@ -225,6 +227,13 @@ class Session {
                 ro.tileCount = batch_;
                 ro.accumulate = &sums_;  // each pixel's samples of every pass, summed
                 ro.aovs = denoise_;
+                // One integrator for the pass's batches of tiles: it keeps the light pass
+                // (the path tracer's caustics) that the first batch traces for the rest.
+                if (!integrator_ || integratorSpp_ != passSpp) {
+                    integrator_ = makeIntegrator(s, {passSpp});
+                    integratorSpp_ = passSpp;
+                }
+                ro.integrator = integrator_.get();
                 RenderResult pass = render(s, ro);
                 rays_ += pass.rays.total();
                 seconds_ += pass.seconds;
@@ -334,6 +343,8 @@ class Session {
 
     ThreadPool pool_;
     std::unique_ptr<Scene> scene_;
+    std::unique_ptr<Integrator> integrator_;  // of the render begun, for its passes
+    int integratorSpp_ = 0;
     CameraSpec home_;
     Film film_;      // the image so far: the average of the passes' samples (denoised)
     FilmSums sums_;  // every pass's samples summed (and their render passes, to denoise)

@@ -4,6 +4,7 @@
 /// inside an integrator are plain calls. Integrators are chosen by name (`integrator NAME` in a
 /// scene, `--integrator NAME` on the command line); docs/design.md says where a new one goes.
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -15,6 +16,8 @@
 #include "glint/scene/scene.h"
 
 namespace glint {
+
+class ThreadPool;
 
 /// Rays traced, by kind, and radiance values that were not finite where an integrator
 /// produced them (a bug: they are repaired before the film, and reported by `--stats`).
@@ -77,6 +80,20 @@ class Integrator {
     /// Whether li() draws random numbers from ctx.rng; if not, samples need no seeded
     /// PathContext::rng (it costs a hash per sample).
     virtual bool usesRandomNumbers() const = 0;
+
+    /// Light this integrator leaves to a pass over the whole image of its own (the path
+    /// tracer's caustics, render/caustics.h): for each pixel of the scene's image (row by row),
+    /// the sum over camera sample indices [begin, end) of its estimate, which the renderer adds
+    /// to the pixel's sum of samples; null if it leaves nothing. `seed` is the render's seed;
+    /// `pool` the threads to trace on; it stops early if `cancel` becomes true. May be called
+    /// from several threads at once, and keeps recent results for calls that ask again (a
+    /// frame rendered in many small parts).
+    virtual std::shared_ptr<const std::vector<Vec3>> lightPass(
+        int begin, int end, uint64_t seed, ThreadPool& pool,
+        const std::atomic<bool>* cancel) const {
+        (void)begin, (void)end, (void)seed, (void)pool, (void)cancel;
+        return nullptr;
+    }
 };
 
 /// One integrator Glint has.

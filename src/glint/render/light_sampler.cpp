@@ -5,6 +5,7 @@
 #include <tuple>
 #include <utility>
 
+#include "glint/core/spawn.h"
 #include "glint/geometry/surface_sampling.h"
 #include "glint/math/sampling.h"
 #include "glint/math/spherical_triangle.h"
@@ -58,8 +59,10 @@ double brightness(const Vec3& c) {
 LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     const Primitives& prims = scene.primitives;
     std::vector<LightBounds> bounded;
-    auto addBounded = [&](const Entry& e, const LightBounds& lb) {
+    auto addBounded = [&](Entry e, const LightBounds& lb) {
         lightOfTreeLeaf_.push_back(static_cast<uint32_t>(lights_.size()));
+        e.power = lb.phi;
+        e.middle = (lb.lo + lb.hi) * 0.5;
         lights_.push_back(e);
         bounded.push_back(lb);
     };
@@ -426,6 +429,107 @@ double LightSampler::pdfEnvironment(const Vec3& dir, const Vec3& from, const Vec
     if (environment_ == UINT32_MAX) return 0;
     double pdf = scene_.environment ? scene_.environment->pdf(dir) : 1 / (4 * kPi);
     return choiceProbability(environment_, from, fromN) * pdf;
+}
+
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+/// A direction drawn uniformly over the cone of directions that the sphere (`center`,
+/// `radius`) fills from `p`, or over every direction from inside it, and its density.
+std::pair<Vec3, double> sampleTowardsSphere(const Vec3& p, const Vec3& center, double radius,
+                                            Point2 u) {
+    const Vec3 toCenter = center - p;
+    const double d2 = dot(toCenter, toCenter);
+    if (!outsideSphere(d2, radius)) return {sampleUniformSphere(u), 1 / (4 * kPi)};
+    double sin2Max;
+    const double oneMinusCos = oneMinusCosCone(radius, d2, &sin2Max);
+    const double cosTheta = 1 - u.x * oneMinusCos;
+    const double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+    const double phi = 2 * kPi * u.y;
+    const Frame frame(toCenter / std::sqrt(d2));
+    const Vec3 dir = frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+    return {normalize(dir), 1 / (2 * kPi * oneMinusCos)};
+}
+
+/// The solid angle the sphere fills from `p` (4 pi from inside).
+double solidAngleOfSphere(const Vec3& p, const Vec3& center, double radius) {
+    const double d2 = dot(center - p, center - p);
+    if (!outsideSphere(d2, radius)) return 4 * kPi;
+    double sin2Max;
+    return 2 * kPi * oneMinusCosCone(radius, d2, &sin2Max);
+}
+
+}  // namespace
+
+std::vector<double> LightSampler::emissionWeights(const Vec3& center, double radius) const {
+    std::vector<double> w(lights_.size(), 0.0);
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        const Entry& e = lights_[i];
+        if (treeLeafOf_[i] == UINT32_MAX) {  // at infinity: weight / pi is its irradiance
+            w[i] = e.weight * radius * radius;
+            continue;
+        }
+        w[i] =
+            e.power * std::min(solidAngleOfSphere(e.middle, center, radius), 2 * kPi) / (2 * kPi);
+    }
+    return w;
+}
+
+std::optional<EmittedRay> LightSampler::emit(size_t index, const Vec3& center, double radius,
+                                             double far, Point2 uPoint, Point2 uDir) const {
+    const Entry& e = lights_[index];
+    const Primitives& prims = scene_.primitives;
+    // Lights at infinity: across the sphere's disc, uniformly (density 1 / (pi r^2)).
+    auto acrossDisc = [&](const Vec3& towardsLight, const Vec3& radiance,
+                          double pdfDir) -> std::optional<EmittedRay> {
+        const auto [dx, dy] = sampleUniformDisk(uPoint.x, uPoint.y);
+        const Frame frame(towardsLight);
+        const Vec3 origin = center + towardsLight * far + (frame.t * dx + frame.b * dy) * radius;
+        return EmittedRay{Ray{origin, -towardsLight, 0, kInfinity},
+                          radiance * (kPi * radius * radius / pdfDir)};
+    };
+    switch (e.kind) {
+        case Kind::Directional: {
+            const Light& l = scene_.lights[e.index];
+            return acrossDisc(l.direction, l.color, 1);
+        }
+        case Kind::Environment: {
+            if (scene_.environment) {
+                std::optional<EnvironmentMap::Sample> s = scene_.environment->sample(uDir);
+                if (!s || !(s->pdf > 0)) return std::nullopt;
+                return acrossDisc(s->wi, s->L, s->pdf);
+            }
+            const Vec3 wi = sampleUniformSphere(uDir);
+            return acrossDisc(wi, environment(wi), 1 / (4 * kPi));
+        }
+        case Kind::Point: {
+            const Light& l = scene_.lights[e.index];
+            const auto [dir, pdf] = sampleTowardsSphere(l.position, center, radius, uDir);
+            return EmittedRay{Ray{l.position, dir, 0, kInfinity}, l.color / pdf, &l};
+        }
+        default:
+            break;
+    }
+    SurfaceSample ss;
+    Vec3 emission = e.emission;
+    if (e.kind == Kind::Triangle) {
+        auto [b0, b1] = sampleUniformTriangle(uPoint);
+        ss = {e.c + e.ca * b0 + e.cb * b1, e.n, e.pdfArea};
+        if (e.texturedPbr != 0) emission = texturedEmission(e, b1, 1 - b0 - b1);
+    } else if (e.kind == Kind::Sphere) {
+        ss = sampleSphere(prims.sphere(e.index - prims.triangleCount()), uPoint);
+    } else {
+        ss =
+            sampleShape(prims.shape(e.index - prims.triangleCount() - prims.sphereCount()), uPoint);
+    }
+    if (!(ss.pdfArea > 0)) return std::nullopt;
+    const auto [dir, pdfDir] = sampleTowardsSphere(ss.p, center, radius, uDir);
+    const double cosLight = dot(dir, ss.n);
+    if (e.frontOnly ? !(cosLight > 0) : cosLight == 0) return std::nullopt;
+    const Vec3 beta = emission * (std::abs(cosLight) / (ss.pdfArea * pdfDir));
+    return EmittedRay{spawnRayOffSurface(ss.p, ss.n, dir, scene_.spawnOffset()), beta};
 }
 
 }  // namespace glint

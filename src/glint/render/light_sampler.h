@@ -42,6 +42,17 @@ struct LightSample {
     bool delta = false;   ///< A point or directional light: no BSDF sample can reach it.
 };
 
+/// A ray leaving a light, for tracing light from it (render/caustics.h).
+struct EmittedRay {
+    Ray ray;  ///< From the light's surface, or from outside the scene for lights at infinity.
+    /// Emitted radiance times |cos| at the light over the densities of the point and the
+    /// direction: the flux the ray carries, in the units of a path's throughput.
+    Vec3 beta;
+    /// A point light with the course's attenuation: beta is still to be multiplied by
+    /// d^2 / attenuation(d), d the distance to the first surface the ray meets.
+    const Light* attenuated = nullptr;
+};
+
 class LightSampler {
   public:
     /// Collects the lights of the prepared `scene`, which must outlive the sampler.
@@ -75,6 +86,18 @@ class LightSampler {
     /// environment(dir) and pdfEnvironment(dir, from, fromN) together, the map looked up once.
     Vec3 environment(const Vec3& dir, const Vec3& from, const Vec3& fromN, double* pdf) const;
 
+    /// For tracing light into the sphere of centre `center` and radius `radius` (a part of the
+    /// scene that holds everything of interest): a weight for each light, about the power it
+    /// sends into the sphere.
+    std::vector<double> emissionWeights(const Vec3& center, double radius) const;
+    /// A ray from light `index` into that sphere: from a point drawn uniformly by area (`uPoint`)
+    /// in a direction drawn uniformly over the cone of directions the sphere fills from there
+    /// (`uDir`; over every direction from inside it); from a light at infinity (a direction
+    /// drawn as sample() draws it), across the sphere's disc seen from that direction, from
+    /// `far` beyond its centre. None if the light sends nothing that way.
+    std::optional<EmittedRay> emit(size_t index, const Vec3& center, double radius, double far,
+                                   Point2 uPoint, Point2 uDir) const;
+
   private:
     enum class Kind : uint8_t { Point, Directional, Triangle, Sphere, Shape, Environment };
     struct Entry {
@@ -98,6 +121,8 @@ class LightSampler {
         /// Lights at infinity: the weight they are chosen by among themselves and against the
         /// tree (the irradiance they give, in the tree's units).
         double weight = 0;
+        double power = 0;  ///< Bounded lights: the power the light tree weighs them by,
+        Vec3 middle{};     ///< and the middle of their bounds.
     };
     std::optional<LightSample> sampleEntry(const Entry& e, const Vec3& p, Point2 u) const;
     /// The emission of textured triangle `e` at barycentrics (b1, b2) of its b and c corners.

@@ -1,11 +1,12 @@
 #include "glint/render/path.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "glint/core/spawn.h"
 #include "glint/math/sobol.h"
 #include "glint/render/bsdf.h"
-#include "glint/scene/pbr_material.h"
+#include "glint/render/surface_shading.h"
 
 namespace glint {
 namespace {
@@ -29,37 +30,6 @@ Vec3 receivingNormal(const Bsdf& bsdf, const Vec3& ng) {
         bool operator()(const DiffuseSpecular&) const { return false; }
     };
     return std::visit(Visitor{}, bsdf.lobe) ? Vec3(0) : ng;
-}
-
-/// Whether every lobe of `bsdf` is a delta: no light sample can meet it.
-bool specularOnly(const Bsdf& bsdf) {
-    struct Visitor {
-        bool operator()(const Lambertian&) const { return false; }
-        bool operator()(const Conductor& c) const { return c.alpha == 0; }
-        bool operator()(const Dielectric& d) const { return !d.rough(); }
-        bool operator()(const DiffuseSpecular& d) const {
-            return d.alpha == 0 && d.diffuse == Vec3(0);
-        }
-        bool operator()(const MetallicRoughness&) const { return false; }
-    };
-    return std::visit(Visitor{}, bsdf.lobe);
-}
-
-/// A normal-mapped shading normal `n` that the viewer, at unit direction `wo`, sees past its
-/// own horizon (the far slopes of a steep normal map): shading with it would leave those
-/// slopes black, because no direction is on the viewer's side of both it and the geometric
-/// normal `ng`. It is turned, in the plane of `n` and `wo`, until `wo` stands just above its
-/// horizon, keeping the direction of its tilt; a normal the viewer sees from above comes back
-/// as it was. The result is on the side of `ng` the viewer is on.
-Vec3 facingViewer(const Vec3& n, const Vec3& ng, const Vec3& wo) {
-    constexpr double kLift = 0.05;  // the cosine between the view and a turned normal
-    const Vec3 side = (dot(n, ng) < 0) == (dot(wo, ng) < 0) ? n : -n;
-    const double c = dot(side, wo);
-    if (c >= kLift) return side;
-    const Vec3 across = side - wo * c;  // the part of the normal across the view
-    const double len = length(across);
-    if (!(len > 1e-12)) return side;  // along the view: no direction to turn towards
-    return wo * kLift + across * (std::sqrt(1 - kLift * kLift) / len);
 }
 
 /// GGX alpha below which a mirror-like or glass-like glTF surface counts as smooth for the
@@ -95,9 +65,33 @@ std::optional<Vec3> passAlbedo(const Bsdf& bsdf) {
 
 PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
     : scene_(scene), lights_(scene), strategy_(strategy) {
-    bsdfs_.reserve(scene.materials.size());
-    for (const Material& m : scene.materials) bsdfs_.push_back(bsdfFromMaterial(m));
+    bsdfs_ = materialBsdfs(scene);
     if (scene.shadowCatcher) catcher_.emplace(scene);
+    if (scene.caustics && strategy == Strategy::Mis) {
+        caustics_.emplace(scene, lights_, bsdfs_);
+        if (!caustics_->active()) caustics_.reset();
+    }
+}
+
+std::shared_ptr<const std::vector<Vec3>> PathIntegrator::lightPass(
+    int begin, int end, uint64_t seed, ThreadPool& pool, const std::atomic<bool>* cancel) const {
+    if (!caustics_ || begin >= end) return nullptr;
+    // One pass at a time: a frame rendered in parts on many threads (glint-mpi) asks for the
+    // same one from each, and the first computes it while the others wait.
+    std::lock_guard lock(passMutex_);
+    for (const PassResult& r : passes_)
+        if (r.begin == begin && r.end == end && r.seed == seed) return r.image;
+    auto image =
+        std::make_shared<const std::vector<Vec3>>(caustics_->trace(begin, end, seed, pool, cancel));
+    if (cancel && cancel->load()) return image;  // cut short: not kept
+    // Kept for calls with the same seed (the rounds of an adaptive render's parts ask in
+    // turn; a new seed is a new render, or a progressive render's next pass), up to 256 MB.
+    std::erase_if(passes_, [&](const PassResult& r) { return r.seed != seed; });
+    const size_t bytes = image->size() * sizeof(Vec3) + 1;
+    const size_t keep = std::max<size_t>(1, (size_t{256} << 20) / bytes);
+    if (passes_.size() >= keep) passes_.erase(passes_.begin());
+    passes_.push_back({begin, end, seed, image});
+    return image;
 }
 
 Vec3 PathIntegrator::clamped(const Vec3& light, int bounces) const {
@@ -133,6 +127,9 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     // glass, through the tint of those before it.
     SamplePasses* passes = ctx.passes;
     Vec3 passTint(1);
+    // With the light pass on (caustics.h): -1 once the path is not one it traces, else the
+    // casters met since the surface the camera sees, which left through its non-delta part.
+    int castersSinceSeen = -1;
 
     for (int depth = 0;; ++depth) {
         // A shadow catcher is seen by camera rays and their specular continuations only.
@@ -154,7 +151,9 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         if (!found) {
             // Seen by the camera or through a mirror it counts in full: no density is needed.
             Vec3 light(0);
-            if (depth == 0 || specularBounce) {
+            if (castersSinceSeen > 0) {
+                // The light pass's path: nothing here.
+            } else if (depth == 0 || specularBounce) {
                 light = beta * lights_.environment(ray.dir);
             } else {
                 double lightPdf = 0;
@@ -166,41 +165,13 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
         const Material& m = scene_.materials[si.material];
-        const PbrMaterial* pm = m.pbr != 0 ? &scene_.pbr(m.pbr) : nullptr;
 
         // Absorption inside a volume, paid on leaving it (Beer-Lambert over the segment).
-        if (pm && std::isfinite(pm->attenuationDistance) && pm->thickness > 0 &&
-            dot(ray.dir, si.ng) > 0) {
-            const double travelled = length(si.p - ray.origin);
-            const Vec3& c = pm->attenuationColor;
-            auto keep = [&](double x) {
-                return x > 0 ? std::exp(std::log(std::min(x, 1.0)) * travelled /
-                                        pm->attenuationDistance)
-                             : 0.0;
-            };
-            beta = beta * Vec3(keep(c.x), keep(c.y), keep(c.z));
-        }
-
-        Bsdf bsdf;
-        Vec3 emission = m.emission, shadingNormal = si.n;
-        if (pm) {
-            const PbrSurface ps = evalSurface(*pm, si);
-            emission = ps.emission;
-            shadingNormal = ps.normal;
-            if (pm->normalTexture.image)
-                shadingNormal = facingViewer(shadingNormal, si.ng, -ray.dir);
-            const double alpha = ps.roughness * ps.roughness;
-            bsdf.lobe = MetallicRoughness{
-                ps.baseColor,    ps.metallic, std::max(alpha, MetallicRoughness::kMinAlpha),
-                ps.transmission, pm->ior,     pm->thickness == 0};
-        } else if (m.texture != 0) {
-            Material textured = m;
-            textured.diffuse =
-                scene_.texture(m.texture).eval(si.hasUv, si.u, si.v, si.p, m.diffuse);
-            bsdf = bsdfFromMaterial(textured);
-        } else {
-            bsdf = bsdfs_[si.material];
-        }
+        beta = beta * volumeTransmittance(scene_, si, ray.origin, ray.dir);
+        const SurfaceShading shading = shadeSurface(scene_, si, -ray.dir, bsdfs_);
+        const Bsdf& bsdf = shading.bsdf;
+        const Vec3& emission = shading.emission;
+        const Vec3& shadingNormal = shading.normal;
         if (passes) [[unlikely]] {
             if (depth == 0) passes->depth = length(si.p - ray.origin);
             if (std::optional<Vec3> albedo = passAlbedo(bsdf)) {
@@ -210,8 +181,16 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
 
+        // Whether the path is still one the light pass traces (any light it meets through
+        // casters alone but an emissive plane, which the pass does not sample).
+        const bool caster = caustics_ && caustics_->caster(si.material);
+        const bool leftToPass =
+            castersSinceSeen > 0 && hit.primId < scene_.primitives.boundedCount();
+        if (castersSinceSeen >= 0) castersSinceSeen = caster ? castersSinceSeen + 1 : -1;
+
         // Light the surface emits towards the path.
-        if (!(emission == Vec3(0)) && (!m.frontEmissionOnly || dot(ray.dir, si.ng) < 0)) {
+        if (!(emission == Vec3(0)) && (!m.frontEmissionOnly || dot(ray.dir, si.ng) < 0) &&
+            !leftToPass) {
             const Vec3 light =
                 depth == 0 || specularBounce
                     ? beta * emission
@@ -239,7 +218,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const double uLight = uChoices.x;
         const Point2 uLightPoint = sampler.get2D();
         const Vec3 receiver = receivingNormal(bsdf, si.ng);
-        if (!lights_.empty() && !specularOnly(bsdf)) {
+        if (!lights_.empty() && !specularOnly(bsdf) && castersSinceSeen <= 0) {
             std::optional<LightSample> ls = lights_.sample(si.p, receiver, uLight, uLightPoint);
             // BSDF sampling alone cannot reach delta lights: they are sampled in every mode.
             if (ls && !(ls->L == Vec3(0)) && (ls->delta || strategy_ != Strategy::BsdfOnly)) {
@@ -271,6 +250,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         if (passes) passTint = passTint * min(bs->weight(), Vec3(1));
         if (beta == Vec3(0)) break;
         specularBounce = bs->isSpecular();
+        if (depth == 0 && caustics_ && !caster && !specularBounce) castersSinceSeen = 0;
         bsdfPdf = bs->pdf;
         from = si.p;
         fromN = receiver;

@@ -8,10 +8,13 @@
 /// direct lighting only (pbrt's convention; the default is the course's 5). A shadow catcher
 /// (Scene::shadowCatcher) ends the camera paths that meet it (render/shadow_catcher.h).
 
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
 #include "glint/render/bsdf.h"
+#include "glint/render/caustics.h"
 #include "glint/render/integrator.h"
 #include "glint/render/light_sampler.h"
 #include "glint/render/shadow_catcher.h"
@@ -29,6 +32,11 @@ class PathIntegrator final : public Integrator {
 
     Vec3 li(const Ray& ray, const Hit* hit, PathContext& ctx) const override;
     bool usesRandomNumbers() const override { return true; }
+    /// The caustics traced from the lights (caustics.h), when the scene asks for them
+    /// (Scene::caustics, with the Mis strategy) and has any.
+    std::shared_ptr<const std::vector<Vec3>> lightPass(
+        int begin, int end, uint64_t seed, ThreadPool& pool,
+        const std::atomic<bool>* cancel) const override;
 
   private:
     /// `light` that reached the camera through `bounces` bounces, under the scene's
@@ -44,6 +52,16 @@ class PathIntegrator final : public Integrator {
     Strategy strategy_;
     std::vector<Bsdf> bsdfs_;  ///< Of each material (textured ones: with the untextured colour).
     std::optional<ShadowCatcherShading> catcher_;  ///< The scene's shadow catcher, if any.
+    /// The light pass, if it is on: then the paths it traces are left to it.
+    std::optional<CausticPass> caustics_;
+    /// Its recent results, newest last: (begin, end, seed) and the image.
+    struct PassResult {
+        int begin, end;
+        uint64_t seed;
+        std::shared_ptr<const std::vector<Vec3>> image;
+    };
+    mutable std::mutex passMutex_;
+    mutable std::vector<PassResult> passes_;
 };
 
 }  // namespace glint

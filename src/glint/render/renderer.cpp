@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,6 +105,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         uint32_t index = 0;      ///< Within the pixel.
         uint64_t pixelSeed = 0;  ///< Of its pixel (seeded samples only).
     };
+    // Light the integrator traces in a pass of its own, for the whole image (the path
+    // tracer's caustics): each pixel's sum over this render's samples, added to its own.
+    std::shared_ptr<const std::vector<Vec3>> lightPass;
     auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
                            RayCounts& counts) {
         samples.clear();
@@ -174,7 +178,17 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         }
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                const Vec3& s = sum[y * 4 + x];
+                Vec3 s = sum[y * 4 + x];
+                if (lightPass) {
+                    // Its mean per sample joins each sample's value, in the squares too (the
+                    // variance is the camera samples' own).
+                    const Vec3 c = (*lightPass)[static_cast<size_t>(by + y) * scene.width + bx + x];
+                    if (passes) {
+                        const Vec3 mean = c * (1 / rendered);
+                        passSums[y * 4 + x].squares += (s * 2.0 + c) * mean;
+                    }
+                    s += c;
+                }
                 const int fx = bx + x - ox, fy = by + y - oy;
                 if (accumulate) {
                     const size_t i = static_cast<size_t>(fy) * filmWidth + fx;
@@ -238,6 +252,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
 
     std::optional<ThreadPool> ownPool;
     ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace(options.threads);
+    if (tilesTotal > 0 && seeded)
+        lightPass =
+            integrator->lightPass(sampleBegin, sampleEnd, options.seed, pool, options.cancel);
     const int threads = std::min(pool.threads(), tilesTotal);
     std::vector<RayCounts> counts(static_cast<size_t>(std::max(threads, 1)));
     {

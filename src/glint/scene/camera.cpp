@@ -26,6 +26,21 @@ Ray Camera::generateRay(double x, double y) const {
     return Ray{eye_, normalize(u_ * alpha + v_ * beta - w_), 0, kInfinity};
 }
 
+std::optional<Camera::Projection> Camera::project(const Vec3& p) const {
+    const Vec3 d = p - eye_;
+    const double z = -dot(d, w_);  // along the view direction
+    const double d2 = dot(d, d);
+    if (!(z > 0) || !(d2 > 0)) return std::nullopt;
+    const double alpha = dot(d, u_) / z, beta = dot(d, v_) / z;
+    Projection out;
+    out.x = halfWidth_ + alpha * halfWidth_ / tanHalfX_;
+    out.y = halfHeight_ - beta * halfHeight_ / tanHalfY_;
+    const double cosTheta = z / std::sqrt(d2);
+    const double pixelArea = (tanHalfX_ / halfWidth_) * (tanHalfY_ / halfHeight_);
+    out.importance = 1 / (pixelArea * cosTheta * cosTheta * cosTheta * d2);
+    return out;
+}
+
 }  // namespace glint
 
 namespace glint {

@@ -1,6 +1,8 @@
 #pragma once
 /// The pinhole camera of the course: gluLookAt placement and a vertical field of view.
 
+#include <optional>
+
 #include "glint/core/ray.h"
 
 namespace glint {
@@ -28,6 +30,20 @@ class Camera {
     /// aperture. Equal to generateRay(x, y) for a pinhole camera.
     Ray generateRay(double x, double y, double lensU, double lensV) const;
     bool hasLens() const { return apertureRadius_ > 0; }
+
+    /// Where a pinhole camera sees the world point `p`: its image position (x, y) in pixels, as
+    /// generateRay takes it, and the factor that turns light leaving `p` towards the eye into
+    /// the mean radiance of a pixel around (x, y), for light traced from the lights:
+    /// 1 / (A cos^3 theta d^2), A a pixel's area on the image plane at unit distance, theta the
+    /// angle off the view direction, d the distance to `p`. Times the cosine at `p` and a flux
+    /// density there, it is that pixel's share (pbrt's camera importance We). None behind the
+    /// eye; positions outside the image are the caller's to drop.
+    struct Projection {
+        double x = 0, y = 0;
+        double importance = 0;
+    };
+    std::optional<Projection> project(const Vec3& p) const;
+    const Vec3& eye() const { return eye_; }
 
   private:
     Vec3 eye_, u_, v_, w_;

@@ -76,6 +76,8 @@ class Scene {
     /// Indirect"): each sample's light that reached the camera after two or more bounces is
     /// scaled down to at most this in its largest channel. 0: no clamp (unbiased).
     double clampIndirect = 0;
+    /// Whether the path tracer traces caustics from the lights (`--caustics`, render/caustics.h).
+    bool caustics = true;
     /// The integrator that renders the scene, by name (render/integrator.h; `integrator`).
     std::string integrator = "whitted";
     std::string output;  ///< Output file the scene asks for; may be empty.

@@ -1,0 +1,210 @@
+#include "glint/render/caustics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "glint/core/parallel.h"
+#include "glint/core/spawn.h"
+#include "glint/math/rng.h"
+
+namespace glint {
+namespace {
+
+/// Light paths per block: each block keeps its splats apart, then blocks are added in order.
+constexpr size_t kPathsPerBlock = 4096;
+
+/// The factor by which light's throughput differs from radiance's through a refraction of
+/// `bsdf` from `wo` to `wi` (local directions): radiance is scaled by (n_o / n_i)^2 at the
+/// boundary, power is not (Veach 1997, 5.2). 1 for reflection and for what does not bend.
+double adjointRefraction(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi) {
+    if (!(wo.z * wi.z < 0)) return 1;
+    double eta = 1;  // the index inside over outside
+    if (const auto* d = std::get_if<Dielectric>(&bsdf.lobe)) eta = d->eta;
+    if (const auto* m = std::get_if<MetallicRoughness>(&bsdf.lobe); m && !m->thin) eta = m->eta;
+    const double ratio = wo.z > 0 ? eta : 1 / eta;  // n_i / n_o
+    return ratio * ratio;
+}
+
+}  // namespace
+
+CausticPass::CausticPass(const Scene& scene, const LightSampler& lights,
+                         const std::vector<Bsdf>& bsdfs)
+    : scene_(scene), lights_(lights), bsdfs_(bsdfs), filter_(scene.filter) {
+    casters_.resize(scene.materials.size());
+    bool any = false;
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        casters_[i] = castsCaustics(scene, scene.materials[i]);
+        any = any || casters_[i];
+    }
+    if (!any || !scene.camera || scene.shadowCatcher || lights.empty()) return;
+    const CameraSpec& spec = *scene.camera;
+    if (spec.apertureRadius > 0) return;
+    const Primitives& prims = scene.primitives;
+    // The casters' bounds; a caster plane has none, and then the pass stays off.
+    for (uint32_t id = prims.boundedCount(); id < prims.size(); ++id)
+        if (casters_[prims.materialOf(id)]) return;
+    Bounds3f box;
+    for (uint32_t id = 0; id < prims.boundedCount(); ++id) {
+        const uint32_t m = prims.materialOf(id);
+        bool casts = false;
+        if (m != Primitives::kMixedMaterials) {
+            casts = casters_[m] != 0;
+        } else if (prims.isInstance(id)) {
+            const Primitives& mesh = prims.sharedMesh(prims.instanceMesh(id));
+            for (uint32_t k = 0; k < mesh.size() && !casts; ++k) {
+                const uint32_t mk = mesh.materialOf(k);
+                casts = mk != Primitives::kMixedMaterials && casters_[mk] != 0;
+            }
+        }
+        if (casts) box.extend(prims.bounds(id));
+    }
+    if (box.empty()) return;
+    const Vec3 lo(box.lo), hi(box.hi);
+    center_ = (lo + hi) * 0.5;
+    radius_ = std::max(length(hi - lo) * 0.5, 1e-9);
+    const Bounds3f all = prims.bounds();
+    const Vec3 alo(all.lo), ahi(all.hi);
+    far_ = (length((alo + ahi) * 0.5 - center_) + length(ahi - alo) * 0.5 + radius_) * 1.01 + 1;
+    choice_ = Distribution1D(lights.emissionWeights(center_, radius_));
+    camera_.emplace(spec, scene.width, scene.height);
+    filterRadius_ = scene.filter.radius;
+    // The filter's integral over one axis (trapezoids), which normalises its profile.
+    constexpr int kSteps = 1024;
+    double sum = 0;
+    for (int i = 0; i < kSteps; ++i) {
+        const double x0 = -filterRadius_ + 2 * filterRadius_ * i / kSteps;
+        const double x1 = -filterRadius_ + 2 * filterRadius_ * (i + 1) / kSteps;
+        sum += 0.5 * (filter_.profile(x0) + filter_.profile(x1)) * (x1 - x0);
+    }
+    filterNorm_ = sum > 0 ? sum : 1;
+    active_ = true;
+}
+
+std::vector<Vec3> CausticPass::trace(int begin, int end, uint64_t seed, ThreadPool& pool,
+                                     const std::atomic<bool>* cancel) const {
+    const size_t pixels = static_cast<size_t>(scene_.width) * scene_.height;
+    std::vector<Vec3> image(pixels, Vec3(0));
+    if (!active_ || pixels == 0) return image;
+    const size_t paths = pixels;  // per sample index
+    const size_t blocks = (paths + kPathsPerBlock - 1) / kPathsPerBlock;
+    const double scale = 1 / static_cast<double>(paths);
+    std::vector<std::vector<Splat>> splats(blocks);
+    for (int index = begin; index < end; ++index) {
+        const uint64_t indexSeed = mixBits(seed ^ mixBits(0x9e3779b97f4a7c15ULL + index));
+        parallelFor(pool, 0, blocks, 1, [&](size_t first, size_t last) {
+            for (size_t b = first; b < last; ++b) {
+                splats[b].clear();
+                if (cancel && cancel->load(std::memory_order_relaxed)) continue;
+                const size_t p1 = std::min(paths, (b + 1) * kPathsPerBlock);
+                for (size_t p = b * kPathsPerBlock; p < p1; ++p)
+                    tracePath(mixBits(indexSeed ^ mixBits(p)), splats[b]);
+            }
+        });
+        for (const std::vector<Splat>& block : splats)
+            for (const Splat& s : block) image[s.pixel] += s.value * scale;
+        if (cancel && cancel->load(std::memory_order_relaxed)) break;
+    }
+    return image;
+}
+
+void CausticPass::tracePath(uint64_t seed, std::vector<Splat>& out) const {
+    Rng rng(seed);
+    auto u2 = [&] { return Point2{rng.uniform(), rng.uniform()}; };
+    double pChoice = 0;
+    const size_t light = choice_.sampleDiscrete(rng.uniform(), &pChoice);
+    const Point2 uPoint = u2(), uDir = u2();
+    std::optional<EmittedRay> emitted = lights_.emit(light, center_, radius_, far_, uPoint, uDir);
+    if (!emitted || !(pChoice > 0)) return;
+    Vec3 beta = emitted->beta / pChoice;
+    Ray ray = emitted->ray;
+    const double offset = scene_.spawnOffset();
+    for (int casters = 0;; ++casters) {
+        Hit hit;
+        if (!scene_.intersect(ray, hit)) return;
+        const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
+        if (casters == 0 && emitted->attenuated) {  // the course's fall-off, over the first leg
+            const Light& l = *emitted->attenuated;
+            const double d = length(si.p - ray.origin);
+            const double att = l.attenuation.x + l.attenuation.y * d + l.attenuation.z * d * d;
+            beta = finiteRadiance(beta * (d * d / att));
+        }
+        beta = beta * volumeTransmittance(scene_, si, ray.origin, ray.dir);
+        const Vec3 toLight = normalize(-ray.dir);
+        if (!casters_[si.material]) {
+            if (casters > 0) connect(si, toLight, beta, out);
+            return;  // no caster on the way: direct light, the path tracer's
+        }
+        // One more caster, then a surface seen by the camera: within the path length.
+        if (casters + 2 > scene_.maxDepth) return;
+        const SurfaceShading shading = shadeSurface(scene_, si, toLight, bsdfs_);
+        const bool flip = dot(shading.normal, si.ng) < 0;
+        const Vec3 ns = flip ? -shading.normal : shading.normal;
+        const Frame frame(ns);
+        const Vec3 wo = frame.toLocal(toLight);
+        const Point2 uLobe = u2(), uDirection = u2();
+        std::optional<BsdfSample> bs = shading.bsdf.sample(wo, uLobe.x, uDirection);
+        if (!bs || !(bs->pdf > 0)) return;
+        const Vec3 next = normalize(frame.toWorld(bs->wi));
+        if (!(dot(next, si.ng) * bs->wi.z > 0)) return;  // a leak through the shading normal
+        // Light's throughput: the BSDF with its arguments swapped (the same but for the
+        // refraction's scaling) and pbrt's correction for shading normals.
+        const double woNg = std::abs(dot(toLight, si.ng)), wiNs = std::abs(bs->wi.z);
+        if (!(woNg > 0) || !(wiNs > 0)) return;
+        const double shadingCorrection =
+            std::abs(wo.z) * std::abs(dot(next, si.ng)) / (woNg * wiNs);
+        beta =
+            beta * bs->weight() * (shadingCorrection * adjointRefraction(shading.bsdf, wo, bs->wi));
+        if (beta == Vec3(0)) return;
+        // Russian roulette once the light has dimmed.
+        const double survive = maxComponent(beta) / maxComponent(emitted->beta / pChoice);
+        if (casters >= 2 && survive < 1) {
+            if (rng.uniform() >= survive) return;
+            beta = beta / survive;
+        }
+        ray = spawnRayOffSurface(si.p, si.ng, next, offset);
+    }
+}
+
+void CausticPass::connect(const SurfaceInteraction& si, const Vec3& toLight, const Vec3& beta,
+                          std::vector<Splat>& out) const {
+    const Camera& camera = *camera_;
+    const Vec3 toEye = camera.eye() - si.p;
+    const double distance = length(toEye);
+    if (!(distance > 0)) return;
+    const Vec3 wc = toEye / distance;
+    const Material& m = scene_.materials[si.material];
+    // A single-sided glTF surface is not seen from behind (Scene::intersect's culling).
+    if (m.pbr != 0 && !scene_.pbr(m.pbr).doubleSided && dot(wc, si.ng) < 0) return;
+    const std::optional<Camera::Projection> proj = camera.project(si.p);
+    if (!proj) return;
+    const double x = proj->x, y = proj->y;
+    const int x0 = std::max(0, static_cast<int>(std::floor(x - 0.5 - filterRadius_)));
+    const int x1 = std::min(scene_.width - 1, static_cast<int>(std::ceil(x - 0.5 + filterRadius_)));
+    const int y0 = std::max(0, static_cast<int>(std::floor(y - 0.5 - filterRadius_)));
+    const int y1 =
+        std::min(scene_.height - 1, static_cast<int>(std::ceil(y - 0.5 + filterRadius_)));
+    if (x0 > x1 || y0 > y1) return;
+    // The surface's BSDF as the camera's path would see it there.
+    const SurfaceShading shading = shadeSurface(scene_, si, wc, bsdfs_);
+    const bool flip = dot(shading.normal, si.ng) < 0;
+    const Frame frame(flip ? -shading.normal : shading.normal);
+    const Vec3 wo = frame.toLocal(wc), wi = frame.toLocal(toLight);
+    if (!(dot(toLight, si.ng) * wi.z > 0)) return;  // as the path tracer's light samples
+    const Vec3 f = shading.bsdf.eval(wo, wi);
+    if (f == Vec3(0)) return;
+    const double wiNg = std::abs(dot(toLight, si.ng));
+    if (!(wiNg > 0)) return;
+    if (scene_.occluded(shadowRayOffSurface(si.p, si.ng, wc, distance, scene_.spawnOffset())))
+        return;
+    const Vec3 value = finiteRadiance(
+        beta * f * (std::abs(wi.z) / wiNg * std::abs(dot(wc, si.ng)) * proj->importance));
+    const double norm = filterNorm_ * filterNorm_;
+    for (int py = y0; py <= y1; ++py)
+        for (int px = x0; px <= x1; ++px) {
+            const double w = filter_.profile(x - (px + 0.5)) * filter_.profile(y - (py + 0.5));
+            if (!(w > 0)) continue;
+            out.push_back({static_cast<uint32_t>(py * scene_.width + px), value * (w / norm)});
+        }
+}
+
+}  // namespace glint
