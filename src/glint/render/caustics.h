@@ -15,7 +15,7 @@
 /// tracer leaves them out (path.cpp), and every other path is the path tracer's. Emissive
 /// planes, which the light sampler does not sample, stay the path tracer's.
 ///
-/// Each camera sample index of a render stands for one light path per pixel of the image: a
+/// Each camera sample index of a render stands for one light path per 4 pixels of the image: a
 /// light is chosen (by about the power it sends towards the casters), then a point on it, and
 /// a direction into the bounding sphere of the casters (light that misses them is no caustic).
 /// The path follows casters by their BSDFs (importance transport: no radiance scaling at
