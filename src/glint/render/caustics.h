@@ -8,12 +8,15 @@
 /// the same light arrives evenly (pbrt's light tracing, the s = k, t = 1 strategies of
 /// bidirectional path tracing).
 ///
-/// The two share the work by splitting path space, so that each path is counted once and the
-/// image stays unbiased: paths camera -> D -> X1 ... Xk -> light, D the surface the camera
-/// sees (not a caster, and left through its non-delta part), X1 ... Xk (k >= 1) surfaces that
-/// cast caustics (castsCaustics(): mirrors, smooth glass and metal), are this pass's; the path
-/// tracer leaves them out (path.cpp), and every other path is the path tracer's. Emissive
-/// planes, which the light sampler does not sample, stay the path tracer's.
+/// The two share the work by splitting path space, so that each path is counted once: paths
+/// camera -> D -> X1 ... Xk -> light, D a surface that is not a caster left through its
+/// non-delta part, X1 ... Xk (k >= 1) surfaces that cast caustics (castsCaustics(): mirrors,
+/// glass and metal, smooth or glossy), are this pass's when the camera sees D directly (the
+/// light path is joined to the eye: unbiased) or through casters alone (the light path leaves
+/// a photon at D, which the camera's path gathers within a radius: Jensen's caustic photon
+/// map, biased, its radius shrinking with the samples so that it converges). The path tracer
+/// leaves both out (path.cpp), and every other path is its own. Emissive planes, which the
+/// light sampler does not sample, stay the path tracer's.
 ///
 /// Each camera sample index of a render stands for one light path per 4 pixels of the image: a
 /// light is chosen (by about the power it sends towards the casters), then a point on it, and
@@ -34,6 +37,7 @@
 #include <vector>
 
 #include "glint/render/filter.h"
+#include "glint/render/light_pass.h"
 #include "glint/render/light_sampler.h"
 #include "glint/render/surface_shading.h"
 #include "glint/scene/camera.h"
@@ -54,10 +58,11 @@ class CausticPass {
     bool caster(uint32_t id) const { return casters_[id] != 0; }
 
     /// The light of camera sample indices [begin, end): for each pixel of the image (row by
-    /// row, scene width x height), the sum over those indices of its estimate. `seed` is the
-    /// render's. Stops early (returning what it has) when `cancel` becomes true.
-    std::vector<Vec3> trace(int begin, int end, uint64_t seed, ThreadPool& pool,
-                            const std::atomic<bool>* cancel = nullptr) const;
+    /// row, scene width x height), the sum over those indices of its estimate, and the photons
+    /// those light paths left on surfaces past casters. `seed` is the render's. Stops early
+    /// (returning what it has) when `cancel` becomes true.
+    LightPassResult trace(int begin, int end, uint64_t seed, ThreadPool& pool,
+                          const std::atomic<bool>* cancel = nullptr) const;
 
   private:
     struct Splat {
@@ -65,8 +70,9 @@ class CausticPass {
         Vec3 value;
     };
     /// Traces one light path drawn from `seed`, appending its splats (not yet divided by the
-    /// number of paths).
-    void tracePath(uint64_t seed, std::vector<Splat>& out) const;
+    /// number of paths) and, if `photons` is not null, the photon it leaves.
+    void tracePath(uint64_t seed, std::vector<Splat>& out,
+                   std::vector<PhotonMap::Photon>* photons) const;
     /// Joins the surface point `si`, reached by light of throughput `beta` from direction
     /// `toLight`, to the camera.
     void connect(const SurfaceInteraction& si, const Vec3& toLight, const Vec3& beta,
@@ -82,8 +88,9 @@ class CausticPass {
     double radius_ = 0;
     double far_ =
         0;  ///< Beyond the sphere's centre, outside the scene: where light at infinity starts.
-    Distribution1D choice_;                       ///< Of the lights.
-    FilterSampler filter_;                        ///< The scene's pixel filter,
+    Distribution1D choice_;    ///< Of the lights.
+    double photonRadius_ = 0;  ///< The photons' gathering radius for a pass of one index.
+    FilterSampler filter_;     ///< The scene's pixel filter,
     double filterRadius_ = 0.5, filterNorm_ = 1;  ///< its radius and integral over one axis.
 };
 

@@ -13,6 +13,7 @@
 
 #include "glint/math/rng.h"
 #include "glint/render/film.h"
+#include "glint/render/light_pass.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
@@ -50,6 +51,8 @@ struct PathContext {
     /// Where the integrator reports the sample's render passes (film.h: albedo, normal and
     /// depth); null when no pass is asked for.
     SamplePasses* passes = nullptr;
+    /// The integrator's light pass for this render (Integrator::lightPass), if it made one.
+    const LightPassResult* lightPass = nullptr;
 };
 
 /// `c` if every channel is finite and within +-kMaxRadiance (scene/light.h); otherwise `c`
@@ -82,13 +85,13 @@ class Integrator {
     virtual bool usesRandomNumbers() const = 0;
 
     /// Light this integrator leaves to a pass over the whole image of its own (the path
-    /// tracer's caustics, render/caustics.h): for each pixel of the scene's image (row by row),
-    /// the sum over camera sample indices [begin, end) of its estimate, which the renderer adds
-    /// to the pixel's sum of samples; null if it leaves nothing. `seed` is the render's seed;
-    /// `pool` the threads to trace on; it stops early if `cancel` becomes true. May be called
-    /// from several threads at once, and keeps recent results for calls that ask again (a
-    /// frame rendered in many small parts).
-    virtual std::shared_ptr<const std::vector<Vec3>> lightPass(
+    /// tracer's caustics, render/caustics.h), for camera sample indices [begin, end): light
+    /// for the renderer to add to each pixel's sum of samples, and photons for li() to gather
+    /// (PathContext::lightPass); null if it leaves nothing. `seed` is the render's seed; `pool`
+    /// the threads to trace on; it stops early if `cancel` becomes true. May be called from
+    /// several threads at once, and keeps recent results for calls that ask again (a frame
+    /// rendered in many small parts).
+    virtual std::shared_ptr<const LightPassResult> lightPass(
         int begin, int end, uint64_t seed, ThreadPool& pool,
         const std::atomic<bool>* cancel) const {
         (void)begin, (void)end, (void)seed, (void)pool, (void)cancel;

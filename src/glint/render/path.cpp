@@ -73,25 +73,26 @@ PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
     }
 }
 
-std::shared_ptr<const std::vector<Vec3>> PathIntegrator::lightPass(
+std::shared_ptr<const LightPassResult> PathIntegrator::lightPass(
     int begin, int end, uint64_t seed, ThreadPool& pool, const std::atomic<bool>* cancel) const {
     if (!caustics_ || begin >= end) return nullptr;
     // One pass at a time: a frame rendered in parts on many threads (glint-mpi) asks for the
     // same one from each, and the first computes it while the others wait.
     std::lock_guard lock(passMutex_);
     for (const PassResult& r : passes_)
-        if (r.begin == begin && r.end == end && r.seed == seed) return r.image;
-    auto image =
-        std::make_shared<const std::vector<Vec3>>(caustics_->trace(begin, end, seed, pool, cancel));
-    if (cancel && cancel->load()) return image;  // cut short: not kept
+        if (r.begin == begin && r.end == end && r.seed == seed) return r.result;
+    auto result =
+        std::make_shared<const LightPassResult>(caustics_->trace(begin, end, seed, pool, cancel));
+    if (cancel && cancel->load()) return result;  // cut short: not kept
     // Kept for calls with the same seed (the rounds of an adaptive render's parts ask in
     // turn; a new seed is a new render, or a progressive render's next pass), up to 256 MB.
     std::erase_if(passes_, [&](const PassResult& r) { return r.seed != seed; });
-    const size_t bytes = image->size() * sizeof(Vec3) + 1;
+    const size_t bytes = result->image.size() * sizeof(Vec3) +
+                         result->photons.size() * sizeof(PhotonMap::Photon) + 1;
     const size_t keep = std::max<size_t>(1, (size_t{256} << 20) / bytes);
     if (passes_.size() >= keep) passes_.erase(passes_.begin());
-    passes_.push_back({begin, end, seed, image});
-    return image;
+    passes_.push_back({begin, end, seed, result});
+    return result;
 }
 
 Vec3 PathIntegrator::clamped(const Vec3& light, int bounces) const {
@@ -130,6 +131,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     // With the light pass on (caustics.h): -1 once the path is not one it traces, else the
     // casters met since the surface the camera sees, which left through its non-delta part.
     int castersSinceSeen = -1;
+    bool throughCasters = true;  // every surface so far casts caustics
 
     for (int depth = 0;; ++depth) {
         // A shadow catcher is seen by camera rays and their specular continuations only.
@@ -187,6 +189,10 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const bool leftToPass =
             castersSinceSeen > 0 && hit.primId < scene_.primitives.boundedCount();
         if (castersSinceSeen >= 0) castersSinceSeen = caster ? castersSinceSeen + 1 : -1;
+        // The surface the camera sees, directly or through casters alone: the light pass
+        // brings the light that reaches it through casters.
+        const bool seenHere = caustics_ && throughCasters && !caster;
+        throughCasters = throughCasters && caster;
 
         // Light the surface emits towards the path.
         if (!(emission == Vec3(0)) && (!m.frontEmissionOnly || dot(ray.dir, si.ng) < 0) &&
@@ -210,6 +216,20 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         auto consistent = [&](const Vec3& wWorld, const Vec3& wLocal) {
             return dot(wWorld, si.ng) * wLocal.z > 0;
         };
+
+        // Seen through casters: the light that reaches it through casters is the photons'
+        // (the light pass's splats bring it where the camera sees the surface directly).
+        if (seenHere && depth > 0 && ctx.lightPass && depth < scene_.maxDepth) [[unlikely]] {
+            const uint32_t most = static_cast<uint32_t>(scene_.maxDepth - 1 - depth);
+            const Vec3 gathered =
+                ctx.lightPass->photons.gather(si.p, si.ng, most, [&](const Vec3& wi) {
+                    const Vec3 w = frame.toLocal(wi);
+                    const double cosG = std::abs(dot(wi, si.ng));
+                    if (!consistent(wi, w) || !(cosG > 1e-6)) return Vec3(0);
+                    return bsdf.eval(wo, w) * (std::abs(w.z) / cosG);
+                });
+            L += clamped(beta * gathered, depth + 2);
+        }
 
         // Next-event estimation: one light sample, weighted against the BSDF's density.
         // Three pairs of dimensions per bounce: (light, lobe), the point on the light, the
@@ -250,7 +270,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         if (passes) passTint = passTint * min(bs->weight(), Vec3(1));
         if (beta == Vec3(0)) break;
         specularBounce = bs->isSpecular();
-        if (depth == 0 && caustics_ && !caster && !specularBounce) castersSinceSeen = 0;
+        if (seenHere && !specularBounce) castersSinceSeen = 0;
         bsdfPdf = bs->pdf;
         from = si.p;
         fromN = receiver;

@@ -34,7 +34,7 @@ class PathIntegrator final : public Integrator {
     bool usesRandomNumbers() const override { return true; }
     /// The caustics traced from the lights (caustics.h), when the scene asks for them
     /// (Scene::caustics, with the Mis strategy) and has any.
-    std::shared_ptr<const std::vector<Vec3>> lightPass(
+    std::shared_ptr<const LightPassResult> lightPass(
         int begin, int end, uint64_t seed, ThreadPool& pool,
         const std::atomic<bool>* cancel) const override;
 
@@ -58,7 +58,7 @@ class PathIntegrator final : public Integrator {
     struct PassResult {
         int begin, end;
         uint64_t seed;
-        std::shared_ptr<const std::vector<Vec3>> image;
+        std::shared_ptr<const LightPassResult> result;
     };
     mutable std::mutex passMutex_;
     mutable std::vector<PassResult> passes_;

@@ -107,7 +107,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     };
     // Light the integrator traces in a pass of its own, for the whole image (the path
     // tracer's caustics): each pixel's sum over this render's samples, added to its own.
-    std::shared_ptr<const std::vector<Vec3>> lightPass;
+    std::shared_ptr<const LightPassResult> lightPass;
     auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
                            RayCounts& counts) {
         samples.clear();
@@ -165,6 +165,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 PathContext ctx{s.rng, counts};
                 ctx.pixelSeed = s.pixelSeed;
                 ctx.sampleIndex = s.index;
+                ctx.lightPass = lightPass.get();
                 if (!passes) {
                     sum[s.pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
                     continue;
@@ -182,7 +183,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 if (lightPass) {
                     // Its mean per sample joins each sample's value, in the squares too (the
                     // variance is the camera samples' own).
-                    const Vec3 c = (*lightPass)[static_cast<size_t>(by + y) * scene.width + bx + x];
+                    const Vec3 c =
+                        lightPass->image[static_cast<size_t>(by + y) * scene.width + bx + x];
                     if (passes) {
                         const Vec3 mean = c * (1 / rendered);
                         passSums[y * 4 + x].squares += (s * 2.0 + c) * mean;

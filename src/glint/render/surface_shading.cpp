@@ -24,8 +24,11 @@ Vec3 facingViewer(const Vec3& n, const Vec3& ng, const Vec3& wo) {
     return wo * kLift + across * (std::sqrt(1 - kLift * kLift) / len);
 }
 
-/// GGX alpha below which a surface counts as smooth enough to cast caustics.
-constexpr double kCausticAlpha = 0.01;
+/// GGX alpha below which a surface counts as smooth enough to cast caustics: sharp enough that
+/// light traced from a small light through it lands in a small area, where the camera's paths
+/// find it as fireflies (the bench's metal ball, alpha 0.04, measured 13x the relMSE efficiency
+/// with the pass).
+constexpr double kCausticAlpha = 0.1;
 
 }  // namespace
 

@@ -34,11 +34,11 @@ Vec3 volumeTransmittance(const Scene& scene, const SurfaceInteraction& si, const
 /// Whether every lobe of `bsdf` is a delta: no light sample can meet it.
 bool specularOnly(const Bsdf& bsdf);
 
-/// Whether surfaces of material `m` cast caustics: mirrors, smooth glass and smooth metal or
-/// glass glTF materials (GGX alpha below 0.01 and at most 1% diffuse), judged by the material's
-/// own factors (not its textures) so that the answer is the same at every point of it. Light
-/// that reaches a camera-seen surface through such surfaces alone is left to the light pass
-/// (caustics.h) by the path tracer.
+/// Whether surfaces of material `m` cast caustics: mirrors, glass, metal and glTF metal or
+/// glass that are smooth or glossy (GGX alpha below 0.1, a glTF roughness below 0.32; at most
+/// 1% diffuse), judged by the material's own factors (not its textures) so that the answer is
+/// the same at every point of it. Light that reaches a camera-seen surface through such
+/// surfaces alone is left to the light pass (caustics.h) by the path tracer.
 bool castsCaustics(const Scene& scene, const Material& m);
 
 }  // namespace glint

@@ -177,19 +177,21 @@ TEST(CausticPass, IsIndependentOfThreadsAndAddsUpOverSampleRanges) {
     PathIntegrator other(scene);  // no kept results
     const auto b = other.lightPass(0, 3, 11, two, nullptr);
     ASSERT_TRUE(a && b);
-    EXPECT_EQ(*a, *b);
+    EXPECT_EQ(a->image, b->image);
+    EXPECT_EQ(a->photons.size(), b->photons.size());
+    EXPECT_GT(a->photons.size(), 0u);
     const auto first = other.lightPass(0, 1, 11, two, nullptr);
     const auto rest = other.lightPass(1, 3, 11, two, nullptr);
     double total = 0;
-    for (size_t i = 0; i < a->size(); ++i) {
-        const Vec3 sum = (*first)[i] + (*rest)[i];
-        EXPECT_NEAR(sum.x, (*a)[i].x, 1e-9 * (1 + std::abs(sum.x)));
-        total += (*a)[i].x;
+    for (size_t i = 0; i < a->image.size(); ++i) {
+        const Vec3 sum = first->image[i] + rest->image[i];
+        EXPECT_NEAR(sum.x, a->image[i].x, 1e-9 * (1 + std::abs(sum.x)));
+        total += a->image[i].x;
     }
     EXPECT_GT(total, 0);
     // A different seed is a different pass.
     const auto c = other.lightPass(0, 3, 12, two, nullptr);
-    EXPECT_NE(*a, *c);
+    EXPECT_NE(a->image, c->image);
 }
 
 // Nothing to do, and nothing left out of the camera's paths: no caster, or a lens, or off.
