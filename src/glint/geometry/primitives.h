@@ -192,6 +192,8 @@ class Primitives {
     }
     /// The float search record of plane `id` (boundedCount() <= id < size()).
     const PlaneSearch& planeSearch(uint32_t id) const { return planeSearch_[id - boundedCount()]; }
+    /// Plane `id` (boundedCount() <= id < size()).
+    const Plane& plane(uint32_t id) const { return planes_[id - boundedCount()]; }
 
     /// The texture coordinates and extras (not the position or normals) of triangle `id`
     /// (< triangleCount()) at barycentrics (b1, b2) of its second and third vertices: what a

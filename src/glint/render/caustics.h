@@ -15,8 +15,7 @@
 /// light path is joined to the eye: unbiased) or through casters alone (the light path leaves
 /// a photon at D, which the camera's path gathers within a radius: Jensen's caustic photon
 /// map, biased, its radius shrinking with the samples so that it converges). The path tracer
-/// leaves both out (path.cpp), and every other path is its own. Emissive planes, which the
-/// light sampler does not sample, stay the path tracer's.
+/// leaves both out (path.cpp), and every other path is its own.
 ///
 /// Each camera sample index of a render stands for one light path per 4 pixels of the image: a
 /// light is chosen (by about the power it sends towards the casters), then a point on it, and

@@ -195,6 +195,21 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
         addBounded(e, LightBounds::surface(lo, hi, phi, normal, !e.frontOnly));
     }
 
+    // Emissive planes: radiance L over a half-space of directions gives pi L at any distance.
+    for (uint32_t id = boundedCount; id < prims.size(); ++id) {
+        const Material& m = scene.materials[prims.materialOf(id)];
+        if (!(brightness(m.emission) > 0)) continue;
+        const Plane& plane = prims.plane(id);
+        Entry e{Kind::Plane, id, m.frontEmissionOnly};
+        e.emission = m.emission;
+        e.c = plane.point;
+        e.n = plane.normal;
+        if (lightOfPrimitive_.size() < prims.size())
+            lightOfPrimitive_.resize(prims.size(), UINT32_MAX);
+        lightOfPrimitive_[id] = static_cast<uint32_t>(lights_.size());
+        addInfinite(e, kPi * kPi * brightness(m.emission));
+    }
+
     // The environment map, or the background if it is not black: its mean radiance L gives
     // pi L from a hemisphere.
     const double meanRadiance =
@@ -203,11 +218,29 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     if (meanRadiance > 0) {
         environment_ = static_cast<uint32_t>(lights_.size());
         addInfinite({Kind::Environment, 0}, kPi * kPi * meanRadiance);
+        if (scene.environment) passShareOfMap(*scene.environment);
     }
 
     tree_ = LightTree(bounded);
     treeLeafOf_.assign(lights_.size(), UINT32_MAX);
     for (uint32_t k = 0; k < lightOfTreeLeaf_.size(); ++k) treeLeafOf_[lightOfTreeLeaf_[k]] = k;
+}
+
+void LightSampler::passShareOfMap(const EnvironmentMap& map) {
+    // Several times the mean: a sun's disc or a lamp's, not a bright sky.
+    constexpr double kAboveMean = 4;
+    passThreshold_ = kAboveMean * luminance(map.averageRadiance());
+    double above = 0, all = 0;
+    for (int y = 0; y < map.height(); ++y) {
+        // Texels of a row subtend the same solid angle, in proportion to the sine there.
+        const double sinTheta = std::sin(kPi * (y + 0.5) / map.height());
+        for (int x = 0; x < map.width(); ++x) {
+            const double l = luminance(map.texel(x, y) * map.scale()) * sinTheta;
+            all += l;
+            if (l > passThreshold_ * sinTheta) above += l;
+        }
+    }
+    passShare_ = all > 0 ? above / all : 0;
 }
 
 double LightSampler::pInfinite(const Vec3& p, const Vec3& n) const {
@@ -238,8 +271,12 @@ std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, do
         index = lightOfTreeLeaf_[c->light];
         choice = (1 - pInf) * c->probability;
     }
-    std::optional<LightSample> s = sampleEntry(lights_[index], p, u);
-    if (s) s->pdf *= choice;
+    const Entry& e = lights_[index];
+    std::optional<LightSample> s = sampleEntry(e, p, u);
+    if (!s) return s;
+    s->pdf *= choice;
+    s->leftToPass =
+        e.kind == Kind::Environment ? environmentLeftToPass(s->L) : e.kind != Kind::Plane;
     return s;
 }
 
@@ -259,6 +296,16 @@ std::optional<LightSample> LightSampler::sampleEntry(const Entry& e, const Vec3&
             std::optional<LightLiSample> ls = scene_.lights[e.index].sampleLi(p, u);
             if (!ls) return std::nullopt;
             return LightSample{ls->wi, ls->L, 1, ls->distance, true};
+        }
+        case Kind::Plane: {
+            // Cosine-weighted about the normal, over the directions that meet the plane.
+            const double side = dot(p - e.c, e.n);
+            if (side == 0 || (e.frontOnly && side < 0)) return std::nullopt;
+            const Frame frame(side > 0 ? -e.n : e.n);
+            const Vec3 local = sampleCosineHemisphere(u);
+            if (!(local.z > 0)) return std::nullopt;
+            const Vec3 wi = normalize(frame.toWorld(local));
+            return LightSample{wi, e.emission, local.z / kPi, std::abs(side) / local.z, false};
         }
         case Kind::Environment: {
             if (scene_.environment) {
@@ -389,6 +436,12 @@ double LightSampler::pdfHit(const Vec3& from, const Vec3& fromN, const Hit& hit,
     if (index == UINT32_MAX) return 0;
     const Entry& e = lights_[index];
     const Primitives& prims = scene_.primitives;
+    if (e.kind == Kind::Plane) {
+        const double side = dot(from - e.c, e.n);
+        if (side == 0 || (e.frontOnly && side < 0)) return 0;
+        const double cosPlane = std::abs(dot(normalize(si.p - from), e.n));
+        return choiceProbability(index, from, fromN) * cosPlane / kPi;
+    }
     double pdfArea = e.pdfArea;
     if (e.kind == Kind::Triangle)
         if (const double solidAngle = sphericalTriangle(e, from).solidAngle; solidAngle > 0)
@@ -468,7 +521,10 @@ std::vector<double> LightSampler::emissionWeights(const Vec3& center, double rad
     for (size_t i = 0; i < lights_.size(); ++i) {
         const Entry& e = lights_[i];
         if (treeLeafOf_[i] == UINT32_MAX) {  // at infinity: weight / pi is its irradiance
-            w[i] = e.weight * radius * radius;
+            const double share = e.kind == Kind::Environment ? passShare_
+                                 : e.kind == Kind::Plane     ? 0
+                                                             : 1;
+            w[i] = e.weight * share * radius * radius;
             continue;
         }
         w[i] =
@@ -496,14 +552,14 @@ std::optional<EmittedRay> LightSampler::emit(size_t index, const Vec3& center, d
             return acrossDisc(l.direction, l.color, 1);
         }
         case Kind::Environment: {
-            if (scene_.environment) {
-                std::optional<EnvironmentMap::Sample> s = scene_.environment->sample(uDir);
-                if (!s || !(s->pdf > 0)) return std::nullopt;
-                return acrossDisc(s->wi, s->L, s->pdf);
-            }
-            const Vec3 wi = sampleUniformSphere(uDir);
-            return acrossDisc(wi, environment(wi), 1 / (4 * kPi));
+            // Its bright parts only (environmentLeftToPass); a plain background not at all.
+            if (!scene_.environment) return std::nullopt;
+            std::optional<EnvironmentMap::Sample> s = scene_.environment->sample(uDir);
+            if (!s || !(s->pdf > 0) || !environmentLeftToPass(s->L)) return std::nullopt;
+            return acrossDisc(s->wi, s->L, s->pdf);
         }
+        case Kind::Plane:  // large: the camera's paths' (environmentLeftToPass)
+            return std::nullopt;
         case Kind::Point: {
             const Light& l = scene_.lights[e.index];
             const auto [dir, pdf] = sampleTowardsSphere(l.position, center, radius, uDir);

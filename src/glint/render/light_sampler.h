@@ -15,10 +15,10 @@
 /// the others through the light tree (render/light_tree.h, pbrt-v4's BVHLightSampler), by its
 /// power, distance and orientation as seen from the shading point and its normal.
 ///
-/// Not sampled (reached only by rays a BSDF draws): emissive planes, which are infinite.
-/// pdfHit() is 0 for them, so an integrator weighting by multiple importance sampling counts
-/// them in full. Emissive triangles that instances place are sampled as the scene's own, each
-/// placement a light of its own.
+/// Emissive planes, which are infinite, are lights at infinity beside the environment (each
+/// gives a point in front of it pi L, whatever the distance), sampled by the cosine about their
+/// normal over the half of the directions that meet them. Emissive triangles that instances
+/// place are sampled as the scene's own, each placement a light of its own.
 
 #include <cstdint>
 #include <optional>
@@ -40,6 +40,9 @@ struct LightSample {
     double pdf = 0;
     double distance = 0;  ///< To the point on the light; infinity for distant lights.
     bool delta = false;   ///< A point or directional light: no BSDF sample can reach it.
+    /// Whether the light pass (render/caustics.h) traces light from here: every light but the
+    /// emissive planes, the background and the dim parts of an environment map (leftToPass()).
+    bool leftToPass = false;
 };
 
 /// A ray leaving a light, for tracing light from it (render/caustics.h).
@@ -86,6 +89,14 @@ class LightSampler {
     /// environment(dir) and pdfEnvironment(dir, from, fromN) together, the map looked up once.
     Vec3 environment(const Vec3& dir, const Vec3& from, const Vec3& fromN, double* pdf) const;
 
+    /// Whether the light pass traces the light of an environment map's direction of radiance
+    /// `radiance`: where the map is much brighter than its mean (the sun, lamps in the map), a
+    /// small light that paths through glass hardly find; the rest of the sky, like the emissive
+    /// planes and the plain background, is large, and the camera's paths find it well.
+    bool environmentLeftToPass(const Vec3& radiance) const {
+        return luminance(radiance) > passThreshold_;
+    }
+
     /// For tracing light into the sphere of centre `center` and radius `radius` (a part of the
     /// scene that holds everything of interest): a weight for each light, about the power it
     /// sends into the sphere.
@@ -99,7 +110,7 @@ class LightSampler {
                                    Point2 uPoint, Point2 uDir) const;
 
   private:
-    enum class Kind : uint8_t { Point, Directional, Triangle, Sphere, Shape, Environment };
+    enum class Kind : uint8_t { Point, Directional, Triangle, Sphere, Shape, Plane, Environment };
     struct Entry {
         Kind kind;
         uint32_t index;          ///< Into scene.lights, or a primitive id.
@@ -112,7 +123,8 @@ class LightSampler {
         /// UINT32_MAX for the scene's own.
         uint32_t sub = UINT32_MAX;
         /// Triangles: the corner c, the edges a - c and b - c, and the unit normal of
-        /// cross(b - a, c - a): a point is c + (a - c) b0 + (b - c) b1.
+        /// cross(b - a, c - a): a point is c + (a - c) b0 + (b - c) b1. Planes: a point c on
+        /// it and its unit normal n.
         Vec3 c{}, ca{}, cb{}, n{};
         /// Spheres placed by a similarity (a round sphere in the world): its world centre and
         /// radius, and it is sampled by its cone of directions from outside; radius 0: by area.
@@ -143,6 +155,8 @@ class LightSampler {
 
     const Scene& scene_;
     std::vector<Entry> lights_;
+    /// Sets passThreshold_ and passShare_ for the environment map.
+    void passShareOfMap(const EnvironmentMap& map);
     /// The probability of choosing one of the lights at infinity at `p`, `n`.
     double pInfinite(const Vec3& p, const Vec3& n) const;
 
@@ -158,6 +172,9 @@ class LightSampler {
     /// triangle in the mesh).
     std::unordered_map<uint64_t, uint32_t> lightOfInstanced_;
     uint32_t environment_ = UINT32_MAX;  ///< Index of the environment light, if any.
+    /// environmentLeftToPass's luminance (infinite without a map), and the share of the map's
+    /// power above it.
+    double passThreshold_ = kInfinity, passShare_ = 0;
 };
 
 }  // namespace glint

@@ -153,14 +153,18 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         if (!found) {
             // Seen by the camera or through a mirror it counts in full: no density is needed.
             Vec3 light(0);
-            if (castersSinceSeen > 0) {
-                // The light pass's path: nothing here.
-            } else if (depth == 0 || specularBounce) {
-                light = beta * lights_.environment(ray.dir);
+            // Its bright parts, found through casters from a seen surface: the light pass's.
+            auto passTraces = [&](const Vec3& le) {
+                return castersSinceSeen > 0 && lights_.environmentLeftToPass(le);
+            };
+            if (depth == 0 || specularBounce) {
+                const Vec3 le = lights_.environment(ray.dir);
+                if (!passTraces(le)) light = beta * le;
             } else {
                 double lightPdf = 0;
                 const Vec3 le = lights_.environment(ray.dir, from, fromN, &lightPdf);
-                if (!(le == Vec3(0))) light = beta * le * bsdfWeight(bsdfPdf, lightPdf);
+                if (!(le == Vec3(0)) && !passTraces(le))
+                    light = beta * le * bsdfWeight(bsdfPdf, lightPdf);
             }
             L += clamped(light, depth);  // light found at depth d came through d bounces
             break;
@@ -183,8 +187,8 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
 
-        // Whether the path is still one the light pass traces (any light it meets through
-        // casters alone but an emissive plane, which the pass does not sample).
+        // Whether the path is one the light pass traces (any light it meets through casters
+        // but an emissive plane, LightSample::leftToPass).
         const bool caster = caustics_ && caustics_->caster(si.material);
         const bool leftToPass =
             castersSinceSeen > 0 && hit.primId < scene_.primitives.boundedCount();
@@ -238,10 +242,12 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const double uLight = uChoices.x;
         const Point2 uLightPoint = sampler.get2D();
         const Vec3 receiver = receivingNormal(bsdf, si.ng);
-        if (!lights_.empty() && !specularOnly(bsdf) && castersSinceSeen <= 0) {
+        if (!lights_.empty() && !specularOnly(bsdf)) {
             std::optional<LightSample> ls = lights_.sample(si.p, receiver, uLight, uLightPoint);
             // BSDF sampling alone cannot reach delta lights: they are sampled in every mode.
-            if (ls && !(ls->L == Vec3(0)) && (ls->delta || strategy_ != Strategy::BsdfOnly)) {
+            // Past casters from a seen surface, most lights are the light pass's.
+            if (ls && !(ls->L == Vec3(0)) && (ls->delta || strategy_ != Strategy::BsdfOnly) &&
+                !(castersSinceSeen > 0 && ls->leftToPass)) {
                 Vec3 wi = frame.toLocal(ls->wi);
                 if (!consistent(ls->wi, wi)) wi = Vec3(0);
                 Vec3 f = bsdf.eval(wo, wi) * std::abs(wi.z);

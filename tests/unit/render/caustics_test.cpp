@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "glint/core/parallel.h"
+#include "glint/math/mat4.h"
 #include "glint/render/path.h"
 #include "glint/render/renderer.h"
 
@@ -100,8 +103,9 @@ TEST(CausticPass, AMirrorSendsDownThePointLightOfItsImage) {
 }
 
 /// A diffuse floor, a glass ball above it and a small round lamp above that, which the ball
-/// focuses onto the floor.
-void glassBallScene(Scene& scene) {
+/// focuses onto the floor; with `skyPlane`, under an emissive ceiling plane too; with
+/// `sunAndSky`, without the lamp, under an environment map of a blue sky and a small sun.
+void glassBallScene(Scene& scene, bool skyPlane = false, bool sunAndSky = false) {
     scene.integrator = "path";
     scene.maxDepth = 6;
     scene.width = scene.height = 20;
@@ -124,7 +128,27 @@ void glassBallScene(Scene& scene) {
     Sphere bulb;
     bulb.center = Vec3(0.2, 3, -0.2);
     bulb.radius = 0.25;
-    scene.primitives.addSphere(bulb, lm);
+    if (!sunAndSky) scene.primitives.addSphere(bulb, lm);
+    if (sunAndSky) {
+        const int w = 64, h = 32;
+        std::vector<float> rgb(static_cast<size_t>(w) * h * 3);
+        for (size_t i = 0; i < rgb.size(); i += 3) {
+            rgb[i] = 0.3f;
+            rgb[i + 1] = 0.4f;
+            rgb[i + 2] = 0.6f;
+        }
+        for (int x = 40; x < 42; ++x)  // the sun: 2 x 2 texels 40 degrees up
+            for (int y = 10; y < 12; ++y)
+                for (int c = 0; c < 3; ++c) rgb[(static_cast<size_t>(y) * w + x) * 3 + c] = 2000;
+        scene.environment = std::make_shared<const EnvironmentMap>(w, h, std::move(rgb));
+    }
+    if (skyPlane) {
+        Material sky;
+        sky.emission = Vec3(0.5, 0.7, 1.0);
+        const std::optional<Plane> ceiling =
+            Plane::make({0, 4, 0}, {0, -1, 0}, *Transform::fromMatrix(Mat4()));
+        scene.primitives.addPlane(*ceiling, scene.addMaterial(sky));
+    }
     scene.prepare();
 }
 
@@ -163,6 +187,43 @@ TEST(CausticPass, TheSplitImageAgreesWithThePathTracerAlone) {
         if (++counted == 16) break;
     }
     EXPECT_GT(a / 16, 2 * meanOf(with)) << "no caustic found";
+    EXPECT_NEAR(a, b, 0.06 * b);
+}
+
+// Under an emissive plane (a light at infinity that the pass emits from where its lines meet
+// the plane), the split image agrees with the path tracer alone too.
+TEST(CausticPass, AgreesWithThePathTracerUnderAnEmissivePlane) {
+    Scene scene;
+    glassBallScene(scene, true);
+    const Film with = render(scene, options(256)).film;
+    scene.caustics = false;
+    const Film without = render(scene, options(1024)).film;
+    EXPECT_NEAR(meanOf(with), meanOf(without), 0.02 * meanOf(without));
+}
+
+// Under an environment map with a sun: the pass traces the sun (texels far brighter than the
+// map's mean), the camera's paths the sky; the split image agrees with the path tracer alone,
+// over the image and over the ball's caustic.
+TEST(CausticPass, AgreesWithThePathTracerUnderASkyWithASun) {
+    Scene scene;
+    glassBallScene(scene, false, true);
+    RenderOptions pick = options(256);
+    pick.seed = 99;
+    const Film chooser = render(scene, pick).film;
+    const Film with = render(scene, options(512)).film;
+    scene.caustics = false;
+    const Film without = render(scene, options(4096)).film;
+    EXPECT_NEAR(meanOf(with), meanOf(without), 0.02 * meanOf(without));
+    std::vector<std::pair<double, int>> order;
+    for (int i = 0; i < scene.width * scene.height; ++i)
+        order.push_back({chooser.at(i % scene.width, i / scene.width).x, i});
+    std::sort(order.rbegin(), order.rend());
+    double a = 0, b = 0;
+    for (int k = 0; k < 16; ++k) {
+        const int i = order[static_cast<size_t>(k)].second;
+        a += with.at(i % scene.width, i / scene.width).x;
+        b += without.at(i % scene.width, i / scene.width).x;
+    }
     EXPECT_NEAR(a, b, 0.06 * b);
 }
 

@@ -132,6 +132,18 @@ TEST(LightSampler, RoundSpheresAreSampledByTheirConeCoveringTheirSolidAngleOnce)
     }
 }
 
+TEST(LightSampler, EmissivePlanesCoverTheHalfOfTheDirectionsThatMeetThem) {
+    // Tilted, below the point: sampled by the cosine about its normal, over the directions
+    // that meet it (E[1 / pdf] is their solid angle, 2 pi, in each octant its share).
+    Scene scene;
+    const std::optional<Plane> plane =
+        Plane::make({0, -0.5, 0}, {0.2, 1, -0.3}, *Transform::fromMatrix(Mat4()));
+    ASSERT_TRUE(plane);
+    scene.primitives.addPlane(*plane, scene.addMaterial(emitter()));
+    scene.prepare();
+    checkLight(scene, {0.3, 0.4, -0.2}, 1, "plane");
+}
+
 TEST(LightSampler, TransformedShapesCoverTheirSolidAngle) {
     double k = 0;
     struct Case {
