@@ -170,6 +170,11 @@ class Session {
         s.width = std::clamp(intOr(o, "width", s.width), 1, 16384);
         s.height = std::clamp(intOr(o, "height", s.height), 1, 16384);
         s.maxDepth = std::max(0, intOr(o, "maxDepth", s.maxDepth));
+        // No light pass (the path tracer's caustics, render/caustics.h): it traces a whole
+        // pass's light paths before the pass's first tiles, longer than a step may take (the
+        // page must stay responsive and cancel within a step). The camera's paths find
+        // caustics alone, as `--caustics off` does.
+        s.caustics = false;
         if (o["integrator"].isString()) {
             std::string name = o["integrator"].as<std::string>();
             if (!findIntegrator(name)) {
@@ -196,6 +201,7 @@ class Session {
         rays_ = 0;
         seconds_ = 0;
         denoiseSeconds_ = 0;
+        denoiseRow_ = -1;
         display_ = {0, s.display.srgb, s.display.toneMap};
         r.set("width", s.width);
         r.set("height", s.height);
@@ -215,7 +221,17 @@ class Session {
         auto start = Clock::now();
         int x0 = s.width, y0 = s.height, x1 = 0, y1 = 0;
         try {
-            while (samples_ < spp_) {
+            while (samples_ < spp_ || denoiseRow_ >= 0) {
+                // A finished pass is denoised a band of rows per turn, so that a large image's
+                // denoising is heard between calls (Cancel) as a pass's tiles are.
+                if (denoiseRow_ >= 0) {
+                    denoiseBand();
+                    if (denoiseRow_ < 0) x0 = y0 = 0, x1 = s.width, y1 = s.height;
+                    if (std::chrono::duration<double, std::milli>(Clock::now() - start).count() >=
+                        milliseconds)
+                        break;
+                    continue;
+                }
                 const int passSpp =
                     progressive_ ? std::min(spp_ - samples_, std::max(1, samples_)) : spp_;
                 RenderOptions ro;
@@ -227,8 +243,8 @@ class Session {
                 ro.tileCount = batch_;
                 ro.accumulate = &sums_;  // each pixel's samples of every pass, summed
                 ro.aovs = denoise_;
-                // One integrator for the pass's batches of tiles: it keeps the light pass
-                // (the path tracer's caustics) that the first batch traces for the rest.
+                // One integrator for the pass's batches of tiles (making one collects the
+                // scene's lights and builds their tree).
                 if (!integrator_ || integratorSpp_ != passSpp) {
                     integrator_ = makeIntegrator(s, {passSpp});
                     integratorSpp_ = passSpp;
@@ -257,10 +273,7 @@ class Session {
                     next_ = 0;
                     ++pass_;
                     samples_ += passSpp;
-                    if (denoise_) {
-                        denoiseImage();
-                        x0 = y0 = 0, x1 = s.width, y1 = s.height;
-                    }
+                    if (denoise_) beginDenoising();
                 }
                 if (std::chrono::duration<double, std::milli>(Clock::now() - start).count() >=
                     milliseconds)
@@ -271,7 +284,7 @@ class Session {
             r.set("error", errorValue(e));
             return r;
         }
-        r.set("done", samples_ >= spp_);
+        r.set("done", samples_ >= spp_ && denoiseRow_ < 0);
         r.set("pass", pass_);
         r.set("samples", samples_);
         r.set("fraction",
@@ -318,12 +331,34 @@ class Session {
     /// Denoises the image of the passes so far, guided by their render passes, and shows it.
     /// Below two samples a pixel's variance is unknown: the denoiser then estimates the noise
     /// from the image.
-    void denoiseImage() {
+    /// Starts denoising the image of the passes so far (denoiseBand() does it).
+    void beginDenoising() {
         auto start = Clock::now();
-        RenderPasses aovs = sums_.resolvePasses();
-        if (samples_ < 2) aovs.variance.clear();
-        film_ = denoiseFilm(sums_.resolve(), aovs, pool_);
-        showTile(film_, 0, 0, film_.width(), film_.height());
+        toDenoise_ = sums_.resolve();
+        toDenoisePasses_ = sums_.resolvePasses();
+        if (samples_ < 2) toDenoisePasses_.variance.clear();
+        denoised_ = Film(toDenoise_.width(), toDenoise_.height());
+        denoiseRow_ = 0;
+        denoiseSeconds_ += std::chrono::duration<double>(Clock::now() - start).count();
+    }
+
+    /// Denoises the next band of rows (about 128K pixels: a tenth of a second or two here); after
+    /// the last, shows the denoised image.
+    void denoiseBand() {
+        auto start = Clock::now();
+        const int w = toDenoise_.width(), h = toDenoise_.height();
+        const int y0 = denoiseRow_, y1 = std::min(h, y0 + std::max(16, (1 << 17) / std::max(w, 1)));
+        const Film band = denoiseFilmRows(toDenoise_, toDenoisePasses_, y0, y1, pool_);
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) denoised_.at(x, y) = band.at(x, y - y0);
+        denoiseRow_ = y1;
+        if (y1 >= h) {
+            film_ = std::move(denoised_);
+            showTile(film_, 0, 0, film_.width(), film_.height());
+            toDenoise_ = denoised_ = Film();
+            toDenoisePasses_ = RenderPasses();
+            denoiseRow_ = -1;
+        }
         denoiseSeconds_ += std::chrono::duration<double>(Clock::now() - start).count();
     }
 
@@ -354,6 +389,11 @@ class Session {
     bool progressive_ = false, denoise_ = false;
     uint64_t seed_ = 0, rays_ = 0;
     double seconds_ = 0, denoiseSeconds_ = 0;
+    // A finished pass's image being denoised a band at a time: its next row (-1: none), the
+    // image and its passes, and the denoised rows so far.
+    int denoiseRow_ = -1;
+    Film toDenoise_, denoised_;
+    RenderPasses toDenoisePasses_;
 };
 
 /// What `glint SCENE -o OUTPUT -t THREADS --kernels KERNELS` does, for the Node tests: the

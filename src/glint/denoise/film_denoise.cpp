@@ -1,5 +1,8 @@
 #include "glint/denoise/film_denoise.h"
 
+#include <algorithm>
+#include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "glint/core/error.h"
@@ -24,6 +27,40 @@ Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool) {
     in.depth = pass(aovs.depth);
     in.variance = pass(aovs.variance);
     return Film(w, h, denoise(in, {&pool, 0}));
+}
+
+Film denoiseFilmRows(const Film& film, const RenderPasses& aovs, int y0, int y1, ThreadPool& pool) {
+    const int w = film.width(), h = film.height();
+    y0 = std::clamp(y0, 0, h);
+    y1 = std::clamp(y1, y0, h);
+    const int a0 = std::max(0, y0 - kDenoiseBandMargin), a1 = std::min(h, y1 + kDenoiseBandMargin);
+    // The band with its margins, film and passes alike.
+    const size_t first = static_cast<size_t>(a0) * w, count = static_cast<size_t>(a1 - a0) * w;
+    auto rows = [&](const auto& v) {
+        using V = std::decay_t<decltype(v)>;
+        if (v.empty()) return V();
+        return V(v.begin() + static_cast<std::ptrdiff_t>(first),
+                 v.begin() + static_cast<std::ptrdiff_t>(first + count));
+    };
+    Film band(w, a1 - a0);
+    for (int y = a0; y < a1; ++y)
+        for (int x = 0; x < w; ++x) band.at(x, y - a0) = film.at(x, y);
+    RenderPasses bandPasses;
+    if (!aovs.empty()) {
+        if (aovs.width != w || aovs.height != h)
+            throw RenderError("the render passes are not the image's size");
+        bandPasses.width = w;
+        bandPasses.height = a1 - a0;
+        bandPasses.albedo = rows(aovs.albedo);
+        bandPasses.normal = rows(aovs.normal);
+        bandPasses.variance = rows(aovs.variance);
+        bandPasses.depth = rows(aovs.depth);
+    }
+    const Film denoised = denoiseFilm(band, bandPasses, pool);
+    Film out(w, y1 - y0);
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) out.at(x, y - y0) = denoised.at(x, y - a0);
+    return out;
 }
 
 }  // namespace glint

@@ -12,4 +12,15 @@ namespace glint {
 /// another size.
 Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool);
 
+/// Rows a band of denoiseFilmRows() reads on either side: more than the denoiser reaches from
+/// a pixel (its passes' windows and patches, the variance's smoothing, the depth's gradient:
+/// 14 rows).
+constexpr int kDenoiseBandMargin = 24;
+
+/// Rows [y0, y1) of denoiseFilm(film, aovs, pool), as a film of the image's width and y1 - y0
+/// rows, computed from those rows and kDenoiseBandMargin more on either side: the same pixels
+/// as the whole image's, so that a large image can be denoised a band at a time (the web page,
+/// between which it hears Cancel).
+Film denoiseFilmRows(const Film& film, const RenderPasses& aovs, int y0, int y1, ThreadPool& pool);
+
 }  // namespace glint
