@@ -6,7 +6,7 @@ Radiance .hdr skies. Python's standard library only (json, struct, zlib, math).
     bench/cycles/gltf/make_assets.py OUT_DIR [NAME ...]
 
 writes into OUT_DIR (all of them, or the NAMEs: metal, dielectric, normalmap, normaltilt,
-emissive, lamps, caustic, room, sky, sky_low, sky_low_nosun, night):
+emissive, lamps, caustic, room, near, sky, sky_low, sky_low_nosun, night):
 
   metal.gltf       a UV sphere (64 x 32 segments), metallic 1, roughness 0.3, base colour from
                    a texture of coloured metal stripes (gold, copper, silver, blue, green)
@@ -540,12 +540,39 @@ def normaltilt(out):
     g.write(out)
 
 
+def near(out):
+    """(9) Near area lights: a corner of two walls and a floor, a white panel light 2 x 1 m
+    lying 0.3 m above the floor close to the back wall (facing down), a second one upright 0.25
+    m from the left wall (facing it), and a diffuse box under the first: points close to large
+    emitters, which area sampling serves badly (issue 22). Under a black sky."""
+    g = Gltf("near")
+    grey = g.material({"name": "grey", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.7, 0.7, 0.7, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    box = g.material({"name": "box", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.8, 0.5, 0.3, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
+    panel = g.material({"name": "panel", "pbrMetallicRoughness": {
+        "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
+        "emissiveFactor": [1.0, 0.95, 0.85],
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1.5}}})
+    g.mesh("floor", quad((-2.0, 0.0, -2.0), (0, 0, 4.0), (4.0, 0, 0)), grey)
+    g.mesh("back", quad((-2.0, 0.0, -2.0), (4.0, 0, 0), (0, 2.5, 0)), grey)
+    g.mesh("left", quad((-2.0, 0.0, -2.0), (0, 2.5, 0), (0, 0, 4.0)), grey)
+    # Facing down (-y), 0.3 m up; facing the left wall (-x), 0.25 m from it.
+    g.mesh("panel_low", quad((-1.0, 0.3, -1.8), (2.0, 0, 0), (0, 0, 1.0)), panel)
+    g.mesh("panel_side", quad((-1.75, 0.2, 0.0), (0, 0, 1.0), (0, 1.0, 0)), panel)
+    b0, b1 = (-0.2, 0.0, -1.4), (0.3, 0.15, -1.0)
+    g.mesh("box_top", quad((b0[0], b1[1], b0[2]), (0, 0, b1[2] - b0[2]), (b1[0] - b0[0], 0, 0)), box)
+    g.mesh("box_front", quad((b0[0], b0[1], b1[2]), (b1[0] - b0[0], 0, 0), (0, b1[1] - b0[1], 0)), box)
+    g.mesh("box_right", quad((b1[0], b0[1], b0[2]), (0, b1[1] - b0[1], 0), (0, 0, b1[2] - b0[2])), box)
+    g.write(out)
+
+
 # The cameras look along -z: sky's sun (azimuth 230 degrees) is behind the camera, to the left;
 # sky_low's (150 degrees) skims the plane from the back left.
 WRITERS = {
     "metal": metal, "dielectric": dielectric, "normalmap": normalmap,
     "normaltilt": normaltilt, "emissive": emissive, "lamps": lamps, "caustic": caustic,
-    "room": room,
+    "room": room, "near": near,
     "sky": lambda out: write_hdr(os.path.join(out, "sky.hdr"), *sky(40, 230)),
     "sky_low": lambda out: write_hdr(os.path.join(out, "sky_low.hdr"), *sky(8, 150)),
     "sky_low_nosun": lambda out: write_hdr(os.path.join(out, "sky_low_nosun.hdr"),
