@@ -544,7 +544,7 @@ def near(out):
     """(9) Near area lights: a corner of two walls and a floor, a white panel light 2 x 1 m
     lying 0.3 m above the floor close to the back wall (facing down), a second one upright 0.25
     m from the left wall (facing it), and a diffuse box under the first: points close to large
-    emitters, which area sampling serves badly (issue 22). Under a black sky."""
+    emitters, which area sampling serves badly (issue 22). Under night.hdr (the scene file)."""
     g = Gltf("near")
     grey = g.material({"name": "grey", "pbrMetallicRoughness": {
         "baseColorFactor": [0.7, 0.7, 0.7, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})

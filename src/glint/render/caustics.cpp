@@ -216,6 +216,9 @@ void CausticPass::connect(const SurfaceInteraction& si, const Vec3& toLight, con
     const std::optional<Camera::Projection> proj = camera.project(si.p);
     if (!proj) return;
     const double x = proj->x, y = proj->y;
+    const double reach = filterRadius_ + 1;  // beyond the image by more: nothing to splat
+    if (!(x > -reach && x < scene_.width + reach && y > -reach && y < scene_.height + reach))
+        return;
     const int x0 = std::max(0, static_cast<int>(std::floor(x - 0.5 - filterRadius_)));
     const int x1 = std::min(scene_.width - 1, static_cast<int>(std::ceil(x - 0.5 + filterRadius_)));
     const int y0 = std::max(0, static_cast<int>(std::floor(y - 0.5 - filterRadius_)));
@@ -257,9 +260,7 @@ PhotonMap::PhotonMap(std::vector<Photon> photons, double radius, double paths)
     mask_ = buckets - 1;
     const double inv = 1 / (2 * radius);
     auto bucketOf = [&](const Photon& ph) {
-        return bucket(static_cast<int64_t>(std::floor(ph.p.x * inv)),
-                      static_cast<int64_t>(std::floor(ph.p.y * inv)),
-                      static_cast<int64_t>(std::floor(ph.p.z * inv)));
+        return bucket(cell(ph.p.x * inv), cell(ph.p.y * inv), cell(ph.p.z * inv));
     };
     // A counting sort by bucket, stable: the order of the photons within a bucket is theirs.
     start_.assign(buckets + 1, 0);

@@ -2,6 +2,7 @@
 /// What a light pass (render/caustics.h) gives a render: light splatted into the image, and
 /// photons for the camera's paths to gather.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -41,9 +42,8 @@ class PhotonMap {
         const double r2 = radius_ * radius_;
         // The cells of side 2r holding the ball's box: two along each axis.
         const double inv = 1 / (2 * radius_);
-        const int64_t x0 = static_cast<int64_t>(std::floor((p.x - radius_) * inv));
-        const int64_t y0 = static_cast<int64_t>(std::floor((p.y - radius_) * inv));
-        const int64_t z0 = static_cast<int64_t>(std::floor((p.z - radius_) * inv));
+        const int64_t x0 = cell((p.x - radius_) * inv), y0 = cell((p.y - radius_) * inv),
+                      z0 = cell((p.z - radius_) * inv);
         for (int64_t dz = 0; dz < 2; ++dz)
             for (int64_t dy = 0; dy < 2; ++dy)
                 for (int64_t dx = 0; dx < 2; ++dx) {
@@ -57,6 +57,12 @@ class PhotonMap {
                     }
                 }
         return sum * scale_;
+    }
+
+    /// The cell of coordinate `v` (in cells), clamped far beyond any scene's so that the
+    /// conversion is defined.
+    static int64_t cell(double v) {
+        return static_cast<int64_t>(std::floor(std::clamp(v, -1e15, 1e15)));
     }
 
   private:
