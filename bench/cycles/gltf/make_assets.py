@@ -550,7 +550,9 @@ def near(out):
         "baseColorFactor": [0.7, 0.7, 0.7, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
     box = g.material({"name": "box", "pbrMetallicRoughness": {
         "baseColorFactor": [0.8, 0.5, 0.3, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}})
-    panel = g.material({"name": "panel", "pbrMetallicRoughness": {
+    # Double-sided: Cycles' mesh lights emit from both faces whatever the file says
+    # (../shared/platform-notes.md), so both renderers see both faces emit.
+    panel = g.material({"name": "panel", "doubleSided": True, "pbrMetallicRoughness": {
         "baseColorFactor": [0.0, 0.0, 0.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0},
         "emissiveFactor": [1.0, 0.95, 0.85],
         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1.5}}})
