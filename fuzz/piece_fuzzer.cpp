@@ -28,10 +28,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Back to a frame-sized FilmSums (bounded: the reader's limits), encoded and read again.
     if (static_cast<long long>(piece.info.width) * piece.info.height > (1 << 20)) return 0;
     glint::FilmSums frame(piece.info.width, piece.info.height);
+    // A piece with render passes (format 2, `--aov`) carries their sums too.
+    const bool passes = piece.info.aovs.any() && piece.sums.hasPasses();
+    if (piece.info.aovs.any() && !passes) std::abort();
+    if (passes) frame.keepPasses();
     for (int y = w.y0; y < w.y1; ++y)
         for (int x = w.x0; x < w.x1; ++x) {
             frame.sum(x, y) = piece.sums.sum(x - w.x0, y - w.y0);
             frame.weight(x, y) = piece.sums.weight(x - w.x0, y - w.y0);
+            if (passes) frame.passes(x, y) = piece.sums.passes(x - w.x0, y - w.y0);
         }
     const glint::PieceData again =
         glint::decodePiece(glint::encodePiece(piece.info, frame), "again.exr");
