@@ -145,7 +145,8 @@ void CausticPass::tracePath(uint64_t seed, std::vector<Splat>& out,
     const Point2 uPoint = u2(), uDir = u2();
     std::optional<EmittedRay> emitted = lights_.emit(light, center_, radius_, far_, uPoint, uDir);
     if (!emitted || !(pChoice > 0)) return;
-    Vec3 beta = emitted->beta / pChoice;
+    const Vec3 emittedBeta = emitted->beta / pChoice;
+    Vec3 beta = emittedBeta;
     Ray ray = emitted->ray;
     const double offset = scene_.spawnOffset();
     for (int casters = 0;; ++casters) {
@@ -194,7 +195,7 @@ void CausticPass::tracePath(uint64_t seed, std::vector<Splat>& out,
             beta * bs->weight() * (shadingCorrection * adjointRefraction(shading.bsdf, wo, bs->wi));
         if (beta == Vec3(0)) return;
         // Russian roulette once the light has dimmed.
-        const double survive = maxComponent(beta) / maxComponent(emitted->beta / pChoice);
+        const double survive = maxComponent(beta) / maxComponent(emittedBeta);
         if (casters >= 2 && survive < 1) {
             if (rng.uniform() >= survive) return;
             beta = beta / survive;

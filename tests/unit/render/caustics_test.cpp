@@ -6,6 +6,8 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "glint/core/parallel.h"
 #include "glint/math/mat4.h"
@@ -37,6 +39,25 @@ double meanOf(const Film& film) {
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) sum += film.at(x, y).x;
     return sum / (film.width() * film.height());
+}
+
+/// Over the 16 pixels that `chooser` (a render of other random numbers, so that the choice
+/// favours neither image's noise) shows brightest, leaving out those above `most` (a light seen
+/// directly): the sums of `a`'s and `b`'s red channel there.
+std::pair<double, double> brightestSums(const Film& chooser, const Film& a, const Film& b,
+                                        double most = kInfinity) {
+    const int w = chooser.width();
+    std::vector<std::pair<double, int>> order;
+    for (int i = 0; i < w * chooser.height(); ++i)
+        if (chooser.at(i % w, i / w).x <= most) order.push_back({chooser.at(i % w, i / w).x, i});
+    std::sort(order.rbegin(), order.rend());
+    double sumA = 0, sumB = 0;
+    for (size_t k = 0; k < 16 && k < order.size(); ++k) {
+        const int i = order[k].second;
+        sumA += a.at(i % w, i / w).x;
+        sumB += b.at(i % w, i / w).x;
+    }
+    return {sumA, sumB};
 }
 
 RenderOptions options(int spp, int threads = 2) {
@@ -167,25 +188,12 @@ TEST(CausticPass, TheSplitImageAgreesWithThePathTracerAlone) {
     scene.caustics = false;
     const Film without = render(scene, options(8192)).film;
     EXPECT_NEAR(meanOf(with), meanOf(without), 0.02 * meanOf(without));
-    // The caustic: the 16 pixels of the floor that a third render (of other random numbers,
-    // so that the choice does not favour either image's noise) shows brightest.
+    // The caustic: the floor's pixels that a third render shows brightest.
     RenderOptions pick = options(256);
     pick.seed = 99;
     scene.caustics = true;
     const Film chooser = render(scene, pick).film;
-    std::vector<std::pair<double, int>> order;
-    for (int i = 0; i < scene.width * scene.height; ++i)
-        order.push_back({chooser.at(i % scene.width, i / scene.width).x, i});
-    std::sort(order.rbegin(), order.rend());
-    double a = 0, b = 0;
-    int counted = 0;
-    for (const auto& [value, i] : order) {
-        const Vec3& w = with.at(i % scene.width, i / scene.width);
-        if (w.x > 30) continue;  // the lamp itself
-        a += w.x;
-        b += without.at(i % scene.width, i / scene.width).x;
-        if (++counted == 16) break;
-    }
+    const auto [a, b] = brightestSums(chooser, with, without, 30);  // not the lamp itself
     EXPECT_GT(a / 16, 2 * meanOf(with)) << "no caustic found";
     EXPECT_NEAR(a, b, 0.06 * b);
 }
@@ -214,16 +222,7 @@ TEST(CausticPass, AgreesWithThePathTracerUnderASkyWithASun) {
     scene.caustics = false;
     const Film without = render(scene, options(4096)).film;
     EXPECT_NEAR(meanOf(with), meanOf(without), 0.02 * meanOf(without));
-    std::vector<std::pair<double, int>> order;
-    for (int i = 0; i < scene.width * scene.height; ++i)
-        order.push_back({chooser.at(i % scene.width, i / scene.width).x, i});
-    std::sort(order.rbegin(), order.rend());
-    double a = 0, b = 0;
-    for (int k = 0; k < 16; ++k) {
-        const int i = order[static_cast<size_t>(k)].second;
-        a += with.at(i % scene.width, i / scene.width).x;
-        b += without.at(i % scene.width, i / scene.width).x;
-    }
+    const auto [a, b] = brightestSums(chooser, with, without);
     EXPECT_NEAR(a, b, 0.06 * b);
 }
 
