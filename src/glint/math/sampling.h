@@ -76,6 +76,15 @@ struct Frame {
         t = Vec3(1 + sign * n.x * n.x * a, sign * c, -sign * n.x);
         b = Vec3(c, sign + n.y * n.y * a, -n.y);
     }
+    /// A frame about `normal` whose x axis is `tangent` made perpendicular to it (the
+    /// frame above where `tangent` is along the normal).
+    Frame(const Vec3& normal, const Vec3& tangent) : Frame(normal) {
+        const Vec3 across = tangent - n * dot(n, tangent);
+        const double len = length(across);
+        if (!(len > 1e-9)) return;
+        t = across / len;
+        b = cross(n, t);
+    }
     Vec3 toLocal(const Vec3& v) const { return {dot(v, t), dot(v, b), dot(v, n)}; }
     Vec3 toWorld(const Vec3& v) const { return t * v.x + b * v.y + n * v.z; }
 };

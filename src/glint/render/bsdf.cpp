@@ -4,40 +4,14 @@
 #include <numbers>
 
 #include "glint/render/ggx_albedo.h"
+#include "glint/render/bsdf_util.h"
 #include "glint/render/optics.h"
 
 namespace glint {
 namespace {
 
 using enum BsdfFlags;
-
-/// `v` mirrored in the surface plane: two-sided lobes evaluate a wo below the surface as its
-/// image above.
-Vec3 flipZ(const Vec3& v) { return {v.x, v.y, -v.z}; }
-bool sameHemisphere(const Vec3& a, const Vec3& b) { return a.z * b.z > 0; }
-/// The mirror direction of wo about the normal +z.
-Vec3 mirror(const Vec3& wo) { return {-wo.x, -wo.y, wo.z}; }
-
-double mean(const Vec3& v) { return (v.x + v.y + v.z) / 3; }
-
-/// Schlick's Fresnel approximation for cosine `cosH` between the direction and the normal.
-Vec3 schlick(const Vec3& f0, double cosH) {
-    double m = std::clamp(1 - cosH, 0.0, 1.0);
-    double m5 = (m * m) * (m * m) * m;
-    return f0 + (Vec3(1) - f0) * m5;
-}
-
-/// The GGX reflection BRDF D G2 F / (4 cos_o cos_i) for o, i above the surface and their unit
-/// half-vector h.
-Vec3 ggxReflection(const Ggx& ggx, const Vec3& f0, const Vec3& o, const Vec3& i, const Vec3& h) {
-    return schlick(f0, dot(o, h)) * (ggx.d(h) * ggx.g2(o, i) / (4 * o.z * i.z));
-}
-
-/// The density of the visible-normal sampling of reflections: D_o(h) / (4 o.h) with
-/// D_o(h) = G1(o) (o.h) D(h) / cos_o (Heitz 2018, eq. 3), for o above the surface.
-double ggxReflectionPdf(const Ggx& ggx, const Vec3& o, const Vec3& h) {
-    return ggx.g1(o) * ggx.d(h) / (4 * o.z);
-}
+using namespace bsdf_util;
 
 }  // namespace
 
@@ -281,99 +255,6 @@ std::optional<BsdfSample> DiffuseSpecular::sample(const Vec3& wo, double uc, Poi
     s->f = eval(wo, s->wi);
     s->pdf = pdf(wo, s->wi);
     return s;
-}
-
-// ---- The course's material ----
-
-// ---- MetallicRoughness ----
-
-double MetallicRoughness::f0() const {
-    double r = (eta - 1) / (eta + 1);
-    return r * r;
-}
-
-MetallicRoughness::Weights MetallicRoughness::weights(const Vec3& o) const {
-    const double fd = schlick(Vec3(f0()), o.z).x;
-    const double fm = mean(schlick(baseColor, o.z));
-    const double kd = (1 - metallic) * (1 - transmission), kt = (1 - metallic) * transmission;
-    Weights w;
-    w.spec = kd * fd + metallic * fm + (thin ? kt * fd : 0);
-    w.diffuse = kd * (1 - fd) * mean(baseColor);
-    w.trans = thin ? kt * (1 - fd) * mean(baseColor) : kt;
-    double sum = w.spec + w.diffuse + w.trans;
-    if (!(sum > 0)) return {};
-    return {w.spec / sum, w.diffuse / sum, w.trans / sum};
-}
-
-Vec3 MetallicRoughness::eval(const Vec3& wo, const Vec3& wi) const {
-    const double kt = (1 - metallic) * transmission;
-    Vec3 f(0);
-    if (!thin && kt > 0) f += volume().eval(wo, wi) * kt;
-    if (!sameHemisphere(wo, wi)) return f;
-    Vec3 o = wo.z > 0 ? wo : flipZ(wo), i = wo.z > 0 ? wi : flipZ(wi);
-    Vec3 h = normalize(o + i);
-    const double oh = std::abs(dot(o, h));
-    const double fd = schlick(Vec3(f0()), oh).x;
-    const double kd = (1 - metallic) * (1 - transmission);
-    const Ggx ggx{alpha};
-    const double s = ggx.d(h) * ggx.g2(o, i) / (4 * o.z * i.z);
-    const double specWeight = kd * fd + (thin ? kt * fd : 0);
-    f += baseColor * (kd * (1 - fd) * std::numbers::inv_pi) +
-         (Vec3(specWeight) + schlick(baseColor, oh) * metallic) * s;
-    return f;
-}
-
-double MetallicRoughness::pdf(const Vec3& wo, const Vec3& wi) const {
-    if (wo.z == 0) return 0;
-    Vec3 o = wo.z > 0 ? wo : flipZ(wo);
-    const Weights w = weights(o);
-    double pdf = 0;
-    if (!thin && w.trans > 0) pdf += w.trans * volume().pdf(wo, wi);
-    if (!sameHemisphere(wo, wi)) return pdf;
-    Vec3 i = wo.z > 0 ? wi : flipZ(wi);
-    const Ggx ggx{alpha};
-    pdf += w.spec * ggxReflectionPdf(ggx, o, normalize(o + i));
-    pdf += w.diffuse * i.z * std::numbers::inv_pi;
-    return pdf;
-}
-
-std::optional<BsdfSample> MetallicRoughness::sample(const Vec3& wo, double uc, Point2 u) const {
-    if (wo.z == 0) return std::nullopt;
-    Vec3 o = wo.z > 0 ? wo : flipZ(wo);
-    const Weights w = weights(o);
-    Vec3 wi;
-    if (uc < w.spec) {
-        const Ggx ggx{alpha};
-        Vec3 h = ggx.sampleVisibleNormal(o, u.x, u.y);
-        Vec3 i = normalize(h * (2 * dot(o, h)) - o);
-        if (!(i.z > 0)) return std::nullopt;  // reflected below the surface: shadowed
-        wi = wo.z > 0 ? i : flipZ(i);
-    } else if (uc < w.spec + w.diffuse) {
-        Vec3 i = sampleCosineHemisphere(u);
-        wi = wo.z > 0 ? i : flipZ(i);
-    } else if (w.trans > 0) {
-        const double kt = (1 - metallic) * transmission;
-        if (thin) {  // straight through: a delta
-            const double fd = schlick(Vec3(f0()), o.z).x;
-            return BsdfSample{-wo, baseColor * (kt * (1 - fd) / o.z), w.trans,
-                              Transmission | Specular};
-        }
-        const double ut = std::min((uc - w.spec - w.diffuse) / w.trans, 0.999999999);
-        std::optional<BsdfSample> ds = volume().sample(wo, ut, u);
-        if (!ds) return std::nullopt;
-        if (ds->isSpecular()) {
-            ds->f = ds->f * kt;
-            ds->pdf *= w.trans;
-            return ds;
-        }
-        wi = ds->wi;
-    } else {
-        return std::nullopt;
-    }
-    double p = pdf(wo, wi);
-    if (!(p > 0)) return std::nullopt;
-    const bool reflected = sameHemisphere(wo, wi);
-    return BsdfSample{wi, eval(wo, wi), p, (reflected ? Reflection : Transmission) | Glossy};
 }
 
 Bsdf bsdfFromMaterial(const Material& m) {

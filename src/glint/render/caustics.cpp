@@ -176,9 +176,7 @@ void CausticPass::tracePath(uint64_t seed, std::vector<Splat>& out,
         // One more caster, then a surface seen by the camera: within the path length.
         if (casters + 2 > scene_.maxDepth) return;
         const SurfaceShading shading = shadeSurface(scene_, si, toLight, bsdfs_);
-        const bool flip = dot(shading.normal, si.ng) < 0;
-        const Vec3 ns = flip ? -shading.normal : shading.normal;
-        const Frame frame(ns);
+        const Frame& frame = shading.frame;
         const Vec3 wo = frame.toLocal(toLight);
         const Point2 uLobe = u2(), uDirection = u2();
         std::optional<BsdfSample> bs = shading.bsdf.sample(wo, uLobe.x, uDirection);
@@ -228,8 +226,7 @@ void CausticPass::connect(const SurfaceInteraction& si, const Vec3& toLight, con
     if (x0 > x1 || y0 > y1) return;
     // The surface's BSDF as the camera's path would see it there.
     const SurfaceShading shading = shadeSurface(scene_, si, wc, bsdfs_);
-    const bool flip = dot(shading.normal, si.ng) < 0;
-    const Frame frame(flip ? -shading.normal : shading.normal);
+    const Frame& frame = shading.frame;
     const Vec3 wo = frame.toLocal(wc), wi = frame.toLocal(toLight);
     if (!(dot(toLight, si.ng) * wi.z > 0)) return;  // as the path tracer's light samples
     const Vec3 f = shading.bsdf.eval(wo, wi);

@@ -37,13 +37,24 @@ inline double fresnelDielectric(double cosI, double eta) {
     return 0.5 * (rs * rs + rp * rp);
 }
 
-/// Isotropic GGX with roughness alpha, in a local frame where the normal is +z.
+/// GGX with roughness alpha, in a local frame where the normal is +z: isotropic, or
+/// anisotropic with roughness alpha along x and alphaY along y (KHR_materials_anisotropy; the
+/// frame's x is then the direction of anisotropy). The isotropic formulas are kept as they are
+/// (the course's images depend on them to the last bit); the anisotropic ones reduce to them.
 struct Ggx {
     double alpha;
+    double alphaY = -1;  ///< Roughness along y; negative: alpha (isotropic).
+
+    bool anisotropic() const { return alphaY >= 0 && alphaY != alpha; }
 
     /// Microfacet distribution D(h) for a unit half-vector h (local).
     double d(const Vec3& h) const {
         if (h.z <= 0) return 0;
+        if (anisotropic()) {
+            double x = h.x / alpha, y = h.y / alphaY;
+            double k = x * x + y * y + h.z * h.z;
+            return 1 / (std::numbers::pi * alpha * alphaY * k * k);
+        }
         double a2 = alpha * alpha;
         double k = h.z * h.z * (a2 - 1) + 1;
         return a2 / (std::numbers::pi * k * k);
@@ -51,6 +62,10 @@ struct Ggx {
     /// Smith masking G1(v) for a unit direction v (local).
     double g1(const Vec3& v) const {
         if (v.z <= 0) return 0;
+        if (anisotropic()) {
+            double x = alpha * v.x, y = alphaY * v.y;
+            return 2 * v.z / (v.z + std::sqrt(x * x + y * y + v.z * v.z));
+        }
         double a2 = alpha * alpha;
         return 2 * v.z / (v.z + std::sqrt(a2 + (1 - a2) * v.z * v.z));
     }
@@ -70,14 +85,15 @@ struct Ggx {
     /// p1 runs across the plane of wo and the normal: mirroring it mirrors the normal in that
     /// plane.
     Vec3 visibleNormal(const Vec3& wo, double p1, double p2raw) const {
-        Vec3 vh = normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
+        const double ay = alphaY >= 0 ? alphaY : alpha;
+        Vec3 vh = normalize(Vec3(alpha * wo.x, ay * wo.y, wo.z));
         double len2 = vh.x * vh.x + vh.y * vh.y;
         Vec3 t1 = len2 > 0 ? Vec3(-vh.y, vh.x, 0) / std::sqrt(len2) : Vec3(1, 0, 0);
         Vec3 t2 = cross(vh, t1);
         double s = 0.5 * (1 + vh.z);
         double p2 = (1 - s) * std::sqrt(std::max(0.0, 1 - p1 * p1)) + s * p2raw;
         Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0, 1 - p1 * p1 - p2 * p2));
-        return normalize(Vec3(alpha * nh.x, alpha * nh.y, std::max(1e-12, nh.z)));
+        return normalize(Vec3(alpha * nh.x, ay * nh.y, std::max(1e-12, nh.z)));
     }
 };
 

@@ -209,10 +209,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         }
         if (depth >= scene_.maxDepth) break;
 
-        // The shading frame's normal on the geometric normal's side, so that the side a
-        // direction lies on (inside or outside a dielectric) is the geometry's.
-        const bool flip = dot(shadingNormal, si.ng) < 0;
-        const Frame frame(flip ? -shadingNormal : shadingNormal);
+        const Frame& frame = shading.frame;
         const Vec3 wo = frame.toLocal(-ray.dir);
         // A direction whose side of the shading surface differs from its side of the
         // geometric one would leak light through the surface (shading normals, normal maps):

@@ -32,6 +32,35 @@ constexpr double kCausticAlpha = 0.1;
 
 }  // namespace
 
+namespace {
+
+/// glTF's BSDF for the evaluated material `ps` of `pm`, its vectors in `frame`.
+MetallicRoughness pbrBsdf(const PbrMaterial& pm, const PbrSurface& ps, const Frame& frame,
+                          bool flip) {
+    auto ggxAlpha = [](double roughness) {
+        return std::max(roughness * roughness, MetallicRoughness::kMinAlpha);
+    };
+    MetallicRoughness b{ps.baseColor,    ps.metallic, ggxAlpha(ps.roughness),
+                        ps.transmission, pm.ior,      pm.thickness == 0};
+    b.specular = ps.specular;
+    b.specularColor = ps.specularColor;
+    b.anisotropy = ps.anisotropy;
+    b.diffuseTransmission = ps.diffuseTransmission;
+    b.diffuseTransmissionColor = ps.diffuseTransmissionColor;
+    if (ps.iridescence > 0)
+        b.iridescence = {ps.iridescence, pm.iridescenceIor, ps.iridescenceThickness};
+    if (!(ps.sheenColor == Vec3(0)))
+        b.sheen = {ps.sheenColor, std::max(ps.sheenRoughness * ps.sheenRoughness, kMinSheenAlpha)};
+    if (ps.clearcoat > 0) {
+        Vec3 n = frame.toLocal(flip ? -ps.clearcoatNormal : ps.clearcoatNormal);
+        if (!(n.z > 0)) n = Vec3(0, 0, 1);  // a coat normal past the surface: the surface's
+        b.coat = {ps.clearcoat, ggxAlpha(ps.clearcoatRoughness), n};
+    }
+    return b;
+}
+
+}  // namespace
+
 SurfaceShading shadeSurface(const Scene& scene, const SurfaceInteraction& si, const Vec3& wo,
                             const std::vector<Bsdf>& bsdfs) {
     const Material& m = scene.materials[si.material];
@@ -42,17 +71,20 @@ SurfaceShading shadeSurface(const Scene& scene, const SurfaceInteraction& si, co
         s.emission = ps.emission;
         s.normal = ps.normal;
         if (pm.normalTexture.image) s.normal = facingViewer(s.normal, si.ng, wo);
-        const double alpha = ps.roughness * ps.roughness;
-        s.bsdf.lobe = MetallicRoughness{
-            ps.baseColor,    ps.metallic, std::max(alpha, MetallicRoughness::kMinAlpha),
-            ps.transmission, pm.ior,      pm.thickness == 0};
-    } else if (m.texture != 0) {
+        const bool flip = dot(s.normal, si.ng) < 0;
+        const Vec3 ns = flip ? -s.normal : s.normal;
+        s.frame = ps.anisotropy > 0 ? Frame(ns, ps.anisotropyDirection) : Frame(ns);
+        s.bsdf.lobe = pbrBsdf(pm, ps, s.frame, flip);
+        return s;
+    }
+    if (m.texture != 0) {
         Material textured = m;
         textured.diffuse = scene.texture(m.texture).eval(si.hasUv, si.u, si.v, si.p, m.diffuse);
         s.bsdf = bsdfFromMaterial(textured);
     } else {
         s.bsdf = bsdfs[si.material];
     }
+    s.frame = Frame(dot(s.normal, si.ng) < 0 ? -s.normal : s.normal);
     return s;
 }
 

@@ -16,10 +16,15 @@ struct SurfaceShading {
     Bsdf bsdf;
     Vec3 emission;
     Vec3 normal;  ///< Unit shading normal (as interpolated or normal-mapped; either side).
+    /// The BSDF's local frame: its z the shading normal turned to the geometric normal's
+    /// side (so that the side a direction lies on, inside or outside a dielectric, is the
+    /// geometry's), its x the direction of anisotropy where a material has one.
+    Frame frame{Vec3(0, 0, 1)};
 };
 
 /// The shading of `si`, seen from unit direction `wo` (towards the viewer, or towards where a
-/// light path came from). `bsdfs` holds each material's untextured BSDF (bsdfFromMaterial).
+/// light path came from), and its frame. `bsdfs` holds each material's untextured BSDF
+/// (bsdfFromMaterial).
 SurfaceShading shadeSurface(const Scene& scene, const SurfaceInteraction& si, const Vec3& wo,
                             const std::vector<Bsdf>& bsdfs);
 

@@ -81,6 +81,47 @@ struct PbrMaterial {
     Vec3 attenuationColor{1};
     double attenuationDistance = std::numeric_limits<double>::infinity();
 
+    /// KHR_materials_specular: the dielectric's f90 and a factor on its f0 (times the alpha
+    /// channel of specularTexture), and a colour on its f0 (times specularColorTexture, sRGB).
+    double specular = 1;
+    TextureSlot specularTexture;
+    Vec3 specularColor{1};
+    TextureSlot specularColorTexture;
+    /// KHR_materials_clearcoat: the coat's weight (times the red channel of its texture), its
+    /// perceptual roughness (times the green channel of its texture) and its own normal map
+    /// (without one, the coat follows the interpolated normal, not the base's normal map).
+    double clearcoat = 0;
+    TextureSlot clearcoatTexture;
+    double clearcoatRoughness = 0;
+    TextureSlot clearcoatRoughnessTexture;
+    TextureSlot clearcoatNormalTexture;
+    double clearcoatNormalScale = 1;
+    /// KHR_materials_sheen: its colour (times the texture's, sRGB) and perceptual roughness
+    /// (times the alpha channel of its texture).
+    Vec3 sheenColor{0};
+    TextureSlot sheenColorTexture;
+    double sheenRoughness = 0;
+    TextureSlot sheenRoughnessTexture;
+    /// KHR_materials_anisotropy: the strength (times the texture's blue channel), and the
+    /// direction: the tangent turned by `anisotropyRotation` radians towards the bitangent,
+    /// after the texture's red and green channels (a direction in tangent space) turn it.
+    double anisotropy = 0, anisotropyRotation = 0;
+    TextureSlot anisotropyTexture;
+    /// KHR_materials_iridescence: the film's weight (times the red channel of its texture),
+    /// index, and thickness in nanometres: the maximum, or between the minimum and maximum by
+    /// the green channel of the thickness texture.
+    double iridescence = 0;
+    TextureSlot iridescenceTexture;
+    double iridescenceIor = 1.3, iridescenceThicknessMin = 100, iridescenceThicknessMax = 400;
+    TextureSlot iridescenceThicknessTexture;
+    /// KHR_materials_diffuse_transmission: the share of the diffuse lobe sent through the
+    /// surface (times the alpha channel of its texture), and its colour (times the texture's,
+    /// sRGB).
+    double diffuseTransmission = 0;
+    TextureSlot diffuseTransmissionTexture;
+    Vec3 diffuseTransmissionColor{1};
+    TextureSlot diffuseTransmissionColorTexture;
+
     bool cutsOut() const { return alphaMode != AlphaMode::Opaque; }
     bool operator==(const PbrMaterial&) const = default;
 };
@@ -93,6 +134,17 @@ struct PbrSurface {
     Vec3 emission;
     /// The shading normal, world space, unit: the interpolated normal bent by the normal map.
     Vec3 normal;
+    double specular = 1;
+    Vec3 specularColor{1};
+    double clearcoat = 0, clearcoatRoughness = 0;
+    Vec3 clearcoatNormal;  ///< World space, unit.
+    Vec3 sheenColor{0};
+    double sheenRoughness = 0;
+    double anisotropy = 0;
+    Vec3 anisotropyDirection;  ///< World space, in the tangent plane; zero without anisotropy.
+    double iridescence = 0, iridescenceThickness = 400;
+    double diffuseTransmission = 0;
+    Vec3 diffuseTransmissionColor{1};
 };
 
 /// The material `m` at hit `si`.

@@ -115,6 +115,12 @@ struct MeshCounts {
 MeshCounts countMesh(Context& ctx, int mesh);
 
 /// Glint's materials for the file's glTF materials, each mapped once, with their images.
+/// A number of a glTF extension object, `fallback` when absent. Present but not a finite
+/// number is an error.
+double extensionNumber(const Context& ctx, const tinygltf::ExtensionMap& extensions,
+                       const char* extension, const char* key, double fallback,
+                       const std::string& label);
+
 class Materials {
   public:
     explicit Materials(Context& ctx) : ctx_(ctx) {}
@@ -128,6 +134,13 @@ class Materials {
     TextureSlot slot(int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
                      const std::string& material, const char* slot, bool srgb, const char* instead);
     std::shared_ptr<const TextureImage> image(int index, bool srgb, std::string& problem);
+    /// The texture `key` of extension object `ext` (a textureInfo: index, texCoord and its own
+    /// extensions); empty when absent.
+    TextureSlot extensionSlot(const tinygltf::Value& ext, const char* key,
+                              const std::string& material, bool srgb, const char* instead);
+    /// The layers of the material extensions (clearcoat, sheen, specular, anisotropy,
+    /// iridescence, diffuse transmission) into `p` (gltf_material_layers.cpp).
+    void mapLayers(const tinygltf::Material& m, PbrMaterial& p, const std::string& label);
 
     Context& ctx_;
     std::map<int, MeshMaterial> mapped_;

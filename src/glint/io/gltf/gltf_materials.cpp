@@ -19,20 +19,6 @@ constexpr double kSmoothShininess = 1000;
 
 double unit(double x) { return std::clamp(x, 0.0, 1.0); }
 
-/// A number of a glTF extension object, `fallback` when absent. Present but not a finite
-/// number is an error.
-double extensionNumber(const Context& ctx, const tinygltf::ExtensionMap& extensions,
-                       const char* extension, const char* key, double fallback,
-                       const std::string& label) {
-    auto it = extensions.find(extension);
-    if (it == extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
-    const tinygltf::Value& v = it->second.Get(key);
-    double x = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
-    if (!std::isfinite(x))
-        ctx.fail(label + ": " + extension + " " + key + " must be a finite number");
-    return x;
-}
-
 /// "%" escapes of a URI decoded ("my%20file.png" -> "my file.png").
 std::string percentDecoded(const std::string& uri) {
     std::string out;
@@ -54,6 +40,18 @@ std::string percentDecoded(const std::string& uri) {
 }
 
 }  // namespace
+
+double extensionNumber(const Context& ctx, const tinygltf::ExtensionMap& extensions,
+                       const char* extension, const char* key, double fallback,
+                       const std::string& label) {
+    auto it = extensions.find(extension);
+    if (it == extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
+    const tinygltf::Value& v = it->second.Get(key);
+    double x = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
+    if (!std::isfinite(x))
+        ctx.fail(label + ": " + extension + " " + key + " must be a finite number");
+    return x;
+}
 
 const MeshMaterial& Materials::get(int index) {
     auto it = mapped_.find(index);
@@ -133,23 +131,10 @@ MeshMaterial Materials::map(int index) {
     const bool transmissive = m.extensions.count("KHR_materials_transmission") > 0;
     p.transmission = unit(extensionNumber(ctx_, m.extensions, "KHR_materials_transmission",
                                           "transmissionFactor", 0, label));
-    if (transmissive) {
-        const tinygltf::Value& x = m.extensions.at("KHR_materials_transmission");
-        if (x.IsObject() && x.Has("transmissionTexture")) {
-            const tinygltf::Value& t = x.Get("transmissionTexture");
-            auto integer = [&](const char* key, int fallback) {
-                return t.IsObject() && t.Has(key) && t.Get(key).IsInt() ? t.Get(key).Get<int>()
-                                                                        : fallback;
-            };
-            tinygltf::ExtensionMap ext;
-            if (t.IsObject() && t.Has("extensions") && t.Get("extensions").IsObject())
-                for (const std::string& key : t.Get("extensions").Keys())
-                    ext[key] = t.Get("extensions").Get(key);
-            p.transmissionTexture =
-                slot(integer("index", -1), integer("texCoord", 0), ext, label,
-                     "transmissionTexture", false, "its transmission factor is used alone");
-        }
-    }
+    if (transmissive)
+        p.transmissionTexture =
+            extensionSlot(m.extensions.at("KHR_materials_transmission"), "transmissionTexture",
+                          label, false, "its transmission factor is used alone");
     double ior = extensionNumber(ctx_, m.extensions, "KHR_materials_ior", "ior", 1.5, label);
     if (!(ior >= 1)) ior = 1.5;  // glTF allows 0 (and nothing else below 1) for "unknown"
     p.ior = ior;
@@ -170,6 +155,8 @@ MeshMaterial Materials::map(int index) {
             p.attenuationColor = {rgb[0], rgb[1], rgb[2]};
         }
     }
+
+    mapLayers(m, p, label);
 
     // The flat material the Whitted integrator renders: textures other than the base colour
     // count with their mean value, alpha blends by the factor's alpha.

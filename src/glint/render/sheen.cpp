@@ -1,0 +1,90 @@
+#include "glint/render/sheen.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace glint {
+namespace {
+
+/// Estevez and Kulla's fit of log Lambda over cos theta: a / (1 + b x^c) + d x + e, the
+/// coefficients at alpha = 0 and alpha = 1 (their table), blended by (1 - alpha)^2.
+double lambdaFit(double x, double alpha) {
+    const double t = (1 - alpha) * (1 - alpha);
+    auto mix = [t](double at1, double at0) { return at1 + (at0 - at1) * t; };
+    const double a = mix(21.5473, 25.3245), b = mix(3.82987, 3.32435), c = mix(0.19823, 0.16801),
+                 d = mix(-1.97760, -1.27393), e = mix(-4.32054, -4.85967);
+    return a / (1 + b * std::pow(x, c)) + d * x + e;
+}
+
+/// Their Lambda, with the fit mirrored about cos theta = 0.5 so that it stays smooth.
+double lambda(double cosTheta, double alpha) {
+    const double x = std::clamp(cosTheta, 0.0, 1.0);
+    if (x < 0.5) return std::exp(lambdaFit(x, alpha));
+    return std::exp(2 * lambdaFit(0.5, alpha) - lambdaFit(1 - x, alpha));
+}
+
+constexpr int kAlphaRows = 16, kMuColumns = 24;
+
+/// The albedo table: rows uniform in alpha from kMinSheenAlpha to 1, columns uniform in mu.
+struct AlbedoTable {
+    std::array<float, kAlphaRows * kMuColumns> e{};
+    AlbedoTable() {
+        for (int r = 0; r < kAlphaRows; ++r)
+            for (int c = 0; c < kMuColumns; ++c)
+                e[r * kMuColumns + c] = static_cast<float>(
+                    sheenAlbedoByQuadrature(rowAlpha(r), std::max(c, 1) / (kMuColumns - 1.0), 48));
+    }
+    static double rowAlpha(int r) {
+        return kMinSheenAlpha + (1 - kMinSheenAlpha) * r / (kAlphaRows - 1.0);
+    }
+};
+
+}  // namespace
+
+double sheenLobe(double alpha, const Vec3& o, const Vec3& i) {
+    if (!(o.z > 0) || !(i.z > 0)) return 0;
+    alpha = std::clamp(alpha, kMinSheenAlpha, 1.0);
+    const Vec3 h = normalize(o + i);
+    const double sin2 = std::max(0.0, 1 - h.z * h.z);
+    const double inv = 1 / alpha;
+    const double d = (2 + inv) * std::pow(sin2, 0.5 * inv) / (2 * std::numbers::pi);
+    const double v = 1 / ((1 + lambda(o.z, alpha) + lambda(i.z, alpha)) * 4 * o.z * i.z);
+    return d * v;
+}
+
+double sheenAlbedoByQuadrature(double alpha, double mu, int steps) {
+    mu = std::clamp(mu, 1e-4, 1.0);
+    const Vec3 o(std::sqrt(1 - mu * mu), 0, mu);
+    // Midpoints in theta_i (the lobe is brightest towards grazing angles, where cos theta
+    // crowds) and in phi over [0, pi], doubled by the lobe's symmetry about the plane of o.
+    double sum = 0;
+    const double dTheta = std::numbers::pi / 2 / steps, dPhi = std::numbers::pi / (2 * steps);
+    for (int t = 0; t < steps; ++t) {
+        const double theta = (t + 0.5) * dTheta;
+        const double st = std::sin(theta), ct = std::cos(theta);
+        for (int p = 0; p < 2 * steps; ++p) {
+            const double phi = (p + 0.5) * dPhi;
+            const Vec3 i(st * std::cos(phi), st * std::sin(phi), ct);
+            sum += sheenLobe(alpha, o, i) * ct * st;
+        }
+    }
+    return 2 * sum * dTheta * dPhi;
+}
+
+double sheenAlbedo(double alpha, double mu) {
+    static const AlbedoTable table;
+    const double r = std::clamp((alpha - kMinSheenAlpha) / (1 - kMinSheenAlpha), 0.0, 1.0) *
+                     (kAlphaRows - 1);
+    const double c = std::clamp(mu, 0.0, 1.0) * (kMuColumns - 1);
+    const int r0 = std::min(static_cast<int>(r), kAlphaRows - 2);
+    const int c0 = std::min(static_cast<int>(c), kMuColumns - 2);
+    const double fr = r - r0, fc = c - c0;
+    auto at = [&](int rr, int cc) { return static_cast<double>(table.e[rr * kMuColumns + cc]); };
+    const double top = at(r0, c0) + (at(r0, c0 + 1) - at(r0, c0)) * fc;
+    const double bottom = at(r0 + 1, c0) + (at(r0 + 1, c0 + 1) - at(r0 + 1, c0)) * fc;
+    return top + (bottom - top) * fr;
+}
+
+}  // namespace glint
