@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <numbers>
 
-#include "glint/render/ggx_albedo.h"
 #include "glint/render/bsdf_util.h"
+#include "glint/render/ggx_albedo.h"
 #include "glint/render/optics.h"
 
 namespace glint {

@@ -193,9 +193,9 @@ struct CoatLayer {
 /// KHR_materials_iridescence: render/thin_film.h's reflectance replaces Schlick's in the
 /// dielectric's and the metal's specular lobes, mixed in by the weight.
 struct ThinFilmLayer {
-    double weight = 0;        ///< The iridescence factor; 0: no film.
-    double ior = 1.3;         ///< The film's index.
-    double thickness = 400;   ///< Nanometres.
+    double weight = 0;       ///< The iridescence factor; 0: no film.
+    double ior = 1.3;        ///< The film's index.
+    double thickness = 400;  ///< Nanometres.
 };
 
 /// glTF 2.0's metallic-roughness BRDF as the specification's appendix B defines it, with
@@ -229,8 +229,8 @@ struct MetallicRoughness {
     double transmission = 0;
     double eta = 1.5;
     bool thin = true;
-    double specular = 1;     ///< KHR_materials_specular: the dielectric's f90 and f0 factor.
-    Vec3 specularColor{1};   ///< ... and its f0 colour (f0 at most 1 per channel).
+    double specular = 1;    ///< KHR_materials_specular: the dielectric's f90 and f0 factor.
+    Vec3 specularColor{1};  ///< ... and its f0 colour (f0 at most 1 per channel).
     /// KHR_materials_anisotropy's strength in [0, 1]: the GGX alpha along the local x axis is
     /// alpha + (1 - alpha) anisotropy^2 (along y it stays alpha).
     double anisotropy = 0;
@@ -255,8 +255,8 @@ struct MetallicRoughness {
     };
     /// The lobes' estimated albedos at o (above the surface), not normalised.
     Weights weights(const Vec3& o) const;
-    /// How the layers share the samples at o (wo mirrored when `below`): the coat's, the sheen's and the base's
-    /// probabilities, summing to 1 (all 0 if nothing reflects).
+    /// How the layers share the samples at o (wo mirrored when `below`): the coat's, the sheen's
+    /// and the base's probabilities, summing to 1 (all 0 if nothing reflects).
     struct LayerChoice {
         double coat = 0, sheen = 0, base = 0;
         double coatFresnel = 0;  ///< w F_c at o.

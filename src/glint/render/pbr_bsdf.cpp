@@ -113,8 +113,7 @@ double MetallicRoughness::basePdf(const Vec3& wo, const Vec3& wi) const {
     return pdf / sum;
 }
 
-std::optional<BsdfSample> MetallicRoughness::baseSample(const Vec3& wo, double uc,
-                                                        Point2 u) const {
+std::optional<BsdfSample> MetallicRoughness::baseSample(const Vec3& wo, double uc, Point2 u) const {
     if (wo.z == 0) return std::nullopt;
     Vec3 o = wo.z > 0 ? wo : flipZ(wo);
     const Weights w = weights(o);
@@ -185,7 +184,8 @@ CoatLobe coatLobe(const CoatLayer& c, const Vec3& n, const Vec3& o, const Vec3& 
 double sheenScaling(const SheenLayer& s, double cosO, double cosI) {
     const double m = maxComponent(s.color);
     if (!(m > 0)) return 1;
-    return std::min(1 - m * sheenAlbedo(s.alpha, cosO), 1 - m * sheenAlbedo(s.alpha, cosI));
+    const double e = std::max(sheenAlbedo(s.alpha, cosO), sheenAlbedo(s.alpha, cosI));
+    return std::max(0.0, 1 - m * e);
 }
 
 }  // namespace

@@ -38,8 +38,8 @@ Vec3 sensitivity(double opd, const Vec3& shift) {
     for (int c = 0; c < 3; ++c)
         xyz[c] = val[c] * std::sqrt(2 * kPi * var[c]) * std::cos(pos[c] * phase + shift[c]) *
                  std::exp(-phase * phase * var[c]);
-    xyz[0] += 9.7470e-14 * std::sqrt(2 * kPi * 4.5282e+09) * std::cos(2.2399e+06 * phase + shift[0]) *
-              std::exp(-4.5282e+09 * phase * phase);
+    xyz[0] += 9.7470e-14 * std::sqrt(2 * kPi * 4.5282e+09) *
+              std::cos(2.2399e+06 * phase + shift[0]) * std::exp(-4.5282e+09 * phase * phase);
     for (double& v : xyz) v /= 1.0685e-7;
     // CIE XYZ to linear Rec. 709 (sRGB primaries, D65).
     return {3.2404542 * xyz[0] - 1.5371385 * xyz[1] - 0.4985314 * xyz[2],

@@ -90,7 +90,8 @@ Vec3 scaled(const Vec3& value, const TextureSlot& slot, const SurfaceInteraction
 void evalLayers(const PbrMaterial& m, const SurfaceInteraction& si, PbrSurface& s) {
     s.specular = scaled(m.specular, m.specularTexture, 3, si);
     s.specularColor = m.specularColor;  // may exceed 1: f0 is clamped after the product
-    if (m.specularColorTexture) s.specularColor = s.specularColor * m.specularColorTexture.sample(si).rgb;
+    if (m.specularColorTexture)
+        s.specularColor = s.specularColor * m.specularColorTexture.sample(si).rgb;
     s.clearcoat = scaled(m.clearcoat, m.clearcoatTexture, 0, si);
     s.clearcoatNormal = si.n;
     if (s.clearcoat > 0) {
@@ -106,10 +107,9 @@ void evalLayers(const PbrMaterial& m, const SurfaceInteraction& si, PbrSurface& 
     if (s.iridescence > 0) {
         s.iridescenceThickness = m.iridescenceThicknessMax;
         if (m.iridescenceThicknessTexture)
-            s.iridescenceThickness =
-                m.iridescenceThicknessMin +
-                (m.iridescenceThicknessMax - m.iridescenceThicknessMin) *
-                    m.iridescenceThicknessTexture.sample(si).rgb.y;
+            s.iridescenceThickness = m.iridescenceThicknessMin +
+                                     (m.iridescenceThicknessMax - m.iridescenceThicknessMin) *
+                                         m.iridescenceThicknessTexture.sample(si).rgb.y;
     }
     if (m.anisotropy > 0) {
         std::optional<TangentFrame> tf = tangentFrame(si);

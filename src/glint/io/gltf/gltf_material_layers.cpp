@@ -19,8 +19,7 @@ const tinygltf::Value* extensionOf(const tinygltf::Material& m, const char* name
 }  // namespace
 
 TextureSlot Materials::extensionSlot(const tinygltf::Value& ext, const char* key,
-                                     const std::string& material, bool srgb,
-                                     const char* instead) {
+                                     const std::string& material, bool srgb, const char* instead) {
     if (!ext.IsObject() || !ext.Has(key)) return {};
     const tinygltf::Value& t = ext.Get(key);
     auto integer = [&](const char* k, int fallback) {
@@ -87,8 +86,8 @@ void Materials::mapLayers(const tinygltf::Material& m, PbrMaterial& p, const std
         p.specular = unitNumber(name, "specularFactor", 1);
         // The colour may exceed 1 (f0 is clamped after the product with the index's f0).
         p.specularColor = colour(*x, "specularColorFactor", Vec3(1), INFINITY);
-        p.specularTexture = extensionSlot(*x, "specularTexture", label, false,
-                                          "its specular factor is used alone");
+        p.specularTexture =
+            extensionSlot(*x, "specularTexture", label, false, "its specular factor is used alone");
         p.specularColorTexture = extensionSlot(*x, "specularColorTexture", label, true,
                                                "its specular colour factor is used alone");
     }
@@ -115,11 +114,10 @@ void Materials::mapLayers(const tinygltf::Material& m, PbrMaterial& p, const std
         const char* name = "KHR_materials_diffuse_transmission";
         p.diffuseTransmission = unitNumber(name, "diffuseTransmissionFactor", 0);
         p.diffuseTransmissionColor = colour(*x, "diffuseTransmissionColorFactor", Vec3(1), 1);
-        p.diffuseTransmissionTexture = extensionSlot(*x, "diffuseTransmissionTexture", label,
-                                                     false, "its factor is used alone");
-        p.diffuseTransmissionColorTexture =
-            extensionSlot(*x, "diffuseTransmissionColorTexture", label, true,
-                          "its colour factor is used alone");
+        p.diffuseTransmissionTexture = extensionSlot(*x, "diffuseTransmissionTexture", label, false,
+                                                     "its factor is used alone");
+        p.diffuseTransmissionColorTexture = extensionSlot(
+            *x, "diffuseTransmissionColorTexture", label, true, "its colour factor is used alone");
     }
 }
 
