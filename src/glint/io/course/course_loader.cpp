@@ -69,6 +69,12 @@ const std::vector<Command>& Parser::commands() {
         {"mesh", 1, 1, "file.obj", &Parser::cmdMesh},
         {"texture", 1, 3, "[slot] file [repeat|clamp|mirror], or [slot] none", &Parser::cmdTexture},
         {"metallic", 1, 1, "m", &Parser::cmdMetallic},
+        {"clearcoat", 1, 2, "weight [roughness]", &Parser::cmdClearcoat},
+        {"sheen", 3, 4, "r g b [roughness]", &Parser::cmdSheen},
+        {"specularfactor", 1, 4, "factor [r g b]", &Parser::cmdSpecularFactor},
+        {"anisotropy", 1, 2, "strength [rotation-degrees]", &Parser::cmdAnisotropy},
+        {"iridescence", 1, 3, "factor [ior [thickness-nm]]", &Parser::cmdIridescence},
+        {"diffusetransmission", 1, 4, "factor [r g b]", &Parser::cmdDiffuseTransmission},
         {"checker", 7, 7, "r1 g1 b1 r2 g2 b2 scale", &Parser::cmdChecker},
     };
     return table;

@@ -91,6 +91,9 @@ class Parser {
     long long integer(int i, long long lo, long long hi) const;
     Vec3 vec3(int i) const { return {real(i), real(i + 1), real(i + 2)}; }
     Vec3 colour(int i) const { return vec3(i); }
+    /// Argument `i` (or three from it), each between 0 and 1, named `what` in errors.
+    double unitArgument(int i, const char* what) const;
+    Vec3 unitColour(int i, const char* what) const;
     /// The builder's current transform; a singular one is a BuildError, which run() reports at
     /// the command.
     const Transform& transform() { return builder_.transform(); }
@@ -152,6 +155,12 @@ class Parser {
     void cmdMesh();
     void cmdTexture();
     void cmdMetallic();
+    void cmdClearcoat();
+    void cmdSheen();
+    void cmdSpecularFactor();
+    void cmdAnisotropy();
+    void cmdIridescence();
+    void cmdDiffuseTransmission();
     /// `texture SLOT file [wrap]` and `texture SLOT none`: a physically based map.
     void cmdTextureMap();
     /// The image at scene-relative `name` (token 1 or 2), read once per scene.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <numbers>
 
 #include "glint/core/error.h"
 #include "glint/io/image/texture_io.h"
@@ -62,12 +63,11 @@ TextureSlot mtlSlot(std::shared_ptr<const TextureImage> image,
 /// The physically based material of an MTL entry that uses the PBR extensions: Kd (and
 /// map_Kd) the base colour, Pm / map_Pm the metalness, Pr / map_Pr the roughness, Ke / map_Ke
 /// the emission, norm (or map_Bump, as Blender's exporter writes normal maps) a tangent-space
-/// normal map scaled by -bm, d the alpha (blended), Ni the index of refraction.
+/// normal map scaled by -bm, d the alpha (blended), Ni the index of refraction, and the
+/// layers below.
 template <typename Load>
 PbrMaterial mapMtlPbr(const tinyobj::material_t& m, const Vec3& tint,
-                      const std::optional<Texture>& diffuse, Load& load,
-                      std::vector<Diagnostic>& warnings, const FileLoc& at,
-                      const std::string& quotedName) {
+                      const std::optional<Texture>& diffuse, Load& load) {
     auto unit = [](double x) { return std::isfinite(x) ? std::clamp(x, 0.0, 1.0) : 0.0; };
     PbrMaterial p;
     p.baseColor = {unit(tint.x), unit(tint.y), unit(tint.z)};
@@ -98,10 +98,19 @@ PbrMaterial mapMtlPbr(const tinyobj::material_t& m, const Vec3& tint,
     }
     if (m.ior >= 1) p.ior = m.ior;
     p.doubleSided = true;  // OBJ has no notion of sidedness: both faces are surfaces
-    if (m.sheen > 0 || !m.sheen_texname.empty() || m.clearcoat_thickness > 0 || m.anisotropy > 0)
-        warnings.push_back({at, "material " + quotedName +
-                                    ": sheen (Ps), clearcoat (Pc) and anisotropy are not "
-                                    "rendered; the rest of its PBR parameters are"});
+    // The layers: Pc / Pcr a clearcoat and its roughness, Ps (and map_Ps) a white sheen of
+    // that strength (roughness 0.5: MTL has none), aniso / anisor the anisotropy and its
+    // rotation (turns, as Blender writes it).
+    p.clearcoat = unit(m.clearcoat_thickness);
+    p.clearcoatRoughness = unit(m.clearcoat_roughness);
+    p.sheenColor = Vec3(unit(m.sheen));
+    p.sheenRoughness = 0.5;
+    p.sheenColorTexture = mtlSlot(
+        load(m.sheen_texname, m.sheen_texopt, true, "its Ps is used alone"), m.sheen_texopt);
+    if (p.sheenColorTexture && p.sheenColor == Vec3(0)) p.sheenColor = Vec3(1);
+    p.anisotropy = unit(m.anisotropy);
+    p.anisotropyRotation =
+        std::isfinite(m.anisotropy_rotation) ? m.anisotropy_rotation * 2 * std::numbers::pi : 0;
     return p;
 }
 
@@ -216,7 +225,7 @@ MeshMaterial mapMtlMaterial(const tinyobj::material_t& m, const MtlEntry& entry,
             g.ior = 1;
         }
     }
-    if (entry.pbr) out.pbr = mapMtlPbr(m, tint, out.texture, load, warnings, at, quotedName);
+    if (entry.pbr) out.pbr = mapMtlPbr(m, tint, out.texture, load);
     return out;
 }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <numbers>
 
 #include "glint/io/course/course_loader.h"
 #include "glint/render/whitted.h"
@@ -171,6 +172,37 @@ TEST(CourseMeshes, PhysicallyBasedMapErrorsPointAtTheirToken) {
     expectError("texture normalmap\n", 1, 9, "needs a file or none");
     expectError("texture roughnessmap a.png sideways\n", 1, 28, "unknown texture wrap");
     expectError("metallic 2\n", 1, 10, "metallic must be between 0 and 1");
+}
+
+TEST(CourseMeshes, LayerCommandsSetTheExtensionsOfTheCurrentMaterial) {
+    auto s = parseIn(
+        "diffuse 0.8 0.5 0.2\nclearcoat 0.7 0.2\nsheen 0.5 0.4 0.3 0.6\n"
+        "specularfactor 0.5 2 1 0.5\nanisotropy 0.8 90\niridescence 1 1.4 550\n"
+        "diffusetransmission 0.3 1 0.5 0\nmesh uvquad.obj\n");
+    const Material& m = s->materials[down(*s, 0, 0)->material];
+    ASSERT_NE(m.pbr, 0u);  // any layer makes the material physically based
+    const PbrMaterial& p = s->pbr(m.pbr);
+    EXPECT_EQ(p.clearcoat, 0.7);
+    EXPECT_EQ(p.clearcoatRoughness, 0.2);
+    expectNear(p.sheenColor, {0.5, 0.4, 0.3});
+    EXPECT_EQ(p.sheenRoughness, 0.6);
+    EXPECT_EQ(p.specular, 0.5);
+    expectNear(p.specularColor, {2, 1, 0.5});  // a colour above 1 scales f0 (clamped after)
+    EXPECT_EQ(p.anisotropy, 0.8);
+    EXPECT_NEAR(p.anisotropyRotation, std::numbers::pi / 2, 1e-12);
+    EXPECT_EQ(p.iridescence, 1);
+    EXPECT_EQ(p.iridescenceIor, 1.4);
+    EXPECT_EQ(p.iridescenceThicknessMax, 550);
+    EXPECT_EQ(p.diffuseTransmission, 0.3);
+    expectNear(p.diffuseTransmissionColor, {1, 0.5, 0});
+}
+
+TEST(CourseMeshes, LayerCommandErrorsPointAtTheirToken) {
+    expectError("clearcoat 1.5\n", 1, 11, "clearcoat must be between 0 and 1");
+    expectError("sheen 1 1 2\n", 1, 11, "sheen colour must be between 0 and 1");
+    expectError("specularfactor 1 1 1\n", 1, 20, "specularfactor takes a factor");
+    expectError("iridescence 1 0.5\n", 1, 15, "index must be between 1 and 4");
+    expectError("diffusetransmission -1\n", 1, 21, "must be between 0 and 1");
 }
 
 TEST(CourseMeshes, ImageTexturesOnSurfacesWithoutCoordinatesWarnAtTheTextureLine) {

@@ -38,6 +38,66 @@ PbrMaterial pbrOf(const std::string& material, const std::string& extra = "",
 
 const std::string kImage = R"("images": [{"uri": "quadrants.png"}])";
 
+TEST(GltfPbr, LayerExtensionsAreReadWithTheirDefaults) {
+    PbrMaterial p = pbrOf(R"({"extensions": {
+            "KHR_materials_clearcoat": {"clearcoatFactor": 0.9, "clearcoatRoughnessFactor": 0.2,
+                "clearcoatNormalTexture": {"index": 0, "scale": 0.5},
+                "clearcoatTexture": {"index": 0}},
+            "KHR_materials_sheen": {"sheenColorFactor": [0.9, 0.5, 0.1],
+                "sheenRoughnessFactor": 0.3, "sheenColorTexture": {"index": 0}},
+            "KHR_materials_specular": {"specularFactor": 0.4,
+                "specularColorFactor": [2, 1, 0.5]},
+            "KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 1.5},
+            "KHR_materials_iridescence": {"iridescenceFactor": 1, "iridescenceIor": 1.8,
+                "iridescenceThicknessMaximum": 800, "iridescenceThicknessTexture": {"index": 0}},
+            "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.25,
+                "diffuseTransmissionColorFactor": [0.5, 1, 0]}}})",
+                          kImage + R"(, "textures": [{"source": 0}])");
+    EXPECT_EQ(p.clearcoat, 0.9);
+    EXPECT_EQ(p.clearcoatRoughness, 0.2);
+    ASSERT_TRUE(p.clearcoatNormalTexture);
+    EXPECT_FALSE(p.clearcoatNormalTexture.image->srgb);
+    EXPECT_EQ(p.clearcoatNormalScale, 0.5);
+    EXPECT_TRUE(p.clearcoatTexture);
+    EXPECT_EQ(p.sheenColor, Vec3(0.9, 0.5, 0.1));
+    EXPECT_EQ(p.sheenRoughness, 0.3);
+    ASSERT_TRUE(p.sheenColorTexture);
+    EXPECT_TRUE(p.sheenColorTexture.image->srgb);  // a colour
+    EXPECT_EQ(p.specular, 0.4);
+    EXPECT_EQ(p.specularColor, Vec3(2, 1, 0.5));  // the specification allows colours above 1
+    EXPECT_EQ(p.anisotropy, 0.6);
+    EXPECT_EQ(p.anisotropyRotation, 1.5);
+    EXPECT_EQ(p.iridescence, 1);
+    EXPECT_EQ(p.iridescenceIor, 1.8);
+    EXPECT_EQ(p.iridescenceThicknessMin, 100);  // the default
+    EXPECT_EQ(p.iridescenceThicknessMax, 800);
+    EXPECT_TRUE(p.iridescenceThicknessTexture);
+    EXPECT_EQ(p.diffuseTransmission, 0.25);
+    EXPECT_EQ(p.diffuseTransmissionColor, Vec3(0.5, 1, 0));
+    // Absent extensions leave the base alone: no coat, no sheen, the index's f0 as it is.
+    PbrMaterial plain = pbrOf(R"({"pbrMetallicRoughness": {}})");
+    EXPECT_EQ(plain.clearcoat, 0);
+    EXPECT_EQ(plain.sheenColor, Vec3(0));
+    EXPECT_EQ(plain.specular, 1);
+    EXPECT_EQ(plain.specularColor, Vec3(1));
+    EXPECT_EQ(plain.iridescence, 0);
+    EXPECT_EQ(plain.diffuseTransmission, 0);
+}
+
+TEST(GltfPbr, LayerExtensionsWithBadNumbersAreErrors) {
+    std::vector<Diagnostic> w;
+    std::string text = gltfText(kTriangleScene + R"(, "materials": [{"extensions": {
+        "KHR_materials_sheen": {"sheenColorFactor": [1, "red", 0]}}}])",
+                                kTriangle);
+    text.replace(text.find(R"({"POSITION": 0})"), 15, R"({"POSITION": 0}, "material": 0)");
+    try {
+        parseGltf(text, dataPath("t.gltf"), w, {});
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        EXPECT_THAT(e.diagnostic().message, HasSubstr("sheenColorFactor must be finite numbers"));
+    }
+}
+
 TEST(GltfPbr, FactorsAndTexturesOfEverySlotAreKept) {
     PbrMaterial p = pbrOf(R"({"pbrMetallicRoughness": {
             "baseColorFactor": [0.5, 0.25, 1, 0.75], "metallicFactor": 0.3,

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -313,7 +314,7 @@ TEST(ObjLoader, MtlPbrExtensionsMakeAPhysicallyBasedMaterial) {
     const std::string mtl =
         "newmtl brushed\nKd 0.8 0.6 0.2\nPm 0.9\nPr 0.4\nKe 0 0 0\nNi 1.7\nd 0.5\n"
         "newmtl classic\nKd 0.5 0.5 0.5\nKs 0.2 0.2 0.2\n"
-        "newmtl sheeny\nKd 1 1 1\nPs 0.5\n";
+        "newmtl sheeny\nKd 1 1 1\nPs 0.5\nPc 0.8\nPcr 0.3\naniso 0.6\nanisor 0.25\n";
     std::vector<Diagnostic> warnings;
     MeshData mesh = parse("mtllib any.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &warnings, &mtl);
     ASSERT_EQ(mesh.materials.size(), 3u);
@@ -328,8 +329,13 @@ TEST(ObjLoader, MtlPbrExtensionsMakeAPhysicallyBasedMaterial) {
     EXPECT_TRUE(p.doubleSided);
     EXPECT_FALSE(mesh.materials[1].pbr);  // no PBR statement: the classic mapping alone
     ASSERT_TRUE(mesh.materials[2].pbr);
-    ASSERT_EQ(warnings.size(), 1u);  // sheen is read but not rendered
-    EXPECT_THAT(warnings[0].message, HasSubstr("sheen (Ps)"));
+    const PbrMaterial& layers = *mesh.materials[2].pbr;
+    expectNear(layers.sheenColor, Vec3(0.5), 1e-6);  // Ps: a white sheen of that strength
+    EXPECT_NEAR(layers.clearcoat, 0.8, 1e-6);
+    EXPECT_NEAR(layers.clearcoatRoughness, 0.3, 1e-6);
+    EXPECT_NEAR(layers.anisotropy, 0.6, 1e-6);
+    EXPECT_NEAR(layers.anisotropyRotation, std::numbers::pi / 2, 1e-6);  // anisor in turns
+    EXPECT_TRUE(warnings.empty());                                       // every layer is rendered
 }
 
 class ObjPbrMaps : public test::TempDirTest {};
