@@ -66,6 +66,13 @@ inline std::pair<double, double> sampleUniformTriangle(Point2 u) {
 
 /// An orthonormal basis (t, b, n) around the unit vector n (Duff et al., "Building an
 /// Orthonormal Basis, Revisited", JCGT 2017).
+/// Veach's power heuristic (exponent 2): the weight of a sample drawn with density `a` by one
+/// strategy when another would have drawn it with density `b`.
+inline double powerHeuristic(double a, double b) {
+    double a2 = a * a, b2 = b * b;
+    return a2 > 0 ? a2 / (a2 + b2) : 0;
+}
+
 struct Frame {
     Vec3 t, b, n;
 

@@ -6,17 +6,11 @@
 #include "glint/core/spawn.h"
 #include "glint/math/sobol.h"
 #include "glint/render/bsdf.h"
+#include "glint/render/media.h"
 #include "glint/render/surface_shading.h"
 
 namespace glint {
 namespace {
-
-/// The power heuristic with exponent 2 for a sample drawn with density `a` by the one strategy
-/// and `b` by the other.
-inline double powerHeuristic(double a, double b) {
-    double a2 = a * a, b2 = b * b;
-    return a2 > 0 ? a2 / (a2 + b2) : 0;
-}
 
 /// The normal by which the light tree weighs lights for a point of `bsdf` on a surface of
 /// geometric normal `ng`: none where light also arrives through the surface (glass,
@@ -24,7 +18,9 @@ inline double powerHeuristic(double a, double b) {
 Vec3 receivingNormal(const Bsdf& bsdf, const Vec3& ng) {
     struct Visitor {
         bool operator()(const Dielectric&) const { return true; }
-        bool operator()(const MetallicRoughness& m) const { return m.transmission > 0; }
+        bool operator()(const MetallicRoughness& m) const {
+            return m.transmission > 0 || m.diffuseTransmission > 0;
+        }
         bool operator()(const Lambertian&) const { return false; }
         bool operator()(const Conductor&) const { return false; }
         bool operator()(const DiffuseSpecular&) const { return false; }
@@ -67,7 +63,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
     : scene_(scene), lights_(scene), strategy_(strategy) {
     bsdfs_ = materialBsdfs(scene);
     if (scene.shadowCatcher) catcher_.emplace(scene);
-    if (scene.caustics && strategy == Strategy::Mis) {
+    if (scene.caustics && strategy == Strategy::Mis && scene.media.empty()) {
         caustics_.emplace(scene, lights_, bsdfs_);
         if (!caustics_->active()) caustics_.reset();
     }
@@ -132,6 +128,10 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     // casters met since the surface the camera sees, which left through its non-delta part.
     int castersSinceSeen = -1;
     bool throughCasters = true;  // every surface so far casts caustics
+    // The medium the path travels in (Scene::medium; 0: none), and the medium boundaries it
+    // crossed without scattering.
+    uint32_t medium = scene_.fog;
+    int crossings = 0;
 
     for (int depth = 0;; ++depth) {
         // A shadow catcher is seen by camera rays and their specular continuations only.
@@ -148,6 +148,42 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                 L += beta * catcher_->radiance(ray.origin + ray.dir * *t, normalize(ray.dir),
                                                uEnvironment, uLight, ctx.counts);
                 break;
+            }
+        }
+        // Through a medium: it may scatter or absorb before the surface (or the sky).
+        if (medium != 0) [[unlikely]] {
+            const Medium& med = scene_.medium(medium);
+            const MediumEvent e = sampleMedium(med, ray, found ? hit.t : kInfinity, ctx.rng, beta);
+            if (e.kind == MediumEvent::Kind::Absorbed) break;
+            if (e.kind == MediumEvent::Kind::Scattered) {
+                const Vec3 p = ray.origin + ray.dir * e.t;
+                const Vec3 wo = -normalize(ray.dir);
+                if (passes) [[unlikely]] {  // a medium's point: its albedo, facing the view
+                    const Vec3 st = med.sigmaT();
+                    passes->albedo = passTint * Vec3(st.x > 0 ? med.sigmaS.x / st.x : 0,
+                                                     st.y > 0 ? med.sigmaS.y / st.y : 0,
+                                                     st.z > 0 ? med.sigmaS.z / st.z : 0);
+                    passes->normal = wo;
+                    if (depth == 0) passes->depth = length(p - ray.origin);
+                    passes = nullptr;
+                }
+                if (depth >= scene_.maxDepth) break;
+                const Vec3 next = scatterInMedium(med, medium, p, wo, depth, beta, sampler, ctx, L);
+                bsdfPdf = HenyeyGreenstein{med.g}.eval(wo, next);
+                specularBounce = false;
+                castersSinceSeen = -1;
+                throughCasters = false;
+                from = p;
+                fromN = Vec3(0);
+                const double survive = maxComponent(beta);
+                if (depth >= 1 && survive < 1) {
+                    if (ctx.rng.uniform() >= survive) break;
+                    beta = beta / survive;
+                }
+                ray = Ray{p, next, 0, kInfinity};
+                hit = Hit{};
+                found = scene_.intersect(ray, hit);
+                continue;
             }
         }
         if (!found) {
@@ -171,6 +207,15 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
         const Material& m = scene_.materials[si.material];
+        if (m.interface) [[unlikely]] {  // only a medium's boundary: cross it unchanged
+            if (++crossings > kMaxCrossings) break;
+            medium = dot(ray.dir, si.ng) < 0 ? m.interior : scene_.fog;
+            ray = spawnRayOffSurface(si.p, si.ng, normalize(ray.dir), offset);
+            hit = Hit{};
+            found = scene_.intersect(ray, hit);
+            --depth;  // not a scattering event
+            continue;
+        }
 
         // Absorption inside a volume, paid on leaving it (Beer-Lambert over the segment).
         beta = beta * volumeTransmittance(scene_, si, ray.origin, ray.dir);
@@ -250,12 +295,14 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                 Vec3 f = bsdf.eval(wo, wi) * std::abs(wi.z);
                 if (!(f == Vec3(0))) {
                     ctx.counts.shadow++;
-                    if (!scene_.occluded(
-                            shadowRayOffSurface(si.p, si.ng, ls->wi, ls->distance, offset))) {
+                    const Vec3 tr = transmittance(
+                        shadowRayOffSurface(si.p, si.ng, ls->wi, ls->distance, offset),
+                        mediumAfter(m, bsdf, ls->wi, si.ng, medium), ctx);
+                    if (!(tr == Vec3(0))) {
                         double w = ls->delta || strategy_ == Strategy::LightsOnly
                                        ? 1
                                        : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
-                        const Vec3 light = beta * f * ls->L * (w / ls->pdf);
+                        const Vec3 light = beta * f * tr * ls->L * (w / ls->pdf);
                         L += clamped(light, depth + 1);
                     }
                 }
@@ -286,6 +333,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             beta = beta / survive;
         }
 
+        medium = mediumAfter(m, bsdf, next, si.ng, medium);
         ray = spawnRayOffSurface(si.p, si.ng, next, offset);
         ctx.counts.reflection++;
         hit = Hit{};

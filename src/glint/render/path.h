@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include "glint/math/sobol.h"
 #include "glint/render/bsdf.h"
 #include "glint/render/caustics.h"
 #include "glint/render/integrator.h"
@@ -46,6 +47,26 @@ class PathIntegrator final : public Integrator {
     /// Weight of light a BSDF-sampled ray found on a light that next-event estimation samples
     /// with density `lightPdf` (0: it does not).
     double bsdfWeight(double bsdfPdf, double lightPdf) const;
+
+    // Participating media (path_media.cpp).
+    /// At point p of medium `med` (id `medium`), which scattered a path arriving from unit
+    /// direction wo (towards where it came from) with throughput `beta` after `depth`
+    /// bounces: one light sample weighed against the phase function by MIS (added to L), and
+    /// the direction the phase function draws next.
+    Vec3 scatterInMedium(const Medium& med, uint32_t medium, const Vec3& p, const Vec3& wo,
+                         int depth, const Vec3& beta, SobolSampler& sampler, PathContext& ctx,
+                         Vec3& L) const;
+    /// What a shadow ray lets through: 0 if something other than a medium's boundary is in
+    /// the way, else the transmittance of the media it crosses, starting in `medium`.
+    Vec3 transmittance(const Ray& ray, uint32_t medium, PathContext& ctx) const;
+    /// The medium that a direction `dir` leaving a surface of material `m` (BSDF `bsdf`,
+    /// geometric normal `ng`) travels in, when the path arrived in `current`: a refracting
+    /// or medium-holding surface is a boundary (its interior inside, the fog outside); others
+    /// leave the medium as it was.
+    uint32_t mediumAfter(const Material& m, const Bsdf& bsdf, const Vec3& dir, const Vec3& ng,
+                         uint32_t current) const;
+    /// Medium boundaries a path or shadow ray crosses at most without scattering.
+    static constexpr int kMaxCrossings = 256;
 
     const Scene& scene_;
     LightSampler lights_;

@@ -41,13 +41,6 @@ constexpr double kMinBranchWeight = 1e-3;
     return ggx.g1(o) * ggx.d(sum / len) / (4 * o.z);
 }
 
-/// The power heuristic (exponent 2) for a sample drawn with density `a` by one strategy and
-/// `b` by the other.
-inline double powerHeuristic(double a, double b) {
-    double a2 = a * a, b2 = b * b;
-    return a2 > 0 ? a2 / (a2 + b2) : 0;
-}
-
 /// One light's specular and diffuse term at a point it reaches from unit direction `wi`
 /// (N.L > 0, unblocked) with `radiance` (the light's colour over the attenuation, or an area
 /// light's L / pdf): Blinn-Phong as the course has it, or the GGX lobe for rough materials.

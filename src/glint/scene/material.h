@@ -33,6 +33,13 @@ struct Material {
     /// Id of the physically based material the path tracer renders instead (Scene::pbr);
     /// 0: none, the path tracer makes its BSDF from this material.
     uint32_t pbr = 0;
+    /// Id of the medium inside closed surfaces of this material (Scene::medium); 0: none. The
+    /// path tracer enters it where a path crosses such a surface inwards, and returns to the
+    /// scene's fog where it crosses outwards.
+    uint32_t interior = 0;
+    /// Only a medium's boundary: rays pass through such surfaces unchanged (pbrt's
+    /// "interface" material), changing medium; they are not drawn.
+    bool interface = false;
 
     bool transmissive() const { return !(transmission == Vec3(0)); }
 

@@ -15,6 +15,7 @@
 #include "glint/scene/filter_spec.h"
 #include "glint/scene/light.h"
 #include "glint/scene/material.h"
+#include "glint/scene/medium.h"
 #include "glint/scene/pbr_material.h"
 #include "glint/scene/texture.h"
 
@@ -103,6 +104,11 @@ class Scene {
     std::vector<Texture> textures;
     /// Physically based materials named by Material::pbr: id k is pbrMaterials[k - 1].
     std::vector<PbrMaterial> pbrMaterials;
+    /// Participating media named by Material::interior and `fog`: id k is media[k - 1].
+    std::vector<Medium> media;
+    /// The medium filling the scene outside every closed surface with an interior (the
+    /// camera's too); 0: none (vacuum).
+    uint32_t fog = 0;
     Primitives primitives;
 
     /// Bytes a scene of this many triangles, spheres and other shapes (boxes, cylinders,
@@ -134,6 +140,12 @@ class Scene {
         return static_cast<uint32_t>(pbrMaterials.size());
     }
     const PbrMaterial& pbr(uint32_t id) const { return pbrMaterials[id - 1]; }
+    /// Id (from 1) of a new medium.
+    uint32_t addMedium(Medium m) {
+        media.push_back(std::move(m));
+        return static_cast<uint32_t>(media.size());
+    }
+    const Medium& medium(uint32_t id) const { return media[id - 1]; }
     /// The texture of id `id` (1 to textures.size()).
     const Texture& texture(uint32_t id) const { return textures[id - 1]; }
 

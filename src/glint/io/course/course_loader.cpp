@@ -75,6 +75,10 @@ const std::vector<Command>& Parser::commands() {
         {"anisotropy", 1, 2, "strength [rotation-degrees]", &Parser::cmdAnisotropy},
         {"iridescence", 1, 3, "factor [ior [thickness-nm]]", &Parser::cmdIridescence},
         {"diffusetransmission", 1, 4, "factor [r g b]", &Parser::cmdDiffuseTransmission},
+        {"medium", 1, 24, "name [absorption r g b] [scattering r g b] [g value] ...",
+         &Parser::cmdMedium},
+        {"interior", 1, 2, "medium|none [interface]", &Parser::cmdInterior},
+        {"fog", 1, 1, "medium|none", &Parser::cmdFog},
         {"checker", 7, 7, "r1 g1 b1 r2 g2 b2 scale", &Parser::cmdChecker},
     };
     return table;

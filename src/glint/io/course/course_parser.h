@@ -161,6 +161,11 @@ class Parser {
     void cmdAnisotropy();
     void cmdIridescence();
     void cmdDiffuseTransmission();
+    void cmdMedium();
+    void cmdInterior();
+    void cmdFog();
+    /// The medium argument `token` names (`none`: 0).
+    uint32_t mediumNamed(int token) const;
     /// `texture SLOT file [wrap]` and `texture SLOT none`: a physically based map.
     void cmdTextureMap();
     /// The image at scene-relative `name` (token 1 or 2), read once per scene.
@@ -189,6 +194,7 @@ class Parser {
 
     int line_ = 0;
     std::array<Token, kMaxTokens> tok_;
+    std::map<std::string, uint32_t, std::less<>> media_;  ///< Named media, by id.
     int ntok_ = 0;  ///< Tokens on the line, possibly more than kMaxTokens (only those are kept).
 
     LargeVector<Vec3> vertices_;
