@@ -284,5 +284,46 @@ TEST(Whitted, ASingleSidedGltfMaterialAndTheCoursesMaterialsKeepTheirBackFacesUn
     }
 }
 
+TEST(Whitted, StackedAlphaBlendedLayersLetThroughTheirShareInCameraAndShadowRays) {
+    // N layers of alpha a (black, opaque in their flat terms: the traversal blends, as the
+    // loaders leave it) between the viewer and the background, and between a floor and its
+    // light: (1 - a)^N of each gets through, in the mean over rays.
+    const double a = 0.3;
+    for (int layers : {1, 3}) {
+        Scene scene;
+        PbrMaterial pm;
+        pm.alphaMode = AlphaMode::Blend;
+        pm.alpha = a;
+        pm.doubleSided = true;
+        Material black = makeMaterial({0, 0, 0});
+        black.pbr = scene.addPbrMaterial(pm);
+        const uint32_t id = scene.addMaterial(black);
+        for (int k = 0; k < layers; ++k) {
+            const double z = 1 + 0.5 * k;
+            scene.primitives.addTriangle({-1, -1, z}, {1, -1, z}, {0, 1, z}, nullptr, id);
+        }
+        addPlane(scene, 0, makeMaterial({0, 0, 0}, {0.5, 0.5, 0.5}));
+        scene.background = Background{Vec3(1), Vec3(1)};
+        scene.lights.push_back(directionalLight({0, 0, 1}, {1, 1, 1}));
+        scene.maxDepth = 0;
+        scene.prepare();
+        const WhittedIntegrator whitted(scene);
+        const int n = 20000;
+        double up = 0, down = 0;
+        for (int i = 0; i < n; ++i) {
+            RayCounts counts;
+            const double dx = 1e-7 * i;  // rays that differ, so that their blending does
+            // Up from the floor through the stack to the background.
+            up += whitted.radiance(makeRay({dx, 0, 0.5}, {0, 0, 1}), 0, counts).y;
+            // Down onto the floor, from beside the stack: its shadow ray crosses the stack.
+            down += whitted.radiance(makeRay({3 + dx, 0, 0.5}, {-3, 0, -0.5}), 0, counts).y;
+        }
+        const double through = std::pow(1 - a, layers);
+        const double tolerance = 5 * std::sqrt(through * (1 - through) / n);
+        EXPECT_NEAR(up / n, through, tolerance) << layers;
+        EXPECT_NEAR(down / n, 0.5 * through, 0.5 * tolerance) << layers;
+    }
+}
+
 }  // namespace
 }  // namespace glint
