@@ -240,6 +240,7 @@ int prepare(const Options& opt, Prepared& out) {
     std::unique_ptr<Scene> scene;
     std::string modelNote;  // for a bare model: the camera, lights and floor Glint chose
     bool framed = false;    // a model framed as a scene
+    std::vector<FormatExtension> extensions;  // a model file's
     try {
         if (demo) {
             scene = parseCourseScene(kDemoScene, "demo.test", warnings);
@@ -254,6 +255,7 @@ int prepare(const Options& opt, Prepared& out) {
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
             framed = m.framed;
+            extensions = std::move(m.extensions);
         }
     } catch (const SceneError& e) {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
@@ -323,6 +325,7 @@ int prepare(const Options& opt, Prepared& out) {
     out.parseSeconds = parseSeconds;
     out.demo = demo;
     out.model = framed;
+    out.extensions = std::move(extensions);
     return kGoOn;
 }
 

@@ -9,10 +9,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "glint/accel/bvh.h"
 #include "glint/render/display.h"
 #include "glint/render/renderer.h"
+#include "glint/scene/model.h"
 #include "glint/scene/scene.h"
 
 namespace glint::cli {
@@ -75,6 +77,8 @@ struct Prepared {
     double parseSeconds = 0;
     bool demo = false;   ///< No scene named: the built-in demo.
     bool model = false;  ///< A model file framed in the studio (not a scene).
+    /// A model file's format extensions and what Glint does with each (`--check` lists them).
+    std::vector<FormatExtension> extensions;
 };
 
 /// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -98,6 +99,16 @@ int run(const Options& opt) {
                     primitiveSummary(prims).c_str(),
                     count(scene->lights.size(), "light", "lights").c_str(), scene->maxDepth,
                     output.c_str());
+        // A model file's format extensions, each with what Glint does with it.
+        if (!prepared.extensions.empty()) {
+            size_t width = 0;
+            for (const glint::FormatExtension& e : prepared.extensions)
+                width = std::max(width, e.name.size());
+            std::printf("extensions used (%zu):\n", prepared.extensions.size());
+            for (const glint::FormatExtension& e : prepared.extensions)
+                std::printf("  %-*s  %s\n", static_cast<int>(width), e.name.c_str(),
+                            e.support.c_str());
+        }
         return 0;
     }
 

@@ -45,7 +45,10 @@ TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.out,
               "scene.glb: ok: 100x50, 530 triangles, 0 spheres, 2 mesh instances, 2 lights, "
-              "maxdepth 8, output scene.png\n");
+              "maxdepth 8, output scene.png\n"
+              "extensions used (1):\n"
+              "  KHR_lights_punctual  partly: spot lights shine in every direction, as point "
+              "lights; range is ignored\n");
     // The classic look: the file's camera and lights alone, nothing said.
     r = runGlint("scene.glb --integrator whitted --size 64x36", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -205,6 +208,73 @@ TEST(CliGltf, AnUnknownCameraIsAnErrorListingTheCameras) {
     r = runGlint("scene.glb --camera ''", dir);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_TRUE(contains(r.err, "expected a camera number, a name, or none")) << r.err;
+}
+
+/// Two quads whose materials use KHR_materials_clearcoat (which Glint ignores), one with a
+/// KHR_texture_transform and KHR_materials_volume (both rendered, the latter in part).
+std::string coatedQuads() {
+    GltfAsset a;
+    int left = a.floats({-4, -1, 0, -2, -1, 0, -2, 1, 0, -4, 1, 0}, "VEC3");
+    int right = a.floats({2, -1, 0, 4, -1, 0, 4, 1, 0, 2, 1, 0}, "VEC3");
+    int indices = a.integers({0, 1, 2, 0, 2, 3}, GltfAsset::kUbyte, "SCALAR");
+    auto quad = [&](int positions, int material) {
+        return R"({"primitives": [{"attributes": {"POSITION": )" + std::to_string(positions) +
+               R"(}, "indices": )" + std::to_string(indices) + R"(, "material": )" +
+               std::to_string(material) + "}]}";
+    };
+    return a.text(R"("meshes": [)" + quad(left, 0) + ", " + quad(right, 1) + R"(],
+        "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_volume",
+                           "KHR_texture_transform"],
+        "materials": [
+          {"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1}}},
+          {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 1, 1]},
+           "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.5},
+                          "KHR_materials_volume": {"thicknessFactor": 0}}}],
+        "nodes": [{"mesh": 0}, {"mesh": 1}])");
+}
+
+/// How often `needle` occurs in `text`.
+size_t occurrences(const std::string& text, const std::string& needle) {
+    size_t n = 0;
+    for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+        ++n;
+    return n;
+}
+
+TEST(CliGltf, CheckListsTheExtensionsUsedAndARenderWarnsOnceOfEachIgnoredOne) {
+    std::string dir = freshDir("gltf-extensions");
+    writeFile(dir + "/coated.gltf", coatedQuads());
+    CommandResult r = runGlint("coated.gltf --check", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "coated.gltf: ok: ")) << r.out;
+    EXPECT_TRUE(contains(r.out, "extensions used (3):\n")) << r.out;
+    EXPECT_TRUE(contains(r.out,
+                         "  KHR_materials_clearcoat  ignored: coated surfaces show their base "
+                         "layer alone, without the coat\n"))
+        << r.out;
+    EXPECT_TRUE(
+        contains(r.out, "  KHR_materials_volume     partly: absorption only, no scattering\n"))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, "  KHR_texture_transform    rendered\n")) << r.out;
+
+    // A render says it once, although two materials use it; nothing of the others.
+    r = runGlint("coated.gltf --size 32x24 --spp 1", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(occurrences(r.err, "KHR_materials_clearcoat"), 1u) << r.err;
+    EXPECT_TRUE(contains(r.err,
+                         "coated.gltf: warning: the file uses KHR_materials_clearcoat, which "
+                         "Glint does not render: coated surfaces show their base layer alone"))
+        << r.err;
+    EXPECT_EQ(occurrences(r.err, "KHR_texture_transform"), 0u) << r.err;
+    EXPECT_EQ(occurrences(r.err, "KHR_materials_volume"), 0u) << r.err;
+    // Quiet renders too: it is a warning.
+    r = runGlint("-q coated.gltf --size 32x24 --spp 1 -o q.png", dir);
+    EXPECT_EQ(occurrences(r.err, "KHR_materials_clearcoat"), 1u) << r.err;
+    // A file without extensions lists none.
+    writeFile(dir + "/two.gltf", twoCameras());
+    r = runGlint("two.gltf --check", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(contains(r.out, "extensions")) << r.out;
 }
 
 }  // namespace

@@ -132,7 +132,7 @@ Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvi
     if (std::optional<EnvironmentSample> s = sampleEnvironment(uEnvironment);
         s && !(s->L == Vec3(0))) {
         counts.shadow++;
-        if (scene_.bvh().occluded(spawnRay(p, s->wi, offset))) blocked += s->L * (s->wi.y / s->pdf);
+        if (scene_.occluded(spawnRay(p, s->wi, offset))) blocked += s->L * (s->wi.y / s->pdf);
     }
 
     // The lights: each one's irradiance, and its shadow ray (or, among many lights, one
@@ -152,7 +152,7 @@ Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvi
         double end = s->distance;
         if (std::isfinite(end)) end -= spawnOffset(p + s->wi * end, offset);
         counts.shadow++;
-        if (scene_.bvh().occluded(spawnRay(p, s->wi, offset, end)))
+        if (scene_.occluded(spawnRay(p, s->wi, offset, end)))
             blocked += each ? e : e * static_cast<double>(lights.size());
     }
     return behind * (Vec3(1) - ratio(blocked, irradiance));

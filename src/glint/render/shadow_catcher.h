@@ -9,7 +9,8 @@
 /// plane receives from the environment and the scene's lights with nothing in the way, O(p) the
 /// part of it that the scene blocks at p (all per channel). E's environment part is computed
 /// once, by quadrature over the map; O(p) is estimated with one shadow ray towards the
-/// environment and one per light (or to one light chosen at random among many). Where nothing
+/// environment and one per light (or to one light chosen at random among many), which pass
+/// cut-out texels and alpha-blended ones as every shadow ray does (Scene::occluded). Where nothing
 /// blocks the light the estimate is exactly 0, so the plane shows the environment exactly,
 /// without noise. The environment's direction is drawn over the upper hemisphere in proportion
 /// to the map's luminance times cos(theta), texel by texel (for a background colour: by

@@ -237,17 +237,15 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, c
     return m.specular * g * shade(next, found ? &hit : nullptr, depth + 1, weight, ctx);
 }
 
-[[gnu::always_inline]] inline Vec3 WhittedIntegrator::shadeHit(const Ray& ray,
-                                                               const SurfaceInteraction& si,
-                                                               const Material& m, bool frontOnly,
-                                                               int depth, double weight,
-                                                               PathContext& ctx) const {
+[[gnu::always_inline]] inline Vec3 WhittedIntegrator::shadeHit(
+    const Ray& ray, const SurfaceInteraction& si, const SurfaceInteraction& lit, const Material& m,
+    bool frontOnly, int depth, double weight, PathContext& ctx) const {
     // Area lights' surfaces emit from their front face only (shadeSpecial's case).
     Vec3 color = frontOnly && !(dot(ray.dir, si.ng) < 0) ? m.ambient : m.ambient + m.emission;
     // Whether indirect() traces the GGX lobe's reflected ray.
     const bool glossyRay =
         m.roughness > 0 && depth < scene_.maxDepth && !m.transmissive() && !(m.specular == Vec3(0));
-    directLight(si, -ray.dir, m, glossyRay, color, ctx);
+    directLight(lit, -ray.dir, m, glossyRay, color, ctx);
     if (depth < scene_.maxDepth) {
         if (m.transmissive() || m.roughness > 0) {
             color += indirect(ray, si, m, depth, weight, ctx);
@@ -287,17 +285,26 @@ Vec3 WhittedIntegrator::shadeSurface(const Ray& ray, const Hit& hit, int depth, 
                                      PathContext& ctx) const {
     SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
     const Material& m = scene_.materials[si.material];
-    if (m.texture != 0 || m.frontEmissionOnly) return shadeSpecial(ray, si, m, depth, weight, ctx);
-    return shadeHit(ray, si, m, false, depth, weight, ctx);
+    if (m.texture != 0 || m.frontEmissionOnly || m.pbr != 0)
+        return shadeSpecial(ray, si, m, depth, weight, ctx);
+    return shadeHit(ray, si, si, m, false, depth, weight, ctx);
 }
 
 Vec3 WhittedIntegrator::shadeSpecial(const Ray& ray, const SurfaceInteraction& si,
                                      const Material& m, int depth, double weight,
                                      PathContext& ctx) const {
-    if (m.texture == 0) return shadeHit(ray, si, m, m.frontEmissionOnly, depth, weight, ctx);
+    // The back face of a double-sided glTF material is lit as its front (the glTF
+    // specification: its normals are turned towards the viewer). Only the lights see the
+    // turned normals: refraction tells entering from leaving by the geometric normal as it is.
+    SurfaceInteraction lit = si;
+    if (m.pbr != 0 && scene_.pbr(m.pbr).doubleSided && dot(ray.dir, si.ng) > 0) {
+        lit.n = -si.n;
+        lit.ng = -si.ng;
+    }
+    if (m.texture == 0) return shadeHit(ray, si, lit, m, m.frontEmissionOnly, depth, weight, ctx);
     Material textured = m;
     textured.diffuse = scene_.texture(m.texture).eval(si.hasUv, si.u, si.v, si.p, m.diffuse);
-    return shadeHit(ray, si, textured, m.frontEmissionOnly, depth, weight, ctx);
+    return shadeHit(ray, si, lit, textured, m.frontEmissionOnly, depth, weight, ctx);
 }
 
 }  // namespace glint

@@ -47,12 +47,15 @@ class WhittedIntegrator final : public Integrator {
     [[gnu::noinline]] Vec3 shadeSurface(const Ray& ray, const Hit& hit, int depth, double weight,
                                         PathContext& ctx) const;
     /// shade() for a hit `si` on material `m`, both known; `frontOnly`: m emits from the
-    /// front face only.
-    Vec3 shadeHit(const Ray& ray, const SurfaceInteraction& si, const Material& m, bool frontOnly,
-                  int depth, double weight, PathContext& ctx) const;
+    /// front face only. Lights are gathered with `lit`: `si` itself, or `si` with its normals
+    /// turned towards the viewer (the back face of a double-sided glTF material).
+    Vec3 shadeHit(const Ray& ray, const SurfaceInteraction& si, const SurfaceInteraction& lit,
+                  const Material& m, bool frontOnly, int depth, double weight,
+                  PathContext& ctx) const;
     /// shadeHit() for materials with a texture (its value at the hit replaces the diffuse
-    /// colour) or with front-only emission: out of line, so that the course's materials pay
-    /// one test for both.
+    /// colour), with front-only emission, or physically based (a double-sided one is lit on its
+    /// back face as on its front): out of line, so that the course's materials pay one test
+    /// for all.
     [[gnu::noinline]] Vec3 shadeSpecial(const Ray& ray, const SurfaceInteraction& si,
                                         const Material& m, int depth, double weight,
                                         PathContext& ctx) const;

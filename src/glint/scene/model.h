@@ -53,6 +53,13 @@ struct CameraChoice {
     std::string describe() const;
 };
 
+/// An extension of its format that a model file uses (glTF's KHR_materials_clearcoat, ...).
+struct FormatExtension {
+    std::string name;
+    /// What Glint does with it, for the user: "rendered", "partly: ...", "ignored: ...".
+    std::string support;
+};
+
 /// A model in its own space (Glint's conventions: right-handed, +y up).
 struct Model {
     std::string name;  ///< The file it came from.
@@ -62,6 +69,8 @@ struct Model {
     std::vector<ModelPlacement> placements;
     std::optional<ModelCamera> camera;
     std::vector<Light> lights;  ///< In the model's space.
+    /// The format's extensions the file uses, by name (glTF's; none for other formats).
+    std::vector<FormatExtension> extensions;
 
     size_t triangles() const;  ///< Triangles placed by all placements together.
 };

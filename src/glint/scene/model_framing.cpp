@@ -248,6 +248,7 @@ ModelScene frameModelScene(const Model& model, int width, int height, const Mode
     ModelScene out = look.studio ? studioScene(model, width, height, look)
                                  : classicScene(model, width, height, look);
     out.framed = true;
+    out.extensions = model.extensions;
     return out;
 }
 

@@ -27,6 +27,8 @@ struct ModelScene {
     /// What was assumed, for the user, as a sentence after "glint: " ("knot.obj has no camera
     /// or lights: framing it with ..."); empty when the model brought everything.
     std::string note;
+    /// The model file's format extensions (Model::extensions): `glint --check` lists them.
+    std::vector<FormatExtension> extensions;
 };
 
 /// Camera rays per pixel of the studio look: enough for rough metal and soft shadows to come

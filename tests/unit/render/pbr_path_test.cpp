@@ -265,6 +265,61 @@ TEST(PbrPath, AlphaBlendingLetsThroughTheTransparentShareOfRays) {
     EXPECT_NEAR(share, 0.7, kZ * std::sqrt(0.21 / n));
 }
 
+TEST(PbrPath, StackedAlphaBlendedLayersLetThroughTheirShareInCameraAndShadowRays) {
+    // N black layers of alpha a: (1 - a)^N of what lies behind them reaches the camera, and
+    // (1 - a)^N of a light above them reaches a floor below them.
+    const double a = 0.3;
+    for (int layers : {1, 3}) {
+        const double through = std::pow(1 - a, layers);
+        auto scene = std::make_unique<Scene>();
+        PbrMaterial black;
+        black.baseColor = Vec3(0);
+        black.metallic = 1;
+        black.doubleSided = true;
+        black.alphaMode = AlphaMode::Blend;
+        black.alpha = a;
+        const uint32_t layer = pbrMaterial(*scene, black);
+        for (int k = 0; k < layers; ++k) addQuad(*scene, layer, -0.5 * k);
+        PbrMaterial grey;
+        grey.baseColor = Vec3(0.5);
+        grey.metallic = 0;
+        grey.doubleSided = true;
+        const uint32_t floor = pbrMaterial(*scene, grey);
+        const Vec3 p[4] = {{-5, -5, -2}, {5, -5, -2}, {5, 5, -2}, {-5, 5, -2}};
+        scene->primitives.addTriangle(p[0], p[1], p[2], nullptr, floor);
+        scene->primitives.addTriangle(p[0], p[2], p[3], nullptr, floor);
+        scene->background = Background{Vec3(1), Vec3(1)};
+        scene->maxDepth = 0;
+        scene->prepare();
+        // Camera rays: up through the stack (from between it and the floor) to the background
+        // (the layers reflect nothing at depth 0), against rays past it.
+        test::MeanEstimate seen = estimate(*scene, towards({0.1, 0.2, -1.5}, {0.1, 0.2, 0}), 20000);
+        EXPECT_NEAR(seen.mean(), through, kZ * seen.standardError()) << layers;
+        EXPECT_EQ(estimate(*scene, towards({3, 0, 1}, {6, 0, 0}), 10).mean(), 1);
+
+        // Shadow rays: the floor under the stack, seen from below the stack's edge and lit
+        // straight from above, against the same point with nothing in the way.
+        scene->background = Background{Vec3(0), Vec3(0)};
+        scene->lights.push_back(directional({0, 0, 1}, 2));
+        scene->maxDepth = 1;
+        scene->prepare();
+        const Ray atFloor = towards({3, 0.1, -1.5}, {0, 0.1, -2});
+        test::MeanEstimate shaded = estimate(*scene, atFloor, 20000);
+        auto open = std::make_unique<Scene>();
+        const uint32_t openFloor = pbrMaterial(*open, grey);
+        open->primitives.addTriangle(p[0], p[1], p[2], nullptr, openFloor);
+        open->primitives.addTriangle(p[0], p[2], p[3], nullptr, openFloor);
+        open->lights.push_back(directional({0, 0, 1}, 2));
+        open->maxDepth = 1;
+        open->prepare();
+        test::MeanEstimate lit = estimate(*open, atFloor, 200);
+        EXPECT_GT(lit.mean(), 0.05);
+        EXPECT_NEAR(shaded.mean(), lit.mean() * through,
+                    kZ * std::hypot(shaded.standardError(), lit.standardError() * through))
+            << layers;
+    }
+}
+
 TEST(PbrPath, AnEmissiveTextureLightsTheSceneAsMuchByLightSamplingAsByBsdfSampling) {
     auto scene = std::make_unique<Scene>();
     PbrMaterial lamp;

@@ -12,6 +12,7 @@
 
 #include "glint/math/rng.h"
 #include "glint/render/path.h"
+#include "glint/scene/pbr_material.h"
 #include "unit/statistics.h"
 
 namespace glint {
@@ -212,6 +213,47 @@ TEST(ShadowCatcher, TheSceneLightsCastShadowsToo) {
     RayCounts counts;
     EXPECT_EQ(catcher.radiance({100, 0, 0}, {0, -1, 0}, {0.3, 0.6}, 0.5, counts),
               scene.environment->eval({0, -1, 0}));
+}
+
+TEST(ShadowCatcher, LayersOfAlphaBlendedSurfacesLetThroughTheirShareOfLight) {
+    // N wide layers of alpha a above the plane, under the environment and a light straight
+    // above: each shadow ray passes a layer with probability 1 - a, so (1 - a)^N of the light
+    // arrives, and the plane shows that share of the environment. The layers are wide enough
+    // that what they leave uncovered near the horizon is below 1e-4 of the light.
+    const double env = 0.5, light = 1, a = 0.3;
+    for (int layers : {1, 3}) {
+        Scene scene;
+        scene.shadowCatcher = ShadowCatcher{0};
+        scene.environment = constantMap(env);
+        PbrMaterial glassy;
+        glassy.alphaMode = AlphaMode::Blend;
+        glassy.alpha = a;
+        Material m;
+        m.pbr = scene.addPbrMaterial(glassy);
+        const uint32_t id = scene.addMaterial(m);
+        for (int k = 0; k < layers; ++k) {
+            const double h = 1 + 0.25 * k, w = 1e3;
+            scene.primitives.addTriangle({-w, h, -w}, {w, h, -w}, {w, h, w}, nullptr, id);
+            scene.primitives.addTriangle({-w, h, -w}, {w, h, w}, {-w, h, w}, nullptr, id);
+        }
+        Light point;
+        point.position = {0, 3, 0};
+        point.color = Vec3(light);
+        scene.lights.push_back(point);
+        scene.prepare();
+        ShadowCatcherShading catcher(scene);
+        Rng rng(11 + layers);
+        test::MeanEstimate e;
+        for (int i = 0; i < 40000; ++i) {
+            RayCounts counts;
+            // Points spread over the plane, so that the shadow rays differ from sample to sample.
+            const Vec3 p(rng.uniform() - 0.5, 0, rng.uniform() - 0.5);
+            e.add(catcher.radiance(p, {0, -1, 0}, uniform2(rng), rng.uniform(), counts).y);
+        }
+        const double through = std::pow(1 - a, layers);
+        EXPECT_NEAR(e.mean(), env * through, kZ * e.standardError() + 1e-4) << layers;
+        EXPECT_GT(e.mean(), 0.5 * env * through) << layers;  // not the full shadow of before
+    }
 }
 
 /// A diffuse sphere of albedo 1 resting on a shadow catcher at y = 0 under a uniform

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "glint/scene/pbr_material.h"
 #include "unit/test_support.h"
 
 namespace glint {
@@ -227,6 +228,101 @@ TEST(Whitted, ReflectionsThatMissSeeTheBackground) {
     addPlane(scene, 0, makeMaterial({0.1, 0.1, 0.1}, {}, {0.5, 0.5, 0.5}));
     // The reflected ray (0, 0.6, 0.8) has y = 0.6: the background there is 0.8.
     expectNear(shade(scene, kOblique), Vec3(0.1 + 0.5 * 0.8));
+}
+
+/// A material of a glTF file as the loader gives it to the Whitted integrator: its flat
+/// course-style terms, and the physically based material they stand for (whose sidedness
+/// counts).
+Material gltfMaterial(Scene& scene, bool doubleSided, double roughness) {
+    PbrMaterial pm;
+    pm.baseColor = Vec3(0.6);
+    pm.metallic = 0;
+    pm.roughness = std::sqrt(roughness);
+    pm.doubleSided = doubleSided;
+    Material m = makeMaterial({0.05, 0.05, 0.05}, {0.6, 0.6, 0.6}, {0.3, 0.3, 0.3}, 10);
+    m.roughness = roughness;
+    m.pbr = scene.addPbrMaterial(pm);
+    return m;
+}
+
+TEST(Whitted, ADoubleSidedGltfMaterialIsLitOnItsBackFaceAsOnItsFront) {
+    // The floor seen and lit from above, and the same seen and lit from below: the glTF
+    // specification turns a double-sided material's back-face normal towards the viewer.
+    for (double roughness : {0.0, 0.3}) {
+        auto render = [&](double side) {
+            Scene scene;
+            addPlane(scene, 0, gltfMaterial(scene, true, roughness));
+            scene.maxDepth = 0;
+            scene.lights.push_back(pointLight({3, 0, 4 * side}, {1, 1, 1}));
+            scene.lights.push_back(directionalLight({0, 1, 2 * side}, {0.5, 0.5, 0.5}));
+            return shade(scene, makeRay({0, -3, 4 * side}, {0, 3, -4 * side}));
+        };
+        const Vec3 front = render(1), back = render(-1);
+        EXPECT_GT(front.y, 0.5) << roughness;  // lit: well above the ambient 0.05
+        expectNear(back, front);
+    }
+}
+
+TEST(Whitted, ASingleSidedGltfMaterialAndTheCoursesMaterialsKeepTheirBackFacesUnlit) {
+    // Seen from below and lit from below: camera rays pass a single-sided back face (glTF's
+    // culling) to the background; other rays see it, unlit but for its ambient term, as they
+    // see the back of a course triangle.
+    for (bool gltf : {true, false}) {
+        Scene scene;
+        scene.background = Background{Vec3(0.25), Vec3(0.25)};
+        addPlane(scene, 0,
+                 gltf ? gltfMaterial(scene, false, 0)
+                      : makeMaterial({0.05, 0.05, 0.05}, {0.6, 0.6, 0.6}, {0.3, 0.3, 0.3}, 10));
+        scene.maxDepth = 0;
+        scene.lights.push_back(directionalLight({0, 1, -2}, {1, 1, 1}));
+        const Ray fromBelow = makeRay({0, -3, -4}, {0, 3, 4});
+        scene.prepare();
+        RayCounts counts;
+        const WhittedIntegrator whitted(scene);
+        expectNear(whitted.radiance(fromBelow, 0, counts), gltf ? Vec3(0.25) : Vec3(0.05));
+        expectNear(whitted.radiance(fromBelow, 1, counts), Vec3(0.05));  // a secondary ray
+    }
+}
+
+TEST(Whitted, StackedAlphaBlendedLayersLetThroughTheirShareInCameraAndShadowRays) {
+    // N layers of alpha a (black, opaque in their flat terms: the traversal blends, as the
+    // loaders leave it) between the viewer and the background, and between a floor and its
+    // light: (1 - a)^N of each gets through, in the mean over rays.
+    const double a = 0.3;
+    for (int layers : {1, 3}) {
+        Scene scene;
+        PbrMaterial pm;
+        pm.alphaMode = AlphaMode::Blend;
+        pm.alpha = a;
+        pm.doubleSided = true;
+        Material black = makeMaterial({0, 0, 0});
+        black.pbr = scene.addPbrMaterial(pm);
+        const uint32_t id = scene.addMaterial(black);
+        for (int k = 0; k < layers; ++k) {
+            const double z = 1 + 0.5 * k;
+            scene.primitives.addTriangle({-1, -1, z}, {1, -1, z}, {0, 1, z}, nullptr, id);
+        }
+        addPlane(scene, 0, makeMaterial({0, 0, 0}, {0.5, 0.5, 0.5}));
+        scene.background = Background{Vec3(1), Vec3(1)};
+        scene.lights.push_back(directionalLight({0, 0, 1}, {1, 1, 1}));
+        scene.maxDepth = 0;
+        scene.prepare();
+        const WhittedIntegrator whitted(scene);
+        const int n = 20000;
+        double up = 0, down = 0;
+        for (int i = 0; i < n; ++i) {
+            RayCounts counts;
+            const double dx = 1e-7 * i;  // rays that differ, so that their blending does
+            // Up from the floor through the stack to the background.
+            up += whitted.radiance(makeRay({dx, 0, 0.5}, {0, 0, 1}), 0, counts).y;
+            // Down onto the floor, from beside the stack: its shadow ray crosses the stack.
+            down += whitted.radiance(makeRay({3 + dx, 0, 0.5}, {-3, 0, -0.5}), 0, counts).y;
+        }
+        const double through = std::pow(1 - a, layers);
+        const double tolerance = 5 * std::sqrt(through * (1 - through) / n);
+        EXPECT_NEAR(up / n, through, tolerance) << layers;
+        EXPECT_NEAR(down / n, 0.5 * through, 0.5 * tolerance) << layers;
+    }
 }
 
 }  // namespace

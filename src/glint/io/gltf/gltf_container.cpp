@@ -11,6 +11,7 @@
 
 #include "glint/core/mapped_file.h"
 #include "glint/core/system.h"
+#include "glint/io/gltf/gltf_extensions.h"
 #include "glint/io/gltf/gltf_internal.h"
 
 namespace glint::gltf {
@@ -243,16 +244,10 @@ std::vector<std::string> requiredExtensions(std::string_view json) {
     return out;
 }
 
-/// Fails if `required` names an extension Glint does not support.
+/// Fails if `required` names an extension Glint does not render (gltf_extensions.h).
 void checkRequiredExtensions(const Context& ctx, const std::vector<std::string>& required) {
-    static const char* const kSupported[] = {
-        "EXT_meshopt_compression", "KHR_draco_mesh_compression",
-        "KHR_lights_punctual",     "KHR_materials_emissive_strength",
-        "KHR_materials_ior",       "KHR_materials_transmission",
-        "KHR_materials_volume",    "KHR_mesh_quantization",
-        "KHR_meshopt_compression", "KHR_texture_transform"};
     for (const std::string& e : required)
-        if (std::find(std::begin(kSupported), std::end(kSupported), e) == std::end(kSupported))
+        if (!rendersGltfExtension(e))
             ctx.fail("the file requires extension " + e + ", which Glint does not support");
 }
 

@@ -61,6 +61,11 @@ void parseContainer(Context& ctx, std::string_view bytes);
 /// Checks the asset's version and the extensions it requires; warns of what Glint ignores.
 void checkAsset(Context& ctx);
 
+/// Every extension the file uses (extensionsUsed, extensionsRequired, and those found on its
+/// objects), by name, with what Glint does with each (gltf_extensions.h); warns once for each
+/// that Glint ignores.
+std::vector<FormatExtension> reportExtensions(Context& ctx);
+
 /// "mesh 2 'Cube'", "node 0", ...: an object of the file with its name, for messages.
 std::string describe(const char* kind, size_t index, const std::string& name);
 

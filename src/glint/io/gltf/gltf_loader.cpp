@@ -443,6 +443,7 @@ Model parseGltf(std::string_view bytes, const std::string& fileName,
     gltf::checkAsset(ctx);
     Model out;
     out.name = fileName;
+    out.extensions = gltf::reportExtensions(ctx);
     std::vector<gltf::SkinnedPlacement> skinned;
     gltf::walkNodes(ctx, out, skinned);
     std::vector<gltf::VertexWeights> weights;

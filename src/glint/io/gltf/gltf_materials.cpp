@@ -159,7 +159,10 @@ MeshMaterial Materials::map(int index) {
     mapLayers(m, p, label);
 
     // The flat material the Whitted integrator renders: textures other than the base colour
-    // count with their mean value, alpha blends by the factor's alpha.
+    // count with their mean value. Alpha blending is not folded in: the traversal already lets
+    // rays through blended texels with probability 1 - alpha (Scene::intersect), for the
+    // Whitted integrator as for the path tracer, and blending here too would let light through
+    // twice.
     const std::shared_ptr<const TextureImage>& baseImage = p.baseColorTexture.image;
     double flatMetallic = metallic, flatRoughness = roughness;
     if (p.metallicRoughnessTexture) {
@@ -170,17 +173,13 @@ MeshMaterial Materials::map(int index) {
     Vec3 emission = p.emissive;
     if (p.emissiveTexture) emission = emission * p.emissiveTexture.image->average();
     double opacity = 1;
-    if (p.alphaMode == AlphaMode::Blend)
-        opacity = alpha;
-    else if (p.alphaMode == AlphaMode::Mask)
-        opacity = alpha >= m.alphaCutoff ? 1 : 0;
+    if (p.alphaMode == AlphaMode::Mask) opacity = alpha >= m.alphaCutoff ? 1 : 0;
     const double transmission = p.transmission;
     const double flatIor = transmissive ? ior : 1;
 
     Material& g = out.material;
     const Vec3 baseMean = baseImage ? base * baseImage->average() : base;
     g.diffuse = base * ((1 - flatMetallic) * (1 - transmission) * opacity);
-    // Alpha blending weighs the whole surface (its reflection and emission too) by opacity.
     g.specular = (Vec3(kDielectricF0 * (1 - flatMetallic)) + baseMean * flatMetallic) * opacity;
     g.roughness = flatRoughness * flatRoughness;  // perceptual roughness squared is GGX's alpha
     g.shininess = kSmoothShininess;               // used only where the roughness is 0

@@ -207,7 +207,9 @@ MeshMaterial mapMtlMaterial(const tinyobj::material_t& m, const MtlEntry& entry,
     }
     g.shininess = ns;
     g.emission = ke;
-    if (d < 1) {
+    // A physically based entry blends by d in the traversal (AlphaMode::Blend, for every
+    // integrator): its flat material stays opaque, or light would pass twice.
+    if (d < 1 && !entry.pbr) {
         // Dissolve as a dielectric: what is not opaque is transmitted (refracted by Ni; with
         // Ni 1, the default, it passes straight through), and the opaque part is diffuse.
         d = std::max(d, 0.0);
