@@ -49,50 +49,54 @@ TEST(GltfExtensions, TheTableNamesEachExtensionOnceWithANoteForWhatIsLeftOut) {
         EXPECT_EQ(!e.note.empty(), leavesOut) << e.name;
     }
     EXPECT_EQ(gltfSupportText("KHR_texture_transform"), "rendered");
-    EXPECT_EQ(gltfSupportText("KHR_materials_volume"), "partly: absorption only, no scattering");
-    EXPECT_THAT(gltfSupportText("KHR_materials_clearcoat"), testing::StartsWith("ignored: "));
+    EXPECT_EQ(gltfSupportText("KHR_materials_clearcoat"), "rendered");
+    EXPECT_THAT(gltfSupportText("KHR_lights_punctual"), testing::StartsWith("partly: "));
+    EXPECT_THAT(gltfSupportText("KHR_materials_dispersion"), testing::StartsWith("ignored: "));
     EXPECT_EQ(gltfSupportText("EXT_made_up"), "ignored: Glint does not know this extension");
     EXPECT_TRUE(rendersGltfExtension("KHR_materials_transmission"));
     EXPECT_TRUE(rendersGltfExtension("KHR_lights_punctual"));  // in part
-    EXPECT_FALSE(rendersGltfExtension("KHR_materials_sheen"));
+    EXPECT_FALSE(rendersGltfExtension("KHR_materials_variants"));
     EXPECT_FALSE(rendersGltfExtension("EXT_made_up"));
 }
 
 TEST(GltfExtensions, EveryExtensionUsedIsReportedAndEachIgnoredOneWarnedOfOnce) {
-    // Clearcoat on two materials, a texture transform inside the clearcoat's texture and sheen
-    // on a material (both found though extensionsUsed forgets them), and one Glint does not
-    // know.
+    // Clearcoat on two materials, a texture transform inside the clearcoat's texture and
+    // dispersion on a material (both found though extensionsUsed forgets them), and one Glint
+    // does not know.
     const std::string clearcoat =
         R"("KHR_materials_clearcoat": {"clearcoatFactor": 1,
              "clearcoatTexture": {"index": 0,
                "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}}})";
     const std::string first =
-        R"({"extensions": {)" + clearcoat + R"(, "KHR_materials_sheen": {}}})";
+        R"({"extensions": {)" + clearcoat + R"(, "KHR_materials_dispersion": {}}})";
     const std::string second = R"({"extensions": {)" + clearcoat + R"(, "EXT_made_up": {}}})";
     std::string text = withMaterial(first + ", " + second,
                                     R"("extensionsUsed": ["KHR_materials_clearcoat",
-                                        "KHR_materials_emissive_strength", "EXT_made_up"])");
+                                        "KHR_materials_emissive_strength", "EXT_made_up"],
+                                    "images": [{"uri": "quadrants.png"}],
+                                    "textures": [{"source": 0}])");
     std::vector<Diagnostic> warnings;
     Model model = parse(text, &warnings);
     std::vector<std::string> names;
     for (const FormatExtension& e : model.extensions) names.push_back(e.name);
-    EXPECT_THAT(names, testing::ElementsAre("EXT_made_up", "KHR_materials_clearcoat",
-                                            "KHR_materials_emissive_strength",
-                                            "KHR_materials_sheen", "KHR_texture_transform"));
+    EXPECT_THAT(names, testing::ElementsAre(
+                           "EXT_made_up", "KHR_materials_clearcoat", "KHR_materials_dispersion",
+                           "KHR_materials_emissive_strength", "KHR_texture_transform"));
     EXPECT_EQ(reported(model, "KHR_texture_transform"), "rendered");
-    EXPECT_EQ(reported(model, "KHR_materials_clearcoat"),
-              gltfSupportText("KHR_materials_clearcoat"));
-    EXPECT_THAT(reported(model, "KHR_materials_clearcoat"), testing::StartsWith("ignored: "));
+    EXPECT_EQ(reported(model, "KHR_materials_clearcoat"), "rendered");
+    EXPECT_EQ(reported(model, "KHR_materials_dispersion"),
+              gltfSupportText("KHR_materials_dispersion"));
+    EXPECT_THAT(reported(model, "KHR_materials_dispersion"), testing::StartsWith("ignored: "));
     // One warning for each ignored extension however often the file uses it, none for those
     // rendered.
-    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_clearcoat"), 1u);
-    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_sheen"), 1u);
+    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_clearcoat"), 0u);
+    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_dispersion"), 1u);
     EXPECT_EQ(warningsNaming(warnings, "EXT_made_up"), 1u);
     EXPECT_EQ(warningsNaming(warnings, "KHR_texture_transform"), 0u);
     EXPECT_EQ(warningsNaming(warnings, "KHR_materials_emissive_strength"), 0u);
     for (const Diagnostic& d : warnings) {
-        if (d.message.find("KHR_materials_clearcoat") != std::string::npos) {
-            EXPECT_THAT(d.message, HasSubstr("which Glint does not render: coated surfaces"));
+        if (d.message.find("KHR_materials_dispersion") != std::string::npos) {
+            EXPECT_THAT(d.message, HasSubstr("which Glint does not render: one index"));
         }
     }
 }
@@ -128,12 +132,13 @@ TEST(GltfExtensions, AFileOfRenderedExtensionsAloneLoadsWithoutAWord) {
 }
 
 TEST(GltfExtensions, AnIgnoredExtensionTheFileRequiresIsAnError) {
-    EXPECT_THAT(errorParsing(withMaterial(R"({"extensions": {"KHR_materials_sheen": {}}})",
-                                          R"("extensionsUsed": ["KHR_materials_sheen"],
-                                             "extensionsRequired": ["KHR_materials_sheen"])"))
-                    .message,
-                HasSubstr("the file requires extension KHR_materials_sheen, which Glint does not "
-                          "support"));
+    EXPECT_THAT(
+        errorParsing(withMaterial(R"({"extensions": {"KHR_materials_dispersion": {}}})",
+                                  R"("extensionsUsed": ["KHR_materials_dispersion"],
+                                     "extensionsRequired": ["KHR_materials_dispersion"])"))
+            .message,
+        HasSubstr("the file requires extension KHR_materials_dispersion, which Glint does not "
+                  "support"));
 }
 
 }  // namespace
