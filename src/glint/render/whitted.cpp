@@ -68,7 +68,9 @@ int areaLightGrid(const Scene& scene, int spp) {
 WhittedIntegrator::WhittedIntegrator(const Scene& scene, int spp)
     : scene_(scene), areaGrid_(areaLightGrid(scene, spp)) {
     for (const Material& m : scene.materials) {
-        anyTransmissive_ = anyTransmissive_ || m.transmissive();
+        // Media's interface surfaces let shadow rays through too (unchanged: Whitted renders
+        // no media).
+        anyTransmissive_ = anyTransmissive_ || m.transmissive() || m.interface;
         usesRandomNumbers_ = usesRandomNumbers_ || m.roughness > 0;
     }
     for (const Light& l : scene.lights) anyAreaLights_ = anyAreaLights_ || l.isArea();
@@ -95,10 +97,12 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
         if (!scene_.intersect(ray, hit)) return t;
         SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
         const Material& m = scene_.materials[si.material];
-        if (!m.transmissive()) return Vec3(0);
-        bool entering = dot(wi, si.ng) < 0;
-        double cosI = std::abs(dot(wi, si.ng));
-        t = t * m.transmission * (1 - fresnelDielectric(cosI, entering ? 1 / m.ior : m.ior));
+        if (!m.transmissive() && !m.interface) return Vec3(0);
+        if (!m.interface) {
+            bool entering = dot(wi, si.ng) < 0;
+            double cosI = std::abs(dot(wi, si.ng));
+            t = t * m.transmission * (1 - fresnelDielectric(cosI, entering ? 1 / m.ior : m.ior));
+        }
         if (maxComponent(t) <= 0) return Vec3(0);
         double travelled = length(si.p - ray.origin);
         Ray next = spawnRay(si.p, wi, scene_.spawnOffset(), ray.tMax - travelled);
@@ -285,6 +289,9 @@ Vec3 WhittedIntegrator::shadeSurface(const Ray& ray, const Hit& hit, int depth, 
                                      PathContext& ctx) const {
     SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
     const Material& m = scene_.materials[si.material];
+    if (m.interface) [[unlikely]]  // a medium's boundary, unseen: what lies beyond it
+        return trace(spawnRay(si.p, normalize(ray.dir), scene_.spawnOffset()), depth, weight,
+                     ctx);
     if (m.texture != 0 || m.frontEmissionOnly || m.pbr != 0)
         return shadeSpecial(ray, si, m, depth, weight, ctx);
     return shadeHit(ray, si, si, m, false, depth, weight, ctx);

@@ -204,5 +204,23 @@ TEST(MediaRender, AScatteringBallOfAlbedoOneKeepsAWhiteFurnaceWhite) {
     EXPECT_NEAR(meanRender(scene, 64), 1, 0.02);
 }
 
+TEST(MediaRender, WhittedSeesAndLightsThroughInterfaceSurfaces) {
+    // The course's integrator renders no media: a medium's interface box in front of a lit
+    // sphere changes nothing, for camera rays and shadow rays alike.
+    const std::string lit = R"(
+        size 16 16
+        camera 0 0 5  0 0 0  0 1 0  30
+        point 0 4 4  1 1 1
+        diffuse 0.8 0.4 0.2
+        sphere 0 0 0 1
+        medium ink absorption 0.4 0.4 0.4
+    )";
+    const double bare = meanRender(lit, 1);
+    EXPECT_GT(bare, 0.05);
+    EXPECT_NEAR(meanRender(lit + "interior ink interface\nbox -2 -2 -2  2 2 2\n", 1), bare, 1e-6);
+    EXPECT_NEAR(meanRender(lit + "interior ink interface\nbox -0.5 2 1  0.5 2.5 2\n", 1), bare,
+                1e-6);
+}
+
 }  // namespace
 }  // namespace glint
