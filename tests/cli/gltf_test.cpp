@@ -223,13 +223,13 @@ std::string coatedQuads() {
                std::to_string(material) + "}]}";
     };
     return a.text(R"("meshes": [)" + quad(left, 0) + ", " + quad(right, 1) + R"(],
-        "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_dispersion",
+        "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_unlit",
                            "KHR_materials_volume", "KHR_texture_transform"],
         "materials": [
           {"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1},
-                          "KHR_materials_dispersion": {"dispersion": 0.5}}},
+                          "KHR_materials_unlit": {}}},
           {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 1, 1]},
-           "extensions": {"KHR_materials_dispersion": {"dispersion": 1},
+           "extensions": {"KHR_materials_unlit": {},
                           "KHR_materials_volume": {"thicknessFactor": 0}}}],
         "nodes": [{"mesh": 0}, {"mesh": 1}])");
 }
@@ -250,27 +250,27 @@ TEST(CliGltf, CheckListsTheExtensionsUsedAndARenderWarnsOnceOfEachIgnoredOne) {
     EXPECT_TRUE(contains(r.out, "coated.gltf: ok: ")) << r.out;
     EXPECT_TRUE(contains(r.out, "extensions used (4):\n")) << r.out;
     EXPECT_TRUE(contains(r.out,
-                         "  KHR_materials_dispersion  ignored: one index of refraction for every "
-                         "wavelength, so no rainbow fringes\n"))
+                         "  KHR_materials_unlit      ignored: unlit materials are shaded and lit "
+                         "like the others\n"))
         << r.out;
-    EXPECT_TRUE(contains(r.out, "  KHR_materials_clearcoat   rendered\n")) << r.out;
-    EXPECT_TRUE(contains(r.out, "  KHR_materials_volume      rendered\n")) << r.out;
-    EXPECT_TRUE(contains(r.out, "  KHR_texture_transform     rendered\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "  KHR_materials_clearcoat  rendered\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "  KHR_materials_volume     rendered\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "  KHR_texture_transform    rendered\n")) << r.out;
 
     // A render says it once, although two materials use it; nothing of the others.
     r = runGlint("coated.gltf --size 32x24 --spp 1", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(occurrences(r.err, "KHR_materials_dispersion"), 1u) << r.err;
+    EXPECT_EQ(occurrences(r.err, "KHR_materials_unlit"), 1u) << r.err;
     EXPECT_TRUE(contains(r.err,
-                         "coated.gltf: warning: the file uses KHR_materials_dispersion, which "
-                         "Glint does not render: one index of refraction"))
+                         "coated.gltf: warning: the file uses KHR_materials_unlit, which "
+                         "Glint does not render: unlit materials"))
         << r.err;
     EXPECT_EQ(occurrences(r.err, "KHR_materials_clearcoat"), 0u) << r.err;
     EXPECT_EQ(occurrences(r.err, "KHR_texture_transform"), 0u) << r.err;
     EXPECT_EQ(occurrences(r.err, "KHR_materials_volume"), 0u) << r.err;
     // Quiet renders too: it is a warning.
     r = runGlint("-q coated.gltf --size 32x24 --spp 1 -o q.png", dir);
-    EXPECT_EQ(occurrences(r.err, "KHR_materials_dispersion"), 1u) << r.err;
+    EXPECT_EQ(occurrences(r.err, "KHR_materials_unlit"), 1u) << r.err;
     // A file without extensions lists none.
     writeFile(dir + "/two.gltf", twoCameras());
     r = runGlint("two.gltf --check", dir);

@@ -236,6 +236,10 @@ struct MetallicRoughness {
     double anisotropy = 0;
     double diffuseTransmission = 0;  ///< KHR_materials_diffuse_transmission's factor.
     Vec3 diffuseTransmissionColor{1};
+    /// KHR_materials_dispersion: 20 / the Abbe number; the index of a refracting volume then
+    /// varies with the wavelength (etaOfChannel). The path tracer refracts one colour channel
+    /// at a time through it (path.cpp).
+    double dispersion = 0;
     ThinFilmLayer iridescence{};
     SheenLayer sheen{};
     CoatLayer coat{};
@@ -247,6 +251,13 @@ struct MetallicRoughness {
     Vec3 eval(const Vec3& wo, const Vec3& wi) const;
     std::optional<BsdfSample> sample(const Vec3& wo, double uc, Point2 u) const;
     double pdf(const Vec3& wo, const Vec3& wi) const;
+
+    /// Whether light of different colours refracts differently through it.
+    bool disperses() const { return dispersion > 0 && !thin && transmission > 0; }
+    /// The index at colour channel `c` (0 red, 1 green, 2 blue): the specification's Cauchy
+    /// fit through eta at 587.6 nm with Abbe number 20 / dispersion, at 610, 550 and 465 nm,
+    /// about the dominant wavelengths of the Rec. 709 primaries.
+    double etaOfChannel(int c) const;
 
   private:
     struct Weights {

@@ -132,6 +132,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     // crossed without scattering.
     uint32_t medium = scene_.fog;
     int crossings = 0;
+    int channel = -1;  // the colour channel a dispersing surface chose; -1: all
 
     for (int depth = 0;; ++depth) {
         // A shadow catcher is seen by camera rays and their specular continuations only.
@@ -219,7 +220,19 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
 
         // Absorption inside a volume, paid on leaving it (Beer-Lambert over the segment).
         beta = beta * volumeTransmittance(scene_, si, ray.origin, ray.dir);
-        const SurfaceShading shading = shadeSurface(scene_, si, -ray.dir, bsdfs_);
+        SurfaceShading shading = shadeSurface(scene_, si, -ray.dir, bsdfs_);
+        // A dispersing volume refracts each colour its own way: the path follows one channel
+        // (chosen at the first such surface, weighted by 3 to stay unbiased) from there on.
+        if (auto* mr = std::get_if<MetallicRoughness>(&shading.bsdf.lobe); mr && mr->disperses())
+            [[unlikely]] {
+            if (channel < 0) {
+                channel = std::min(2, static_cast<int>(ctx.rng.uniform() * 3));
+                Vec3 only(0);
+                only[channel] = 3;
+                beta = beta * only;
+            }
+            mr->eta = mr->etaOfChannel(channel);
+        }
         const Bsdf& bsdf = shading.bsdf;
         const Vec3& emission = shading.emission;
         const Vec3& shadingNormal = shading.normal;

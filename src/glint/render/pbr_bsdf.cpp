@@ -156,6 +156,14 @@ std::optional<BsdfSample> MetallicRoughness::baseSample(const Vec3& wo, double u
                       (sameHemisphere(wo, wi) ? Reflection : Transmission) | Glossy};
 }
 
+double MetallicRoughness::etaOfChannel(int c) const {
+    if (!(dispersion > 0)) return eta;
+    constexpr double kWavelength[3] = {610, 550, 465};  // nanometres
+    const double abbe = 20 / dispersion;
+    const double l = kWavelength[std::clamp(c, 0, 2)];
+    return std::max(1.0, eta + (eta - 1) / abbe * (523655 / (l * l) - 1.5168));
+}
+
 // ---- The layers: sheen, then the clearcoat over everything ----
 
 namespace {

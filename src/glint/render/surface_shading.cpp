@@ -42,6 +42,7 @@ MetallicRoughness pbrBsdf(const PbrMaterial& pm, const PbrSurface& ps, const Fra
     };
     MetallicRoughness b{ps.baseColor,    ps.metallic, ggxAlpha(ps.roughness),
                         ps.transmission, pm.ior,      pm.thickness == 0};
+    b.dispersion = pm.dispersion;
     b.specular = ps.specular;
     b.specularColor = ps.specularColor;
     b.anisotropy = ps.anisotropy;

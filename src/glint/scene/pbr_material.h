@@ -72,6 +72,8 @@ struct PbrMaterial {
     /// (times the red channel of transmissionTexture).
     double transmission = 0;
     TextureSlot transmissionTexture;
+    /// KHR_materials_dispersion: 20 / the Abbe number of a refracting volume (0: none).
+    double dispersion = 0;
     double ior = 1.5;  ///< KHR_materials_ior; sets the dielectric's F0 = ((ior - 1) / (ior + 1))^2.
     /// KHR_materials_volume: a thickness above 0 makes the mesh the boundary of a refracting
     /// volume; 0 (the default) a thin wall that transmits without bending.

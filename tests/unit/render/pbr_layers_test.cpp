@@ -289,3 +289,27 @@ TEST(Specular, TheFactorAndColourSetTheDielectricsReflectance) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(Dispersion, TheIndexFollowsTheCauchyFitThroughTheBaseIndex) {
+    MetallicRoughness glass{Vec3(1), 0, 0.01, 1, 1.5, false};
+    EXPECT_FALSE(glass.disperses());
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(glass.etaOfChannel(c), 1.5);
+    glass.dispersion = 20.0 / 30;  // Abbe number 30, a flint glass
+    EXPECT_TRUE(glass.disperses());
+    const double r = glass.etaOfChannel(0), g = glass.etaOfChannel(1), b = glass.etaOfChannel(2);
+    EXPECT_LT(r, g);  // normal dispersion: shorter wavelengths bend more
+    EXPECT_LT(g, b);
+    // Abbe's number is (n_d - 1) / (n_F - n_C), the spread between 486.1 and 656.3 nm; the
+    // blue and red channels (465 and 610 nm) spread about as much.
+    EXPECT_GT(b - r, 0.9 * 0.5 / 30);
+    EXPECT_LT(b - r, 1.1 * 0.5 / 30);
+    EXPECT_NEAR(g, 1.5, 0.005);  // 550 nm is near the fit's anchor, n_d at 587.6 nm
+    glass.thin = true;           // a thin wall does not refract: nothing to disperse
+    EXPECT_FALSE(glass.disperses());
+}
+
+}  // namespace
+}  // namespace glint

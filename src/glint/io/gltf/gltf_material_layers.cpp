@@ -1,6 +1,6 @@
 // The glTF material extensions that layer over the metallic-roughness base (render/bsdf.h's
 // MetallicRoughness): KHR_materials_clearcoat, _sheen, _specular, _anisotropy, _iridescence and
-// _diffuse_transmission, read into the PbrMaterial with their factors and textures.
+// _diffuse_transmission (and _dispersion), read into the PbrMaterial with their factors and textures.
 
 #include <algorithm>
 #include <cmath>
@@ -110,6 +110,7 @@ void Materials::mapLayers(const tinygltf::Material& m, PbrMaterial& p, const std
             extensionSlot(*x, "iridescenceThicknessTexture", label, false,
                           "its film has the maximum thickness everywhere");
     }
+    p.dispersion = std::max(0.0, number("KHR_materials_dispersion", "dispersion", 0));
     if (const tinygltf::Value* x = extensionOf(m, "KHR_materials_diffuse_transmission")) {
         const char* name = "KHR_materials_diffuse_transmission";
         p.diffuseTransmission = unitNumber(name, "diffuseTransmissionFactor", 0);

@@ -51,7 +51,7 @@ TEST(GltfExtensions, TheTableNamesEachExtensionOnceWithANoteForWhatIsLeftOut) {
     EXPECT_EQ(gltfSupportText("KHR_texture_transform"), "rendered");
     EXPECT_EQ(gltfSupportText("KHR_materials_clearcoat"), "rendered");
     EXPECT_THAT(gltfSupportText("KHR_lights_punctual"), testing::StartsWith("partly: "));
-    EXPECT_THAT(gltfSupportText("KHR_materials_dispersion"), testing::StartsWith("ignored: "));
+    EXPECT_THAT(gltfSupportText("KHR_materials_unlit"), testing::StartsWith("ignored: "));
     EXPECT_EQ(gltfSupportText("EXT_made_up"), "ignored: Glint does not know this extension");
     EXPECT_TRUE(rendersGltfExtension("KHR_materials_transmission"));
     EXPECT_TRUE(rendersGltfExtension("KHR_lights_punctual"));  // in part
@@ -61,14 +61,14 @@ TEST(GltfExtensions, TheTableNamesEachExtensionOnceWithANoteForWhatIsLeftOut) {
 
 TEST(GltfExtensions, EveryExtensionUsedIsReportedAndEachIgnoredOneWarnedOfOnce) {
     // Clearcoat on two materials, a texture transform inside the clearcoat's texture and
-    // dispersion on a material (both found though extensionsUsed forgets them), and one Glint
+    // unlit on a material (both found though extensionsUsed forgets them), and one Glint
     // does not know.
     const std::string clearcoat =
         R"("KHR_materials_clearcoat": {"clearcoatFactor": 1,
              "clearcoatTexture": {"index": 0,
                "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}}})";
     const std::string first =
-        R"({"extensions": {)" + clearcoat + R"(, "KHR_materials_dispersion": {}}})";
+        R"({"extensions": {)" + clearcoat + R"(, "KHR_materials_unlit": {}}})";
     const std::string second = R"({"extensions": {)" + clearcoat + R"(, "EXT_made_up": {}}})";
     std::string text = withMaterial(first + ", " + second,
                                     R"("extensionsUsed": ["KHR_materials_clearcoat",
@@ -79,24 +79,23 @@ TEST(GltfExtensions, EveryExtensionUsedIsReportedAndEachIgnoredOneWarnedOfOnce) 
     Model model = parse(text, &warnings);
     std::vector<std::string> names;
     for (const FormatExtension& e : model.extensions) names.push_back(e.name);
-    EXPECT_THAT(names, testing::ElementsAre(
-                           "EXT_made_up", "KHR_materials_clearcoat", "KHR_materials_dispersion",
-                           "KHR_materials_emissive_strength", "KHR_texture_transform"));
+    EXPECT_THAT(names, testing::ElementsAre("EXT_made_up", "KHR_materials_clearcoat",
+                                            "KHR_materials_emissive_strength",
+                                            "KHR_materials_unlit", "KHR_texture_transform"));
     EXPECT_EQ(reported(model, "KHR_texture_transform"), "rendered");
     EXPECT_EQ(reported(model, "KHR_materials_clearcoat"), "rendered");
-    EXPECT_EQ(reported(model, "KHR_materials_dispersion"),
-              gltfSupportText("KHR_materials_dispersion"));
-    EXPECT_THAT(reported(model, "KHR_materials_dispersion"), testing::StartsWith("ignored: "));
+    EXPECT_EQ(reported(model, "KHR_materials_unlit"), gltfSupportText("KHR_materials_unlit"));
+    EXPECT_THAT(reported(model, "KHR_materials_unlit"), testing::StartsWith("ignored: "));
     // One warning for each ignored extension however often the file uses it, none for those
     // rendered.
     EXPECT_EQ(warningsNaming(warnings, "KHR_materials_clearcoat"), 0u);
-    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_dispersion"), 1u);
+    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_unlit"), 1u);
     EXPECT_EQ(warningsNaming(warnings, "EXT_made_up"), 1u);
     EXPECT_EQ(warningsNaming(warnings, "KHR_texture_transform"), 0u);
     EXPECT_EQ(warningsNaming(warnings, "KHR_materials_emissive_strength"), 0u);
     for (const Diagnostic& d : warnings) {
-        if (d.message.find("KHR_materials_dispersion") != std::string::npos) {
-            EXPECT_THAT(d.message, HasSubstr("which Glint does not render: one index"));
+        if (d.message.find("KHR_materials_unlit") != std::string::npos) {
+            EXPECT_THAT(d.message, HasSubstr("which Glint does not render: unlit materials"));
         }
     }
 }
@@ -132,13 +131,12 @@ TEST(GltfExtensions, AFileOfRenderedExtensionsAloneLoadsWithoutAWord) {
 }
 
 TEST(GltfExtensions, AnIgnoredExtensionTheFileRequiresIsAnError) {
-    EXPECT_THAT(
-        errorParsing(withMaterial(R"({"extensions": {"KHR_materials_dispersion": {}}})",
-                                  R"("extensionsUsed": ["KHR_materials_dispersion"],
-                                     "extensionsRequired": ["KHR_materials_dispersion"])"))
-            .message,
-        HasSubstr("the file requires extension KHR_materials_dispersion, which Glint does not "
-                  "support"));
+    EXPECT_THAT(errorParsing(withMaterial(R"({"extensions": {"KHR_materials_unlit": {}}})",
+                                          R"("extensionsUsed": ["KHR_materials_unlit"],
+                                     "extensionsRequired": ["KHR_materials_unlit"])"))
+                    .message,
+                HasSubstr("the file requires extension KHR_materials_unlit, which Glint does not "
+                          "support"));
 }
 
 }  // namespace
