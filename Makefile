@@ -15,12 +15,15 @@ BUILD_TYPE  ?= Release
 GLINT_WERROR ?= OFF
 JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 
-# Debian packages: compiler and build tools, then libraries (see docs/dependencies in README),
+# Debian packages: compiler and build tools, then libraries (see docs/dependencies in README;
+# libboost-iostreams-dev because Debian's FindOpenVDB.cmake requires it and libopenvdb-dev does
+# not pull it in: cmake/dependencies.cmake),
 # then what the tests run: Open MPI (openmpi-bin, libopenmpi-dev) for glint-mpi and its tests,
 # slurm-wlm and munge for a private single-node Slurm on localhost that runs contrib/slurm's
 # scripts (tests/slurm/cluster_test.sh, about 9 s; docs/scale-out.md).
 DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
+        libopenvdb-dev libboost-iostreams-dev \
         libgtest-dev libgmock-dev openmpi-bin libopenmpi-dev slurm-wlm munge
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
@@ -32,8 +35,8 @@ DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-
 BENCH_DIR  ?= build-bench
 BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
               libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
-              libmeshoptimizer-dev libembree-dev povray bc blender draco gltfpack libassimp-dev \
-              python3-numpy
+              libmeshoptimizer-dev libopenvdb-dev libboost-iostreams-dev libembree-dev povray bc \
+              blender draco gltfpack libassimp-dev python3-numpy
 
 # `make web` and its tests (docs/web.md): Emscripten (Debian's 3.1.6, clang for WebAssembly),
 # dpkg-dev (apt-get source unpacks the Debian sources of zlib and libpng that the web build
@@ -50,7 +53,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-dev libpng-dev \
              libopenexr-dev libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
-             libmeshoptimizer-dev
+             libmeshoptimizer-dev libopenvdb-dev libboost-iostreams-dev
 FUZZ_SECONDS ?= 60
 
 .PHONY: deps build demo test test-sanitize fuzz clean bench web web-deps serve

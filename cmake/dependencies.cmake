@@ -36,6 +36,38 @@ find_package(nlohmann_json 3 CONFIG REQUIRED)
 find_package(draco CONFIG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
 
+# OpenVDB 10 (libopenvdb-dev): the density grids of heterogeneous media, read in io/
+# (src/glint/io/vdb/vdb_reader.cpp) into a dense copy. Debian ships no CMake config for it but
+# its find module, FindOpenVDB.cmake, in a folder of its own that joins the module path only
+# here (beside it are find modules for OpenEXR and TBB that must not replace the others). That
+# module requires Boost.Iostreams (libboost-iostreams-dev, whose headers OpenVDB's need too),
+# which libopenvdb-dev does not pull in. It also sets BUILD_SHARED_LIBS and Boost_* variables in
+# the caller's scope: hence the function. GLINT_OPENVDB=OFF builds vdb_reader_none.cpp instead,
+# which refuses .vdb files with a message (the web build always does). Debian's libopenvdb links
+# log4cplus 2.0, which starts a few idle threads of its own when it is loaded: every program that
+# links glint_io has them (the tests that count threads count from a start, unaffected).
+option(GLINT_OPENVDB "Read OpenVDB density grids (libopenvdb-dev, libboost-iostreams-dev)" ON)
+function(glint_find_openvdb)
+    find_path(GLINT_OPENVDB_MODULE_DIR FindOpenVDB.cmake
+              PATHS /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB
+                    /usr/local/lib/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
+    find_package(Boost QUIET COMPONENTS iostreams)
+    if(NOT GLINT_OPENVDB_MODULE_DIR OR NOT Boost_FOUND)
+        message(FATAL_ERROR "OpenVDB not found (FindOpenVDB.cmake: '${GLINT_OPENVDB_MODULE_DIR}'; "
+                            "Boost.Iostreams found: ${Boost_FOUND}). Debian: apt-get install "
+                            "libopenvdb-dev libboost-iostreams-dev (or `make deps`); or configure "
+                            "with -DGLINT_OPENVDB=OFF to build Glint without .vdb files")
+    endif()
+    list(PREPEND CMAKE_MODULE_PATH ${GLINT_OPENVDB_MODULE_DIR})
+    find_package(OpenVDB REQUIRED COMPONENTS openvdb)
+    message(STATUS "OpenVDB ${OpenVDB_VERSION}: .vdb density grids")
+endfunction()
+if(GLINT_OPENVDB)
+    glint_find_openvdb()
+else()
+    message(STATUS "GLINT_OPENVDB=OFF: .vdb files are refused (vdb_reader_none.cpp)")
+endif()
+
 # Open MPI 4.1 (openmpi-bin, libopenmpi-dev): glint-mpi, glint across the ranks of an MPI job
 # (apps/glint_mpi.cpp, docs/scale-out.md), and its tests. Optional: without MPI the rest of
 # Glint builds as before, without glint-mpi. GLINT_MPI=OFF leaves it out even when MPI is found.

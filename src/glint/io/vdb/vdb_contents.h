@@ -1,0 +1,26 @@
+#pragma once
+/// The table of contents of an OpenVDB file: its grids in file order, read as io::File::open
+/// reads it, for vdb_reader.cpp. io::File keeps that table to itself (in name order), and reads
+/// a truncated file's last grid past the end without a word, filling its last voxels with
+/// whatever it finds: where each grid ends is how a truncated file is told apart.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint::vdb {
+
+struct GridEntry {
+    std::string name;
+    std::string valueType;  ///< OpenVDB's name of it: "float", "double", "vec3s", ...
+    bool isFloat = false;   ///< A FloatGrid (what densities are read from).
+    int64_t end = 0;        ///< The offset just past the grid's bytes in the file.
+};
+
+/// The grids of the OpenVDB file at `path`, in file order. Needs openvdb::initialize() first.
+/// Throws (OpenVDB's exceptions, or std::runtime_error) for a file that is not a VDB file, is
+/// truncated (a grid ends beyond the file), or has no grid offsets (written by io::Stream: such
+/// files are read whole, which Glint does not do).
+std::vector<GridEntry> readContents(const std::string& path);
+
+}  // namespace glint::vdb
