@@ -18,8 +18,8 @@ bool extent(const Medium& m, const Ray& ray, double tEnd, double& t0, double& t1
     t1 = tEnd;
     if (m.homogeneous()) return true;
     const DensityGrid& g = *m.grid;
-    const Vec3 o = g.worldFromIndex.inversePoint(ray.origin);
-    const Vec3 d = g.worldFromIndex.inverseVector(ray.dir);
+    const Vec3 o = m.worldFromIndex.inversePoint(ray.origin);
+    const Vec3 d = m.worldFromIndex.inverseVector(ray.dir);
     const double hi[3] = {static_cast<double>(g.nx), static_cast<double>(g.ny),
                           static_cast<double>(g.nz)};
     for (int a = 0; a < 3; ++a) {

@@ -44,12 +44,15 @@ struct Medium {
     Vec3 sigmaA{0}, sigmaS{0};  ///< Per unit length (at density 1).
     double g = 0;               ///< Henyey-Greenstein asymmetry in (-1, 1): > 0 forwards.
     std::shared_ptr<const DensityGrid> grid;  ///< Null: homogeneous.
+    /// Where the grid's index space lies in the scene: the scene's transform (at `medium`)
+    /// after the grid's own worldFromIndex. Shared grids keep their own.
+    Transform worldFromIndex;
 
     Vec3 sigmaT() const { return sigmaA + sigmaS; }
     bool homogeneous() const { return grid == nullptr; }
     /// The density at world point p (1 when homogeneous).
     double density(const Vec3& p) const {
-        return grid ? grid->lookup(grid->worldFromIndex.inversePoint(p)) : 1.0;
+        return grid ? grid->lookup(worldFromIndex.inversePoint(p)) : 1.0;
     }
 };
 

@@ -103,9 +103,9 @@ TEST(MediumTracking, AConstantGridIsTheHomogeneousMediumInsideItsBoxAndNothingOu
     g->nx = g->ny = g->nz = 4;
     g->density.assign(64, 2.0f);
     // Index [0, 4]^3 placed as the box [-1, 1]^3 (scaled by 0.5, moved by -1).
-    g->worldFromIndex =
-        *Transform::fromMatrix(Mat4::translate(-1, -1, -1) * Mat4::scale(0.5, 0.5, 0.5));
     grid.grid = g;
+    grid.worldFromIndex =
+        *Transform::fromMatrix(Mat4::translate(-1, -1, -1) * Mat4::scale(0.5, 0.5, 0.5));
     Medium doubled = chromaticFog();
     doubled.sigmaA = doubled.sigmaA * 2.0;
     doubled.sigmaS = doubled.sigmaS * 2.0;

@@ -5,8 +5,21 @@
 #include <cmath>
 
 #include "glint/io/course/course_parser.h"
+#include "glint/io/vdb/vdb_reader.h"
 
 namespace glint::course {
+
+namespace {
+
+/// Whether `word` is one of the medium command's parameter names.
+bool isKeyword(std::string_view word) {
+    for (const char* k :
+         {"absorption", "scattering", "albedo", "meanfreepath", "g", "density", "scale"})
+        if (word == k) return true;
+    return false;
+}
+
+}  // namespace
 
 void Parser::cmdMedium() {
     const std::string name(tok_[1].text);
@@ -47,13 +60,29 @@ void Parser::cmdMedium() {
             if (!(m.g > -1 && m.g < 1))
                 fail(i + 1, "g must be between -1 and 1, got " + quoted(i + 1));
             i += 2;
+        } else if (key == "density") {  // density file.vdb [grid]
+            need(1);
+            if (!limits_.readFiles)
+                fail(i + 1, "density grid " + quoted(i + 1) + " is not read: reading files is off");
+            const bool named = i + 2 < ntok_ && !isKeyword(tok_[i + 2].text);
+            try {
+                m.grid = loadVdbDensity(scenePath(tok_[i + 1].text),
+                                        named ? std::string(tok_[i + 2].text) : "", limits_);
+            } catch (const RenderError& e) {
+                fail(i + 1, e.what());
+            }
+            std::optional<Transform> placed =
+                Transform::fromMatrix(transform().matrix() * m.grid->worldFromIndex.matrix());
+            if (!placed) fail(i + 1, "the current transform makes the grid singular");
+            m.worldFromIndex = *placed;
+            i += named ? 3 : 2;
         } else if (key == "scale") {
             need(1);
             scale = nonNegative(i + 1);
             i += 2;
         } else {
             fail(i, "unknown medium parameter " + quoted(i) +
-                        " (absorption, scattering, albedo, meanfreepath, g, scale)");
+                        " (absorption, scattering, albedo, meanfreepath, g, density, scale)");
         }
     }
     if ((albedo.x >= 0) != (meanFree > 0)) fail(0, "medium: albedo and meanfreepath go together");
