@@ -62,8 +62,7 @@ Vec3 HenyeyGreenstein::sample(const Vec3& wo, Point2 u) const {
 
 MediumEvent sampleMedium(const Medium& m, const Ray& ray, double tEnd, Rng& rng, Vec3& beta) {
     const Vec3 sigmaT = m.sigmaT();
-    const double densityMax = m.homogeneous() ? 1.0 : m.grid->maxDensity();
-    const double majorant = maxComponent(sigmaT) * densityMax;  // per unit length
+    const double majorant = maxComponent(sigmaT) * m.densityBound;  // per unit length
     double t0, t1;
     if (!(majorant > 0) || !extent(m, ray, tEnd, t0, t1)) return {};
     const double rate = majorant * length(ray.dir);  // per unit of ray parameter
@@ -98,7 +97,7 @@ Vec3 mediumTransmittance(const Medium& m, const Ray& ray, double tEnd, Rng& rng)
         const double d = (t1 - t0) * len;
         return {std::exp(-sigmaT.x * d), std::exp(-sigmaT.y * d), std::exp(-sigmaT.z * d)};
     }
-    const double majorant = maxComponent(sigmaT) * m.grid->maxDensity();
+    const double majorant = maxComponent(sigmaT) * m.densityBound;
     if (!(majorant > 0)) return Vec3(1);
     Vec3 tr(1);
     for (double t = t0;;) {

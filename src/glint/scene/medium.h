@@ -47,6 +47,9 @@ struct Medium {
     /// Where the grid's index space lies in the scene: the scene's transform (at `medium`)
     /// after the grid's own worldFromIndex. Shared grids keep their own.
     Transform worldFromIndex;
+    /// The grid's largest density (1 when homogeneous): with sigma_t, the majorant that
+    /// tracking samples against. Set with the grid (grid->maxDensity() visits every voxel).
+    double densityBound = 1;
 
     Vec3 sigmaT() const { return sigmaA + sigmaS; }
     bool homogeneous() const { return grid == nullptr; }

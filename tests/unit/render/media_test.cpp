@@ -104,6 +104,7 @@ TEST(MediumTracking, AConstantGridIsTheHomogeneousMediumInsideItsBoxAndNothingOu
     g->density.assign(64, 2.0f);
     // Index [0, 4]^3 placed as the box [-1, 1]^3 (scaled by 0.5, moved by -1).
     grid.grid = g;
+    grid.densityBound = 2;
     grid.worldFromIndex =
         *Transform::fromMatrix(Mat4::translate(-1, -1, -1) * Mat4::scale(0.5, 0.5, 0.5));
     Medium doubled = chromaticFog();

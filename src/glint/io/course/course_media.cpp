@@ -75,6 +75,7 @@ void Parser::cmdMedium() {
                 Transform::fromMatrix(transform().matrix() * m.grid->worldFromIndex.matrix());
             if (!placed) fail(i + 1, "the current transform makes the grid singular");
             m.worldFromIndex = *placed;
+            m.densityBound = m.grid->maxDensity();
             i += named ? 3 : 2;
         } else if (key == "scale") {
             need(1);
