@@ -13,7 +13,7 @@ trap 'rm -rf "$TMP"' EXIT
 median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 seconds() {  # wall seconds of one render
     start=$(date +%s.%N)
-    "$GLINT" "$1" --spp "$SPP" --no-denoise -q -o "$TMP/out.png"
+    "$GLINT" "$1" --spp "$SPP" --no-denoise -q -o "$TMP/out.png" 2>/dev/null
     end=$(date +%s.%N)
     echo "$end - $start" | bc -l
 }
@@ -21,13 +21,15 @@ printf '%-22s %10s %10s %7s\n' model layered plain ratio
 for model in ClearCoatTest SheenChair SpecularTest AnisotropyBarnLamp IridescenceLamp; do
     gltf=$ASSETS/$model/glTF/$model.gltf
     [ -f "$gltf" ] || continue
-    python3 "$(dirname "$0")/strip_layers.py" "$gltf" "$TMP/plain.gltf"
+    rm -rf "$TMP/model"
+    cp -r "$ASSETS/$model/glTF" "$TMP/model"
+    python3 "$(dirname "$0")/strip_layers.py" "$gltf" "$TMP/model/plain.gltf"
     : >"$TMP/a"
     : >"$TMP/b"
     i=0
     while [ $i -lt "$RUNS" ]; do
         seconds "$gltf" >>"$TMP/a"
-        seconds "$TMP/plain.gltf" >>"$TMP/b"
+        seconds "$TMP/model/plain.gltf" >>"$TMP/b"
         i=$((i + 1))
     done
     a=$(median <"$TMP/a")

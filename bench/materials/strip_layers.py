@@ -1,10 +1,9 @@
 #!/usr/bin/env python3
 """Writes a copy of a glTF file without its layer extensions (clearcoat, sheen, specular,
-anisotropy, iridescence, dispersion, diffuse transmission), its buffers and images referred to
-by absolute paths, so that bench/materials/layers.sh can time the same model with and without
-the layers:  strip_layers.py IN.gltf OUT.gltf"""
+anisotropy, iridescence, dispersion, diffuse transmission), so that bench/materials/layers.sh
+can time the same model with and without the layers:  strip_layers.py IN.gltf OUT.gltf
+(OUT beside IN's buffers and images: layers.sh copies the model's folder first)."""
 import json
-import os
 import sys
 
 LAYERS = {
@@ -18,7 +17,6 @@ def main():
     src, dst = sys.argv[1], sys.argv[2]
     with open(src) as f:
         gltf = json.load(f)
-    base = os.path.dirname(os.path.abspath(src))
     for m in gltf.get("materials", []):
         ext = m.get("extensions", {})
         for name in list(ext):
@@ -27,11 +25,6 @@ def main():
     for key in ("extensionsUsed", "extensionsRequired"):
         if key in gltf:
             gltf[key] = [e for e in gltf[key] if e not in LAYERS]
-    for key in ("buffers", "images"):
-        for item in gltf.get(key, []):
-            uri = item.get("uri", "")
-            if uri and not uri.startswith("data:") and not os.path.isabs(uri):
-                item["uri"] = os.path.join(base, uri)
     with open(dst, "w") as f:
         json.dump(gltf, f)
 
