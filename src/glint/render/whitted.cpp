@@ -290,8 +290,7 @@ Vec3 WhittedIntegrator::shadeSurface(const Ray& ray, const Hit& hit, int depth, 
     SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
     const Material& m = scene_.materials[si.material];
     if (m.interface) [[unlikely]]  // a medium's boundary, unseen: what lies beyond it
-        return trace(spawnRay(si.p, normalize(ray.dir), scene_.spawnOffset()), depth, weight,
-                     ctx);
+        return trace(spawnRay(si.p, normalize(ray.dir), scene_.spawnOffset()), depth, weight, ctx);
     if (m.texture != 0 || m.frontEmissionOnly || m.pbr != 0)
         return shadeSpecial(ray, si, m, depth, weight, ctx);
     return shadeHit(ray, si, si, m, false, depth, weight, ctx);
