@@ -21,8 +21,6 @@ constexpr double kInvPi = std::numbers::inv_pi;
 /// The clearcoat's normal-incidence reflectance: an index of 1.5, as the extension fixes it.
 constexpr double kCoatF0 = 0.04;
 
-double maxComponent(const Vec3& v) { return std::max({v.x, v.y, v.z}); }
-
 }  // namespace
 
 // ---- The base ----
