@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 
 #include "demo_scene.h"
 #include "glint/core/error.h"
@@ -151,8 +152,8 @@ void addDisplayOptions(CLI::App& app, DisplayOptions& d, const std::string& unch
     app.add_flag_callback(
         "--no-srgb", [&d] { d.srgb = -1; }, "Encode 8-bit outputs with the course's floor(255 c)");
     app.add_option("--tonemap", d.toneMap,
-                   "neutral or clamp, for 8-bit outputs (default: " + unchanged + ")")
-        ->check(CLI::IsMember({"neutral", "clamp"}))
+                   "neutral, aces or clamp, for 8-bit outputs (default: " + unchanged + ")")
+        ->check(CLI::IsMember({"neutral", "aces", "clamp"}))
         ->type_name("NAME");
 }
 
@@ -207,7 +208,8 @@ int prepare(const Options& opt, Prepared& out) {
             "--kernels avx2: this CPU (or this build of glint) has no AVX2; use "
             "auto or portable");
     if (demo && !opt.camera.empty())
-        return usageError("--camera chooses among a model file's cameras: name a model to render");
+        return usageError(
+            "--camera chooses a model file's camera: name a model or scene to render");
     if (!opt.output.empty() && !imageFormatFor(opt.output))
         return usageError("cannot write '" + opt.output + "': unknown image format (use " +
                           kImageExtensions + ")");
@@ -270,6 +272,7 @@ int prepare(const Options& opt, Prepared& out) {
         scene->height = height;
     }
     if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
+    if (opt.fovy > 0 && scene->camera) scene->camera->fovyDegrees = opt.fovy;
     scene->clampIndirect = opt.clampIndirect;
     scene->caustics = opt.caustics == "on";
     if (!opt.integrator.empty()) scene->integrator = opt.integrator;
@@ -340,18 +343,31 @@ void addOptions(CLI::App& app, Options& opt) {
                  "a warning, as the course's own parser did (default: they are errors)")
         ->group(input);
     app.add_option("--camera", opt.camera,
-                   "Which of a model file's cameras to render through: its number N (from 0, in "
-                   "the order of the file's node tree), the name of the camera or of its node, "
-                   "or none to ignore the file's cameras and frame the model (default: its first "
+                   "Which camera to render a model file through: its number N (from 0, in the "
+                   "order of the file's node tree), the name of the camera or of its node, none "
+                   "to ignore the file's cameras and frame the model, or "
+                   "orbit:THETA,PHI,RADIUS[,TX,TY,TZ] for a camera on a sphere around a target "
+                   "(degrees; the Khronos Render Fidelity and model-viewer orbit, 45 degrees "
+                   "vertical field of view; also for scene files) (default: its first "
                    "perspective camera)")
         ->group(input)
         ->check(CLI::Validator(
             [](std::string& text) -> std::string {
-                if (text.empty()) return "expected a camera number, a name, or none";
+                if (text.empty()) return "expected a camera number, a name, none or orbit:...";
+                try {
+                    CameraChoice::parse(text);
+                } catch (const std::invalid_argument& e) {
+                    return e.what();
+                }
                 return {};
             },
             "", ""))
-        ->type_name("N|NAME|none");
+        ->type_name("N|NAME|none|orbit:...");
+    app.add_option("--fov", opt.fovy,
+                   "Vertical field of view in degrees, overriding the camera's, 0.01 to 179")
+        ->group(input)
+        ->check(numberIn(0.01, 179))
+        ->type_name("DEG");
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,
@@ -376,10 +392,10 @@ void addOptions(CLI::App& app, Options& opt) {
         ->group(out);
     app.add_option("--tonemap", opt.toneMap,
                    "How radiance is brought into [0, 1] for 8-bit outputs: neutral (Khronos PBR "
-                   "Neutral), clamp (the course's); default: neutral for models, clamp for "
-                   "scenes")
+                   "Neutral), aces (three.js's ACES filmic, as Khronos' Render Fidelity images), "
+                   "clamp (the course's); default: neutral for models, clamp for scenes")
         ->group(out)
-        ->check(CLI::IsMember({"neutral", "clamp"}))
+        ->check(CLI::IsMember({"neutral", "aces", "clamp"}))
         ->type_name("NAME");
 
     const char* render = "Rendering";

@@ -140,7 +140,9 @@ std::string pixelSettings(const Options& opt, const Scene& scene) {
                                     : std::string()) +
            (scene.caustics ? std::string() : std::string(" caustics=off")) +
            " environment=" + orDefault(environment) + " ground=" + orDefault(opt.ground) +
-           " camera=" + orDefault(opt.camera) + " lenient=" + (opt.lenient ? "yes" : "no");
+           " camera=" + orDefault(opt.camera) +
+           (opt.fovy > 0 ? " fov=" + exactText(opt.fovy) : std::string()) +
+           " lenient=" + (opt.lenient ? "yes" : "no");
 }
 
 }  // namespace glint::cli

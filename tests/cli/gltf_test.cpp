@@ -200,14 +200,62 @@ TEST(CliGltf, AnUnknownCameraIsAnErrorListingTheCameras) {
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_TRUE(contains(r.err,
                          "s.test: error: a CSE167x scene has the camera its commands "
-                         "define: choosing a camera (--camera) is for model files"))
+                         "define: choosing one of a file's cameras (--camera) is for model "
+                         "files"))
         << r.err;
     r = runGlint("--camera 0", dir);
     EXPECT_EQ(r.exitCode, 2);
-    EXPECT_TRUE(contains(r.err, "--camera chooses among a model file's cameras")) << r.err;
+    EXPECT_TRUE(contains(r.err, "--camera chooses a model file's camera")) << r.err;
     r = runGlint("scene.glb --camera ''", dir);
     EXPECT_EQ(r.exitCode, 2);
-    EXPECT_TRUE(contains(r.err, "expected a camera number, a name, or none")) << r.err;
+    EXPECT_TRUE(contains(r.err, "expected a camera number, a name, none or orbit:...")) << r.err;
+    for (const char* bad : {"orbit:1,2", "orbit:0,0,1", "orbit:0,90,0", "orbit:0,90,1,x,0,0"}) {
+        r = runGlint(std::string("scene.glb --camera ") + bad, dir);
+        EXPECT_EQ(r.exitCode, 2) << bad;
+        EXPECT_TRUE(contains(r.err, "glint: error: --camera: ")) << r.err;
+    }
+}
+
+TEST(CliGltf, AnOrbitCameraLooksAtItsTargetWithTheFieldOfViewAsked) {
+    std::string dir = freshDir("gltf-orbit");
+    writeFile(dir + "/two.gltf", twoCameras());
+    auto render = [&](const std::string& args) {
+        CommandResult r = runGlint("two.gltf --size 9x9 -o c.png " + args, dir);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return readImage8(dir + "/c.png", 3);
+    };
+    auto blue = [](const Image8& img, int x, int y) {
+        return img.at(x, y, 2) > img.at(x, y, 0) + 50;
+    };
+    // From +z, 5 away, around the blue quad's centre, then around the red one's; from +x
+    // (theta 90) the quads are seen edge on, and the red one hides behind the blue.
+    Image8 img = render("--camera orbit:0,90,5,3,0,0");
+    EXPECT_TRUE(blue(img, 4, 4));
+    EXPECT_FALSE(blue(img, 0, 0));  // 45 degrees: the quad, 2 wide, leaves the corners
+    img = render("--camera orbit:0,90,5,-3,0,0");
+    EXPECT_GT(img.at(4, 4, 0), img.at(4, 4, 2) + 50);
+    // A narrow field of view fills the frame with the quad.
+    img = render("--camera orbit:0,90,5,3,0,0 --fov 10");
+    EXPECT_TRUE(blue(img, 0, 0));
+    EXPECT_TRUE(blue(img, 8, 8));
+    // It says whose camera it is.
+    CommandResult r = runGlint("two.gltf --size 9x9 -o c.png --camera orbit:30,60,4.75", dir);
+    EXPECT_TRUE(contains(r.err,
+                         "(and the orbit camera theta 30, phi 60, radius 4.75 around (0, "
+                         "0, 0))"))
+        << r.err;
+    // A scene file takes an orbit too, in place of its camera.
+    writeFile(dir + "/s.test",
+              "size 9 9\ncamera 0 0 50 0 0 0 0 1 0 1\nambient 0 0 0\ndirectional 0 0 1 1 1 1\n"
+              "diffuse 1 1 1\nsphere 0 0 0 1\n");
+    r = runGlint("s.test -o far.png", dir);  // a 1-degree view of the centre: all white
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_GT(readImage8(dir + "/far.png", 3).at(0, 0, 0), 200);
+    r = runGlint("s.test -o orbit.png --camera orbit:0,90,10", dir);  // 45 degrees: black corners
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    Image8 orbit = readImage8(dir + "/orbit.png", 3);
+    EXPECT_EQ(orbit.at(0, 0, 0), 0);
+    EXPECT_GT(orbit.at(4, 4, 0), 200);
 }
 
 /// Two quads whose materials use KHR_materials_clearcoat (which Glint ignores), one with a

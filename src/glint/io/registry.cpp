@@ -88,6 +88,10 @@ Model loadModelAs(const FileFormat& format, const std::string& path,
         case CameraChoice::Kind::None:
             model.camera.reset();
             break;
+        case CameraChoice::Kind::Orbit:
+            model.camera =
+                ModelCamera{options.camera.orbit.spec(), 0, options.camera.orbit.describe(), false};
+            break;
         case CameraChoice::Kind::Index:
         case CameraChoice::Kind::Name:
             if (!model.camera)
@@ -252,13 +256,22 @@ ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warni
     FormatChoice choice = chooseFormat(path, FileUse::Scene, warnings);
     if (!choice.format) throw SceneError({path, 0, 0}, choice.problem);
     if (choice.format->loadScene) {
-        if (options.camera.kind != CameraChoice::Kind::First)
+        const CameraChoice::Kind kind = options.camera.kind;
+        if (kind != CameraChoice::Kind::First && kind != CameraChoice::Kind::Orbit)
             throw SceneError({path, 0, 0},
                              std::string("a ") + choice.format->name +
-                                 " has the camera its commands define: choosing a camera "
-                                 "(--camera) is for model files");
+                                 " has the camera its commands define: choosing one of a file's "
+                                 "cameras (--camera) is for model files");
         ModelScene out;
         out.scene = choice.format->loadScene(path, warnings, options);
+        if (kind == CameraChoice::Kind::Orbit) {  // its place and field of view; the scene's lens
+            CameraSpec camera = options.camera.orbit.spec();
+            if (const auto& own = out.scene->camera) {
+                camera.apertureRadius = own->apertureRadius;
+                camera.focusDistance = own->focusDistance;
+            }
+            out.scene->camera = camera;
+        }
         return out;
     }
     return frameModelScene(loadModelAs(*choice.format, path, warnings, options), options.width,

@@ -36,8 +36,9 @@ struct LoadOptions {
     bool lenient = false;
     /// The image a model is framed for (frameModelScene): 0 x 0 for its camera's or 640 x 480.
     int width = 0, height = 0;
-    /// Which of a model file's cameras to use (`--camera`). A choice other than the default is
-    /// an error for a scene file, and naming a camera is one for a model without cameras.
+    /// Which of a model file's cameras to use (`--camera`). An orbit replaces any file's camera
+    /// (a scene file keeps its aperture and focus); choosing one of the file's own cameras is an
+    /// error for a scene file, and naming a camera is one for a model without cameras.
     CameraChoice camera;
     /// How a model is shown (frameModelScene): the studio look unless asked otherwise.
     ModelLook look;

@@ -39,8 +39,34 @@ Vec3 pbrNeutral(const Vec3& input) {
     return c * (1 - g) + Vec3(newPeak * g);
 }
 
+Vec3 acesFilmic(const Vec3& input) {
+    // Rows act on (r, g, b) columns: out_i = sum_j m[i][j] c_j.
+    constexpr double kInput[3][3] = {
+        {0.59719, 0.35458, 0.04823}, {0.07600, 0.90834, 0.01566}, {0.02840, 0.13383, 0.83777}};
+    constexpr double kOutput[3][3] = {{1.60475, -0.53108, -0.07367},
+                                      {-0.10208, 1.10813, -0.00605},
+                                      {-0.00327, -0.07276, 1.07602}};
+    constexpr double kExposureBoost = 1 / 0.6;
+    const double c[3] = {clean(input.x) * kExposureBoost, clean(input.y) * kExposureBoost,
+                         clean(input.z) * kExposureBoost};
+    double fitted[3];
+    for (int i = 0; i < 3; ++i) {
+        const double v = kInput[i][0] * c[0] + kInput[i][1] * c[1] + kInput[i][2] * c[2];
+        fitted[i] =
+            (v * (v + 0.0245786) - 0.000090537) / (v * (0.983729 * v + 0.4329510) + 0.238081);
+    }
+    double out[3];
+    for (int i = 0; i < 3; ++i) {
+        const double v =
+            kOutput[i][0] * fitted[0] + kOutput[i][1] * fitted[1] + kOutput[i][2] * fitted[2];
+        out[i] = std::clamp(v, 0.0, 1.0);
+    }
+    return {out[0], out[1], out[2]};
+}
+
 Vec3 toneMap(ToneMap t, const Vec3& c) {
     if (t == ToneMap::PbrNeutral) return pbrNeutral(c);
+    if (t == ToneMap::Aces) return acesFilmic(c);
     auto clamp01 = [](double v) { return v > 0 ? std::min(v, 1.0) : 0.0; };
     return {clamp01(c.x), clamp01(c.y), clamp01(c.z)};
 }

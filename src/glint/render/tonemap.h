@@ -24,6 +24,15 @@
 /// So every output channel lies in [0, 1), the HSV hue of the input is kept (steps 1, 3 and 4
 /// each add the same amount to every channel or scale them all alike), and a colour made
 /// brighter never maps darker.
+///
+/// **ACES filmic** as three.js's ACESFilmicToneMapping computes it (Stephen Hill's fit of the
+/// ACES reference rendering and output transforms; the coefficients are the published ones, as
+/// three.js, the glTF Sample Viewer and the Khronos glTF Render Fidelity scripts use them):
+/// radiance times 1/0.6 (three.js's exposure boost), into the ACES working space by a 3x3
+/// matrix, each channel through (c (c + 0.0245786) - 0.000090537) /
+/// (c (0.983729 c + 0.4329510) + 0.238081), back by a second matrix, clamped to [0, 1]. The
+/// Render Fidelity images of Cycles and V-Ray then encode with a plain 2.2 gamma where Glint
+/// uses the sRGB curve: at most about 2 levels of 255 apart in the mid-tones.
 
 #include "glint/math/vec3.h"
 #include "glint/scene/display_spec.h"
@@ -36,6 +45,9 @@ Vec3 pbrNeutral(const Vec3& c);
 
 /// The largest channel at which PBR Neutral starts compressing (after the black-level offset).
 inline constexpr double kPbrNeutralStartCompression = 0.8 - 0.04;
+
+/// three.js's ACES filmic fit of linear radiance `c`, as the file comment describes; in [0, 1].
+Vec3 acesFilmic(const Vec3& c);
 
 /// `c` through the tone mapper `t`: Clamp clamps every channel to [0, 1] (NaN to 0).
 Vec3 toneMap(ToneMap t, const Vec3& c);

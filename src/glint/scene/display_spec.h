@@ -10,8 +10,9 @@ namespace glint {
 
 /// What compresses radiance into [0, 1] before it is encoded.
 enum class ToneMap {
-    Clamp,      ///< Each channel clamped to [0, 1]: the course's conversion.
-    PbrNeutral  ///< Khronos PBR Neutral (render/tonemap.h): the glTF viewers' convention.
+    Clamp,       ///< Each channel clamped to [0, 1]: the course's conversion.
+    PbrNeutral,  ///< Khronos PBR Neutral (render/tonemap.h): the glTF viewers' convention.
+    Aces  ///< three.js's ACES filmic fit (render/tonemap.h): Khronos' Render Fidelity images.
 };
 
 struct DisplaySpec {
@@ -22,13 +23,23 @@ struct DisplaySpec {
     bool operator==(const DisplaySpec&) const = default;
 };
 
-/// "clamp" or "neutral": the names `--tonemap` takes.
-inline std::string_view toneMapName(ToneMap t) { return t == ToneMap::Clamp ? "clamp" : "neutral"; }
+/// "clamp", "neutral" or "aces": the names `--tonemap` takes.
+inline std::string_view toneMapName(ToneMap t) {
+    switch (t) {
+        case ToneMap::Clamp:
+            return "clamp";
+        case ToneMap::Aces:
+            return "aces";
+        default:
+            return "neutral";
+    }
+}
 
-/// The tone mapper called `name` ("clamp", "neutral"), if there is one.
+/// The tone mapper called `name` ("clamp", "neutral", "aces"), if there is one.
 inline std::optional<ToneMap> toneMapNamed(std::string_view name) {
     if (name == "clamp") return ToneMap::Clamp;
     if (name == "neutral") return ToneMap::PbrNeutral;
+    if (name == "aces") return ToneMap::Aces;
     return std::nullopt;
 }
 

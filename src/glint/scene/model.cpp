@@ -2,14 +2,81 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
 #include <utility>
+#include <vector>
+
+#include "glint/core/parse_float.h"
 
 namespace glint {
+
+namespace {
+
+constexpr std::string_view kOrbitPrefix = "orbit:";
+
+/// The numbers of "orbit:THETA,PHI,RADIUS[,TX,TY,TZ]" after the prefix.
+OrbitCamera parseOrbit(std::string_view text) {
+    const std::string form = "expected orbit:THETA,PHI,RADIUS[,TX,TY,TZ] (degrees and scene units)";
+    std::vector<double> v;
+    while (true) {
+        size_t comma = text.find(',');
+        std::string_view item = text.substr(0, comma);
+        double x = 0;
+        auto [end, ec] = parseFloat(item.data(), item.data() + item.size(), x);
+        if (item.empty() || ec != std::errc() || end != item.data() + item.size())
+            throw std::invalid_argument(form + ": '" + std::string(item) + "' is not a number");
+        if (!std::isfinite(x))
+            throw std::invalid_argument(form + ": '" + std::string(item) + "' is not finite");
+        v.push_back(x);
+        if (comma == std::string_view::npos) break;
+        text.remove_prefix(comma + 1);
+    }
+    if (v.size() != 3 && v.size() != 6)
+        throw std::invalid_argument(form + ": got " + std::to_string(v.size()) + " numbers");
+    OrbitCamera o{v[0], v[1], v[2], {}};
+    if (v.size() == 6) o.target = {v[3], v[4], v[5]};
+    if (!(o.radius > 0)) throw std::invalid_argument("the orbit's radius must be positive");
+    if (!(o.phiDegrees > 0 && o.phiDegrees < 180))
+        throw std::invalid_argument(
+            "the orbit's phi must be strictly between 0 and 180 degrees (the eye straight above "
+            "or below the target leaves +y up no meaning)");
+    return o;
+}
+
+std::string number(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+}
+
+}  // namespace
+
+CameraSpec OrbitCamera::spec() const {
+    constexpr double kDegree = std::numbers::pi / 180;
+    const double theta = thetaDegrees * kDegree, phi = phiDegrees * kDegree;
+    const Vec3 direction(std::sin(phi) * std::sin(theta), std::cos(phi),
+                         std::sin(phi) * std::cos(theta));
+    return CameraSpec{target + direction * radius, target, {0, 1, 0}, 45};
+}
+
+std::string OrbitCamera::describe() const {
+    return "the orbit camera theta " + number(thetaDegrees) + ", phi " + number(phiDegrees) +
+           ", radius " + number(radius) + " around (" + number(target.x) + ", " + number(target.y) +
+           ", " + number(target.z) + ")";
+}
 
 CameraChoice CameraChoice::parse(const std::string& text) {
     CameraChoice c;
     if (text.empty()) return c;
+    if (text.starts_with(kOrbitPrefix)) {
+        c.kind = Kind::Orbit;
+        c.orbit = parseOrbit(std::string_view(text).substr(kOrbitPrefix.size()));
+        return c;
+    }
     if (text == "none") {
         c.kind = Kind::None;
         return c;
@@ -33,6 +100,8 @@ std::string CameraChoice::describe() const {
             return "camera '" + name + "'";
         case Kind::None:
             return "no camera";
+        case Kind::Orbit:
+            return orbit.describe();
         default:
             return "the first camera";
     }

@@ -31,9 +31,26 @@ struct ModelCamera {
     CameraSpec spec;          ///< In the model's space.
     double aspectRatio = 0;   ///< Width / height the camera was made for; 0: not given.
     std::string description;  ///< "camera 0 'Main' (node 3)", for messages.
+    bool own = true;          ///< The file's camera (false: one the command line placed).
 };
 
-/// Which of a model file's cameras to use (`glint --camera`). The loaders number a file's
+/// A camera on a sphere around a target, as model-viewer's `camera-orbit` and the Khronos glTF
+/// Render Fidelity scenarios place it (angles in degrees, +y up): theta is the azimuth about
+/// +y from +z towards +x, phi the polar angle from +y; the eye is
+/// target + radius (sin phi sin theta, cos phi, sin phi cos theta), looking at the target with
+/// +y up and a vertical field of view of 45 degrees (their default).
+struct OrbitCamera {
+    double thetaDegrees = 0;
+    double phiDegrees = 90;
+    double radius = 1;
+    Vec3 target;
+
+    CameraSpec spec() const;
+    /// "the orbit camera theta 30, phi 60, radius 4.75 around (0, 0, 0)", for messages.
+    std::string describe() const;
+};
+
+/// Which camera to render a model file through (`glint --camera`). The loaders number a file's
 /// cameras in the order they meet them (a glTF file: its camera nodes, depth first through the
 /// default scene, children in order; numbered from 0).
 struct CameraChoice {
@@ -42,12 +59,17 @@ struct CameraChoice {
         Index,  ///< Camera number `index`.
         Name,   ///< The first camera (or camera node) named `name`.
         None,   ///< None: the model is framed as if it had no camera.
+        Orbit,  ///< None of the file's: `orbit` instead.
     };
     Kind kind = Kind::First;
     size_t index = 0;
     std::string name;
+    OrbitCamera orbit;
 
-    /// "none" is None, a decimal number an Index, anything else a Name; empty is First.
+    /// "none" is None, a decimal number an Index, "orbit:THETA,PHI,RADIUS[,TX,TY,TZ]" an Orbit
+    /// (throws std::invalid_argument, saying why, for a malformed one: numbers not finite,
+    /// radius not positive, phi not strictly between 0 and 180), anything else a Name; empty is
+    /// First.
     static CameraChoice parse(const std::string& text);
     /// "camera 2", "camera 'Side'": for messages.
     std::string describe() const;

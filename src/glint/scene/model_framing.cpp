@@ -151,7 +151,7 @@ Placed placeWithItsOwn(const Model& model, int width, int height) {
     std::string has;
     if (model.camera) {
         settings.camera = model.camera->spec;
-        has = "its " + model.camera->description;
+        has = (model.camera->own ? "its " : "") + model.camera->description;
         // The file's camera knows its picture's shape, unless the command line says.
         if (width <= 0 && model.camera->aspectRatio > 0)
             settings.height = static_cast<int>(std::clamp(

@@ -169,8 +169,47 @@ TEST(ToneMap, ClampClampsEachChannel) {
     EXPECT_EQ(toneMap(ToneMap::PbrNeutral, Vec3(0.3, 2, 5)), pbrNeutral(Vec3(0.3, 2, 5)));
     EXPECT_EQ(toneMapNamed("neutral"), ToneMap::PbrNeutral);
     EXPECT_EQ(toneMapNamed("clamp"), ToneMap::Clamp);
-    EXPECT_FALSE(toneMapNamed("aces"));
-    EXPECT_EQ(toneMapName(ToneMap::PbrNeutral), "neutral");
+    EXPECT_EQ(toneMapNamed("aces"), ToneMap::Aces);
+    EXPECT_FALSE(toneMapNamed("filmic"));
+    for (ToneMap t : {ToneMap::Clamp, ToneMap::PbrNeutral, ToneMap::Aces})
+        EXPECT_EQ(toneMapNamed(toneMapName(t)), t);
+    EXPECT_EQ(toneMap(ToneMap::Aces, Vec3(0.3, 2, 5)), acesFilmic(Vec3(0.3, 2, 5)));
+}
+
+/// Hill's rational fit of the ACES curve, on one channel (after the 1/0.6 boost).
+double acesFit(double v) {
+    return (v * (v + 0.0245786) - 0.000090537) / (v * (0.983729 * v + 0.4329510) + 0.238081);
+}
+
+TEST(AcesFilmic, GreysStayGreyAndFollowTheFitOfTheBoostedValue) {
+    // Both matrices keep (1, 1, 1): their rows sum to 1 (to the five decimals published).
+    for (double v : {0.05, 0.18, 0.5, 1.0, 2.0, 8.0}) {
+        Vec3 out = acesFilmic(Vec3(v));
+        EXPECT_NEAR(out.x, acesFit(v / 0.6), 2e-5) << v;
+        EXPECT_NEAR(out.y, out.x, 2e-5);
+        EXPECT_NEAR(out.z, out.x, 2e-5);
+    }
+    EXPECT_EQ(acesFilmic(Vec3(0)), Vec3(0));  // the fit's small negative value, clamped
+}
+
+TEST(AcesFilmic, StaysInRangeRisesWithRadianceAndReadsBadValuesSafely) {
+    double last = -1;
+    for (double v = 0; v < 1000; v = v * 1.3 + 0.01) {
+        Vec3 out = acesFilmic(Vec3(v, 0.5 * v, 0.1 * v));
+        for (double c : {out.x, out.y, out.z}) {
+            EXPECT_GE(c, 0);
+            EXPECT_LE(c, 1);
+        }
+        EXPECT_GE(out.x, last);
+        last = out.x;
+    }
+    EXPECT_GT(acesFilmic(Vec3(1e6)).x, 0.99);
+    Vec3 bad = acesFilmic(Vec3(kNaN, -3, std::numeric_limits<double>::infinity()));
+    for (double c : {bad.x, bad.y, bad.z}) EXPECT_TRUE(c >= 0 && c <= 1);
+    // A saturated colour keeps its dominant channel.
+    Vec3 red = acesFilmic(Vec3(0.8, 0.1, 0.05));
+    EXPECT_GT(red.x, red.y);
+    EXPECT_GT(red.y, red.z - 1e-9);
 }
 
 TEST(ToneMap, EightBitImagesGoThroughTheExposureTheToneMapperAndTheCurve) {

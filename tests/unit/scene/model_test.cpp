@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <memory>
+#include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "glint/math/mat4.h"
@@ -100,6 +102,49 @@ TEST(CameraChoice, NoneANumberOrAName) {
     EXPECT_EQ(s.name, "Side 2");
     EXPECT_EQ(s.describe(), "camera 'Side 2'");
     EXPECT_EQ(CameraChoice::parse("-1").kind, Kind::Name);  // not a number of a camera
+}
+
+TEST(CameraChoice, AnOrbitPlacesTheEyeOnASphereAroundTheTarget) {
+    CameraChoice c = CameraChoice::parse("orbit:30,60,4.75");
+    ASSERT_EQ(c.kind, CameraChoice::Kind::Orbit);
+    // The eye of Khronos' AnimatedCube scenario, as gltf-ext/RENDER-FIDELITY.md tabulates it.
+    CameraSpec s = c.orbit.spec();
+    EXPECT_NEAR(s.eye.x, 2.05681, 1e-5);
+    EXPECT_NEAR(s.eye.y, 2.375, 1e-12);
+    EXPECT_NEAR(s.eye.z, 3.5625, 1e-12);
+    EXPECT_EQ(s.center, Vec3(0, 0, 0));
+    EXPECT_EQ(s.up, Vec3(0, 1, 0));
+    EXPECT_EQ(s.fovyDegrees, 45);
+    // A target moves eye and centre alike; theta 90 puts the eye on +x, phi 100 below.
+    s = CameraChoice::parse("orbit:90,100,2,1,-2,0.5").orbit.spec();
+    EXPECT_EQ(s.center, Vec3(1, -2, 0.5));
+    EXPECT_NEAR(s.eye.x, 1 + 2 * std::sin(100 * std::numbers::pi / 180), 1e-12);
+    EXPECT_NEAR(s.eye.y, -2 + 2 * std::cos(100 * std::numbers::pi / 180), 1e-12);
+    EXPECT_NEAR(s.eye.z, 0.5, 1e-12);
+    EXPECT_EQ(CameraChoice::parse("orbit:-60,90,124,-35,37,25").describe(),
+              "the orbit camera theta -60, phi 90, radius 124 around (-35, 37, 25)");
+}
+
+TEST(CameraChoice, AMalformedOrbitSaysWhatIsWrong) {
+    auto problem = [](const std::string& text) -> std::string {
+        try {
+            CameraChoice::parse(text);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    EXPECT_THAT(problem("orbit:"), HasSubstr("'' is not a number"));
+    EXPECT_THAT(problem("orbit:1,2"), HasSubstr("got 2 numbers"));
+    EXPECT_THAT(problem("orbit:1,2,3,4"), HasSubstr("got 4 numbers"));
+    EXPECT_THAT(problem("orbit:1,2,3,"), HasSubstr("'' is not a number"));
+    EXPECT_THAT(problem("orbit:1,2,3x"), HasSubstr("'3x' is not a number"));
+    EXPECT_THAT(problem("orbit:inf,90,1"), HasSubstr("'inf' is not finite"));
+    EXPECT_THAT(problem("orbit:0,90,0"), HasSubstr("radius must be positive"));
+    EXPECT_THAT(problem("orbit:0,90,nan"), HasSubstr("'nan' is not finite"));
+    EXPECT_THAT(problem("orbit:0,0,1"), HasSubstr("phi must be strictly between 0 and 180"));
+    EXPECT_THAT(problem("orbit:0,180,1"), HasSubstr("phi must be strictly between 0 and 180"));
+    EXPECT_EQ(problem("orbit:0,179.9,1e-3"), "no error");
 }
 
 // ---- The classic look (the course's Whitted integrator) ----

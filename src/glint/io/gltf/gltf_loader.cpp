@@ -243,6 +243,7 @@ std::optional<ModelCamera> chooseCamera(Context& ctx, const std::vector<CameraNo
     switch (choice.kind) {
         case Kind::None:
         case Kind::First:
+        case Kind::Orbit:  // none of the file's (io/registry.cpp places it)
             return std::nullopt;
         case Kind::Index:
             if (choice.index >= cameras.size())

@@ -138,8 +138,8 @@ TEST_F(CameraChoiceFile, TheRegistryPassesTheChoiceAndFramesWithoutACamera) {
         ADD_FAILURE() << "no error";
     } catch (const SceneError& e) {
         EXPECT_EQ(e.diagnostic().message,
-                  "a CSE167x scene has the camera its commands define: choosing a camera "
-                  "(--camera) is for model files");
+                  "a CSE167x scene has the camera its commands define: choosing one of a "
+                  "file's cameras (--camera) is for model files");
     }
 }
 
