@@ -179,11 +179,9 @@ std::shared_ptr<const DensityGrid> readDensity(const std::string& path, const st
                                                const LoadLimits& limits) {
     // The table of contents first: which grids, and whether the file holds all their bytes.
     const std::string name = pickGrid(path, vdb::readContents(path), gridName);
-    openvdb::io::File file(path);
-    file.open(false);  // No delayed loading: the voxels are read now, not mapped for later.
-    checkRecordedSize(path, *file.readGridMetadata(name), limits);
-    const FloatGrid::Ptr grid = openvdb::gridPtrCast<FloatGrid>(file.readGrid(name));
-    file.close();
+    checkRecordedSize(path, *vdb::readGrid(path, name, /*metadataOnly=*/true), limits);
+    const FloatGrid::Ptr grid =
+        openvdb::gridPtrCast<FloatGrid>(vdb::readGrid(path, name, /*metadataOnly=*/false));
     if (!grid) cannot(path, "grid " + quote(name) + " did not read as a float grid");
 
     const CoordBBox box = grid->evalActiveVoxelBoundingBox();

@@ -308,6 +308,58 @@ TEST_F(VdbReaderTest, TruncatedFilesGiveMessages) {
     }
 }
 
+/// The bytes of `path`, and `bytes` written to `path`.
+std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+void writeBytes(const std::string& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+std::string le32(uint32_t v) {
+    std::string s(4, '\0');
+    for (int i = 0; i < 4; ++i) s[i] = static_cast<char>((v >> (8 * i)) & 0xff);
+    return s;
+}
+
+TEST_F(VdbReaderTest, CorruptCountsAndLengthsAreRefusedBeforeOpenVdbAllocatesThem) {
+    // OpenVDB allocates what a string length, a metadata size or a node count says before it
+    // reads: each corrupt count here is found from the file's own bytes first, with a message,
+    // in a few milliseconds and without gigabytes (fuzz/vdb_fuzzer.cpp found each kind).
+    FloatGrid::Ptr grid = floatGrid("density");
+    grid->getAccessor().setValue(Coord(0, 0, 0), 1.0f);
+    grid->getAccessor().setValue(Coord(5000, 0, 0), 2.0f);  // a second child of the root
+    openvdb::io::File file(path("good.vdb"));
+    file.setCompression(openvdb::io::COMPRESS_ACTIVE_MASK);  // the values as they are
+    tbb::task_arena(1).execute([&] { file.write({grid}); });
+    file.close();
+    const std::string good = readBytes(path("good.vdb"));
+    ASSERT_EQ(loadError(path("good.vdb")), "");
+    auto patched = [&](const std::string& name, const std::string& find, size_t offset,
+                       const std::string& with) {
+        std::string bytes = good;
+        const size_t at = bytes.find(find);
+        EXPECT_NE(at, std::string::npos) << name;
+        if (at != std::string::npos) bytes.replace(at + offset, with.size(), with);
+        writeBytes(path(name), bytes);
+        return loadError(path(name));
+    };
+    // The grid's name in the table of grids: its length 7 before "density", made 2^31.
+    EXPECT_THAT(patched("name.vdb", le32(7) + "density", 0, le32(1u << 31)),
+                HasSubstr("a grid's name runs past the end of the file"));
+    // A metadata value of a fixed-size type (the active box's corner, a vec3i) stated shorter:
+    // OpenVDB would read its 12 bytes anyway and lose its place.
+    EXPECT_THAT(patched("vec3i.vdb", "vec3i" + le32(12), 5, le32(4)),
+                HasSubstr("a grid's metadata"));
+    // The root's child count (after the tree's buffer count 1, the background 0, no tiles).
+    const std::string root = le32(1) + le32(0) + le32(0) + le32(2);
+    EXPECT_THAT(patched("children.vdb", root, 12, le32(0x7fffffff)),
+                HasSubstr("runs past the end of its part of the file"));
+    // The second child's origin (4096, 0, 0) made the first's (0, 0, 0).
+    EXPECT_THAT(patched("twice.vdb", le32(4096) + le32(0) + le32(0), 0, le32(0)),
+                HasSubstr("two of the root's children have the same origin"));
+}
+
 TEST_F(VdbReaderTest, ASmokeGridRendersFromASceneFile) {
     // A ball of smoke (density 4 inside radius 8 voxels, voxel size 0.1: a ball of radius 0.8)
     // written with OpenVDB, placed by a scene file's transform, in front of a white emitter:
