@@ -90,6 +90,7 @@ TEST(CliModelMode, EachDefaultCanBeChanged) {
          "showing it in the dark, lit by a key and a fill directional light, with a ground "
          "shadow"},
         {"--tonemap clamp", "with a ground shadow"},
+        {"--tonemap aces", "with a ground shadow"},
         {"--no-srgb", "with a ground shadow"},
     };
     int n = 0;
@@ -105,7 +106,7 @@ TEST(CliModelMode, EachDefaultCanBeChanged) {
     EXPECT_TRUE(contains(r.err, "glint: error: --ground shadow needs the path tracer")) << r.err;
     r = runGlint("flat.obj --ground sand", dir);
     EXPECT_EQ(r.exitCode, 2);
-    r = runGlint("flat.obj --tonemap aces", dir);
+    r = runGlint("flat.obj --tonemap filmic", dir);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_TRUE(contains(r.err, "--tonemap")) << r.err;
 }
