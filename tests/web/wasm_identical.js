@@ -1,10 +1,13 @@
 // The WebAssembly module renders the course's graded scenes to PNG files byte for byte the
 // native command line's (docs/web.md). Run by CTest as web.wasm_identical_{mt,st}:
 //
-//   node --no-experimental-fetch tests/web/wasm_identical.js MODULE.js GLINT DATA_DIR THREADS
+//   node --no-experimental-fetch tests/web/wasm_identical.js MODULE.js GLINT DATA_DIR THREADS \
+//       [SCENE...]
 //
 // MODULE.js is glint-mt.js or glint-st.js (make web), GLINT the native binary, DATA_DIR
-// tests/data/cse167x. Each scene is rendered by both, natively with the default kernels (AVX2
+// tests/data/cse167x. Each further SCENE (Glint's own example scenes: the path tracer, media)
+// is rendered the same way at 48 x 36 pixels and 16 samples, its `size` and `spp` lines
+// replaced: the path tracer's random numbers and media's tracking are identical too. Each scene is rendered by both, natively with the default kernels (AVX2
 // where the CPU has them) and in WebAssembly with its default ones (SIMD128), which are
 // bit-identical (both are to the portable ones).
 'use strict';
@@ -13,7 +16,7 @@ const fs = require('fs');
 const os = require('os');
 const path = require('path');
 
-const [modulePath, glint, dataDir, threadsArg] = process.argv.slice(2);
+const [modulePath, glint, dataDir, threadsArg, ...extra] = process.argv.slice(2);
 if (!threadsArg) {
     console.error('usage: wasm_identical.js MODULE.js GLINT DATA_DIR THREADS');
     process.exit(2);
@@ -27,8 +30,15 @@ const scenes = ['scene4-ambient', 'scene4-diffuse', 'scene4-emission', 'scene4-s
     const M = await GlintModule({ glintThreads: threads });
     const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'glint-wasm-'));
     let failures = 0;
-    for (const name of scenes) {
-        const scene = path.join(dataDir, name + '.test');
+    const jobs = scenes.map((name) => ({ name, scene: path.join(dataDir, name + '.test') }));
+    for (const file of extra) {
+        const name = path.basename(file, '.test');
+        const small = path.join(tmp, name + '.test');
+        fs.writeFileSync(small, fs.readFileSync(file, 'utf8')
+            .replace(/^size .*$/m, 'size 48 36').replace(/^spp .*$/m, 'spp 16'));
+        jobs.push({ name, scene: small });
+    }
+    for (const { name, scene } of jobs) {
         const nativePng = path.join(tmp, name + '-native.png');
         execFileSync(glint, [scene, '-o', nativePng, '-q', '-t', String(threads)]);
         M.FS.writeFile('/' + name + '.test', fs.readFileSync(scene));
