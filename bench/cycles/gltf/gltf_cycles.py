@@ -44,7 +44,7 @@ import time
 
 import bpy
 from bpy_extras.io_utils import axis_conversion
-from mathutils import Matrix, Vector
+from mathutils import Matrix, Quaternion, Vector
 
 
 def fail(message):
@@ -66,6 +66,14 @@ def parse_args():
                    help="diagnostic: replace every Principled BSDF of metallic 0, no "
                         "transmission and no texture by a Diffuse BSDF (Lambert) of its base "
                         "colour, to tell the Principled BSDF's Burley diffuse from the rest")
+    p.add_argument("--sheen-v1", action="store_true",
+                   help="Blender 3.4's importer leaves KHR_materials_sheen out: give each "
+                        "material that has it the Principled BSDF's own (v1) sheen instead, "
+                        "Sheen = the largest channel of sheenColorFactor, Sheen Tint 1 (towards "
+                        "the base colour's hue: v1's sheen has no colour of its own)")
+    p.add_argument("--volume-step-rate", type=float, default=0.25,
+                   help="Cycles' volume step rate for density grids (its ray marching steps, "
+                        "in voxels; default 0.25, Blender's 1)")
     a = p.parse_args(argv)
     if a.spp < 1 or a.threads < 1:
         p.error("--spp and --threads must be at least 1")
@@ -73,8 +81,16 @@ def parse_args():
 
 
 def read_scene(path):
-    """The Glint scene's settings; the commands this script does not reproduce are errors."""
-    s = {"size": (640, 480), "camera": None, "maxdepth": 5, "environment": None, "meshes": []}
+    """The Glint scene's settings; the commands this script does not reproduce are errors.
+
+    Beside glTF meshes under an environment map, the subset of Glint's own commands that the
+    media scenes use (bench/cycles/layers-media): `background r g b`, `quadLight`, `diffuse`,
+    `transmission`, `ior`, `roughness`, `plane`, `sphere`, `medium`, `interior`, `fog`. Shapes
+    take the material (and interior) current at their line, as in Glint."""
+    s = {"size": (640, 480), "camera": None, "maxdepth": 5, "environment": None, "meshes": [],
+         "background": None, "quads": [], "shapes": [], "media": {}, "fog": None}
+    material = {"diffuse": (0.0, 0.0, 0.0), "transmission": (0.0, 0.0, 0.0), "ior": 1.0,
+                "roughness": 0.0, "interior": None, "interface": False}
     base = os.path.dirname(os.path.abspath(path))
     with open(path, encoding="utf-8") as f:
         for number, line in enumerate(f, 1):
@@ -83,6 +99,7 @@ def read_scene(path):
                 continue
             where = f"{path}:{number}"
             cmd, args = t[0], t[1:]
+            nums = lambda n: [float(x) for x in args[:n]]  # noqa: E731
             if cmd == "size":
                 s["size"] = (int(args[0]), int(args[1]))
             elif cmd == "camera":
@@ -95,39 +112,137 @@ def read_scene(path):
             elif cmd == "integrator":
                 if args != ["path"]:
                     fail(f"{where}: only 'integrator path' has a Cycles counterpart")
+            elif cmd == "spp":
+                pass  # --spp decides
             elif cmd == "environment":
                 scale = float(args[1]) if len(args) > 1 else 1.0
                 rotation = float(args[2]) if len(args) > 2 else 0.0
                 s["environment"] = (os.path.join(base, args[0]), scale, rotation)
             elif cmd == "mesh":
                 s["meshes"].append(os.path.join(base, args[0]))
+            elif cmd == "background":
+                if len(args) != 3:
+                    fail(f"{where}: only a constant background (3 numbers) is reproduced")
+                s["background"] = tuple(nums(3))
+            elif cmd == "quadLight":
+                v = nums(12)
+                s["quads"].append((Vector(v[0:3]), Vector(v[3:6]), Vector(v[6:9]), tuple(v[9:12])))
+            elif cmd in ("diffuse", "transmission"):
+                material[cmd] = tuple(min(max(x, 0.0), 1.0) for x in nums(3))
+            elif cmd in ("ior", "roughness"):
+                material[cmd] = float(args[0])
+            elif cmd in ("specular", "emission"):
+                if any(float(x) for x in args):
+                    fail(f"{where}: only '{cmd} 0 0 0' is reproduced")
+            elif cmd == "plane":
+                v = nums(6)
+                s["shapes"].append(("plane", Vector(v[0:3]), Vector(v[3:6]), dict(material)))
+            elif cmd == "sphere":
+                v = nums(4)
+                s["shapes"].append(("sphere", Vector(v[0:3]), v[3], dict(material)))
+            elif cmd == "medium":
+                s["media"][args[0]] = read_medium(where, args[1:], base)
+            elif cmd in ("interior", "fog"):
+                name = None if args[0] == "none" else args[0]
+                if name is not None and name not in s["media"]:
+                    fail(f"{where}: no medium '{name}'")
+                if cmd == "fog":
+                    s["fog"] = name
+                else:
+                    material["interior"] = name
+                    material["interface"] = args[1:] == ["interface"]
             else:
                 fail(f"{where}: '{cmd}' is not reproduced in Cycles by this script")
-    if s["camera"] is None or not s["meshes"] or s["environment"] is None:
-        fail(f"{path}: needs a camera, an environment and at least one mesh")
+    if s["camera"] is None:
+        fail(f"{path}: needs a camera")
+    if not s["meshes"] and not s["shapes"] and not s["quads"]:
+        fail(f"{path}: nothing to render")
     if s["maxdepth"] < 1:
         fail(f"{path}: maxdepth must be at least 1")
     return s
 
 
+def read_medium(where, args, base):
+    """Glint's `medium` parameters (docs/scene-format.md, "Media") as sigma_a, sigma_s, g and
+    the density grid: sigma_t = 1 / meanfreepath, sigma_s = albedo sigma_t with `albedo`."""
+    m = {"sigma_a": [0.0] * 3, "sigma_s": [0.0] * 3, "g": 0.0, "grid": None}
+    albedo, mfp, scale, i = None, None, 1.0, 0
+    while i < len(args):
+        key = args[i]
+        if key in ("absorption", "scattering", "albedo"):
+            v = [float(x) for x in args[i + 1:i + 4]]
+            i += 4
+            if key == "albedo":
+                albedo = v
+            else:
+                m["sigma_a" if key == "absorption" else "sigma_s"] = v
+        elif key in ("meanfreepath", "g", "scale"):
+            v = float(args[i + 1])
+            i += 2
+            if key == "meanfreepath":
+                mfp = v
+            elif key == "g":
+                m["g"] = v
+            else:
+                scale = v
+        elif key == "density":
+            m["grid"] = os.path.join(base, args[i + 1])
+            i += 2
+            if i < len(args) and args[i] not in ("absorption", "scattering", "albedo",
+                                                 "meanfreepath", "g", "scale", "density"):
+                fail(f"{where}: this script reads only the grid named 'density'")
+        else:
+            fail(f"{where}: medium parameter '{key}' is not reproduced")
+    if albedo is not None:
+        sigma_t = 1.0 / mfp
+        m["sigma_s"] = [a * sigma_t for a in albedo]
+        m["sigma_a"] = [(1 - a) * sigma_t for a in albedo]
+    m["sigma_a"] = [x * scale for x in m["sigma_a"]]
+    m["sigma_s"] = [x * scale for x in m["sigma_s"]]
+    return m
+
+
 def gltf_bounds(path, conv):
-    """Blender-space bounds of every node's mesh, from the accessors' min and max (translation-
-    only nodes, as make_assets.py writes them)."""
+    """Blender-space bounds of the default scene's meshes, from the accessors' min and max
+    under each node's world matrix (TRS or matrix, through the hierarchy), and whether they
+    are exact: the box of a transformed box is the transformed points' box when every node
+    only permutes and scales the axes (rotations by multiples of 90 degrees), else larger."""
     with open(path, encoding="utf-8") as f:
         j = json.load(f)
     lo, hi = Vector((math.inf,) * 3), Vector((-math.inf,) * 3)
-    for node in j["nodes"]:
-        if "mesh" not in node:
-            continue
-        tr = Vector(node.get("translation", (0, 0, 0)))
-        for prim in j["meshes"][node["mesh"]]["primitives"]:
-            acc = j["accessors"][prim["attributes"]["POSITION"]]
-            for corner in ((x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)):
-                p = Vector([(acc["min"], acc["max"])[c][i] for i, c in enumerate(corner)]) + tr
-                q = conv @ p
-                lo = Vector(map(min, lo, q))
-                hi = Vector(map(max, hi, q))
-    return lo, hi
+    exact = True
+
+    def local(node):
+        if "matrix" in node:
+            return Matrix([node["matrix"][c::4] for c in range(4)])  # column-major
+        x, y, z, w = node.get("rotation", (0, 0, 0, 1))
+        r = Quaternion((w, x, y, z)).to_matrix().to_4x4()
+        sx, sy, sz = node.get("scale", (1, 1, 1))
+        return (Matrix.Translation(Vector(node.get("translation", (0, 0, 0)))) @ r @
+                Matrix.Diagonal((sx, sy, sz, 1.0)))
+
+    def visit(index, parent):
+        nonlocal lo, hi, exact
+        node = j["nodes"][index]
+        world = parent @ local(node)
+        if "mesh" in node:
+            m3 = world.to_3x3()
+            if any(sum(1 for c in range(3) if abs(m3[r][c]) > 1e-6) != 1 for r in range(3)):
+                exact = False
+            for prim in j["meshes"][node["mesh"]]["primitives"]:
+                acc = j["accessors"][prim["attributes"]["POSITION"]]
+                for corner in ((x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)):
+                    p = Vector([(acc["min"], acc["max"])[c][i] for i, c in enumerate(corner)])
+                    q = conv @ (world @ p)
+                    lo = Vector(map(min, lo, q))
+                    hi = Vector(map(max, hi, q))
+        for child in node.get("children", ()):
+            visit(child, world)
+
+    roots = j["scenes"][j.get("scene", 0)]["nodes"] if "scenes" in j else range(len(j["nodes"]))
+    for index in roots:
+        visit(index, Matrix.Identity(4))
+    return lo, hi, exact
 
 
 def import_gltf(path, conv):
@@ -148,8 +263,10 @@ def import_gltf(path, conv):
             q = o.matrix_world @ v.co
             lo = Vector(map(min, lo, q))
             hi = Vector(map(max, hi, q))
-    elo, ehi = gltf_bounds(path, conv)
-    if (lo - elo).length > 1e-4 or (hi - ehi).length > 1e-4:
+    elo, ehi, exact = gltf_bounds(path, conv)
+    tol = 1e-4 * max(1.0, (ehi - elo).length)
+    if (exact and ((lo - elo).length > tol or (hi - ehi).length > tol)) or \
+            any(lo[i] < elo[i] - tol or hi[i] > ehi[i] + tol for i in range(3)):
         fail(f"{path}: imported bounds {tuple(lo)}..{tuple(hi)} are not the file's "
              f"{tuple(elo)}..{tuple(ehi)} under the axis conversion")
     return objs
@@ -173,6 +290,9 @@ def describe_material(m):
                 elif node.type == "NORMAL_MAP":
                     label += f"({node.space}, uv '{node.uv_map}', strength " \
                              f"{node.inputs['Strength'].default_value:g})"
+                elif node.type == "MATH":
+                    label += f"({node.operation}, " + ", ".join(
+                        f"{i.default_value:g}" for i in node.inputs[:2] if not i.is_linked) + ")"
                 chain.append(label)
                 linked = [i for i in node.inputs if i.is_linked]
                 if not linked:
@@ -180,7 +300,8 @@ def describe_material(m):
                 node = linked[0].links[0].from_node
             lines.append(f"    {inp.name} <- {' <- '.join(chain)}")
         elif inp.name in ("Base Color", "Metallic", "Roughness", "Specular", "Emission",
-                          "Emission Strength", "IOR", "Transmission", "Alpha"):
+                          "Emission Strength", "IOR", "Transmission", "Alpha", "Specular Tint",
+                          "Sheen", "Sheen Tint", "Clearcoat", "Clearcoat Roughness"):
             v = inp.default_value
             v = tuple(round(x, 4) for x in v) if hasattr(v, "__len__") else round(v, 4)
             lines.append(f"    {inp.name} = {v}")
@@ -205,6 +326,189 @@ def lambert(tree, n):
     for link in list(n.outputs["BSDF"].links):
         tree.links.new(d.outputs["BSDF"], link.to_socket)
     tree.nodes.remove(n)
+
+
+def shader_material(name, shape_material, media):
+    """A Glint course material as Cycles nodes (docs/scene-format.md, "Path tracing": the
+    path tracer's BSDF of it): `transmission` T > 0 a Glass BSDF of colour T, index `ior`,
+    GGX of roughness sqrt(alpha) (Cycles squares its roughness; Glint's `roughness` is alpha)
+    or Sharp at 0; else a Lambertian Diffuse BSDF (roughness 0) of colour `diffuse`. An
+    interior medium goes to the Volume output; with `interface` the surface is left out
+    (Cycles: no surface shader, the boundary is only the volume's)."""
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    interior = shape_material["interior"]
+    if not (interior and shape_material["interface"]):
+        if max(shape_material["transmission"]) > 0:
+            bsdf = nt.nodes.new("ShaderNodeBsdfGlass")
+            bsdf.inputs["Color"].default_value = (*shape_material["transmission"], 1.0)
+            bsdf.inputs["IOR"].default_value = shape_material["ior"]
+            alpha = shape_material["roughness"]
+            bsdf.distribution = "GGX" if alpha >= 1e-4 else "SHARP"
+            bsdf.inputs["Roughness"].default_value = math.sqrt(alpha) if alpha >= 1e-4 else 0.0
+        else:
+            bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
+            bsdf.inputs["Color"].default_value = (*shape_material["diffuse"], 1.0)
+            bsdf.inputs["Roughness"].default_value = 0.0  # Lambert
+        nt.links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
+    if interior:
+        volume_nodes(nt, media[interior], out.inputs["Volume"])
+        m.cycles.homogeneous_volume = media[interior]["grid"] is None
+    return m
+
+
+def volume_nodes(nt, medium, socket, density=None):
+    """sigma_s and sigma_a of `medium` (times the `density` output socket, if given) into
+    `socket`: a Volume Scatter (Henyey-Greenstein of anisotropy g) plus a Volume Absorption.
+    Cycles' Volume Scatter has sigma_s = Color x Density, its Volume Absorption
+    sigma_a = (1 - Color) x Density (intern/cycles/kernel/svm/closure.h, svm_node_closure_volume):
+    so Density = the largest channel, and the colours are sigma_s / Density and
+    1 - sigma_a / Density, all within [0, 1]."""
+    add = nt.nodes.new("ShaderNodeAddShader")
+    for i, (kind, sigma) in enumerate((("ShaderNodeVolumeScatter", medium["sigma_s"]),
+                                       ("ShaderNodeVolumeAbsorption", medium["sigma_a"]))):
+        node = nt.nodes.new(kind)
+        peak = max(sigma)
+        if peak > 0:
+            colour = [x / peak for x in sigma]
+            if kind == "ShaderNodeVolumeAbsorption":
+                colour = [1 - c for c in colour]
+            node.inputs["Color"].default_value = (*colour, 1.0)
+        node.inputs["Density"].default_value = peak
+        if kind == "ShaderNodeVolumeScatter":
+            node.inputs["Anisotropy"].default_value = medium["g"]
+        if density is not None and peak > 0:
+            mul = nt.nodes.new("ShaderNodeMath")
+            mul.operation = "MULTIPLY"
+            nt.links.new(density, mul.inputs[0])
+            mul.inputs[1].default_value = peak
+            nt.links.new(mul.outputs["Value"], node.inputs["Density"])
+        nt.links.new(node.outputs["Volume"], add.inputs[i])
+    nt.links.new(add.outputs["Shader"], socket)
+
+
+def mesh_object(name, verts, faces, material, smooth=False):
+    me = bpy.data.meshes.new(name)
+    me.from_pydata([tuple(v) for v in verts], [], faces)
+    me.update()
+    if smooth:
+        me.polygons.foreach_set("use_smooth", [True] * len(me.polygons))
+    me.materials.append(material)
+    obj = bpy.data.objects.new(name, me)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def add_shapes(s, conv):
+    """Glint's shapes, quad lights and media, in Blender's axes (conv @ Glint's point)."""
+    objs, materials = [], {}
+    for i, (c, e1, e2, radiance) in enumerate(s["quads"]):
+        # The quad light: radiance L from the front face (cross(e1, e2)), black and
+        # non-reflecting behind (Glint's quadLight, and cornell.py's --light front).
+        m = bpy.data.materials.new(f"quadLight{i}")
+        m.use_nodes = True
+        nt = m.node_tree
+        nt.nodes.clear()
+        out = nt.nodes.new("ShaderNodeOutputMaterial")
+        emission = nt.nodes.new("ShaderNodeEmission")
+        emission.inputs["Color"].default_value = (*radiance, 1.0)
+        emission.inputs["Strength"].default_value = 1.0
+        geometry = nt.nodes.new("ShaderNodeNewGeometry")
+        mix = nt.nodes.new("ShaderNodeMixShader")
+        nt.links.new(geometry.outputs["Backfacing"], mix.inputs["Fac"])
+        nt.links.new(emission.outputs["Emission"], mix.inputs[1])
+        nt.links.new(mix.outputs["Shader"], out.inputs["Surface"])
+        verts = [conv @ v for v in (c, c + e1, c + e1 + e2, c + e2)]
+        objs.append(mesh_object(f"quadLight{i}", verts, [(0, 1, 2, 3)], m))
+    for i, shape in enumerate(s["shapes"]):
+        kind, material = shape[0], shape[3]
+        key = repr(sorted(material.items()))
+        if key not in materials:
+            materials[key] = shader_material(f"glint{len(materials)}", material, s["media"])
+        m = materials[key]
+        if kind == "plane":
+            # Glint's plane is infinite: a square 2 km wide about the point, facing the normal.
+            p, n = shape[1], shape[2].normalized()
+            u = n.orthogonal().normalized()
+            v = n.cross(u)
+            h = 1000.0
+            verts = [conv @ (p + a * u * h + b * v * h) for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+            objs.append(mesh_object(f"plane{i}", verts, [(0, 1, 2, 3)], m))
+        else:
+            # A sphere: an icosphere of 6 subdivisions (20480 faces), smooth-shaded, its
+            # vertices on the sphere (the faces' mid-points at most 0.01% of r inside).
+            import bmesh
+            bm = bmesh.new()
+            bmesh.ops.create_icosphere(bm, subdivisions=6, radius=shape[2])
+            me = bpy.data.meshes.new(f"sphere{i}")
+            bm.to_mesh(me)
+            bm.free()
+            me.polygons.foreach_set("use_smooth", [True] * len(me.polygons))
+            me.materials.append(m)
+            obj = bpy.data.objects.new(f"sphere{i}", me)
+            obj.location = conv @ shape[1]
+            bpy.context.scene.collection.objects.link(obj)
+            objs.append(obj)
+    return objs
+
+
+def add_fog(scene, s, conv):
+    """`fog NAME`: homogeneous, the world's Volume (the camera and everything outside the
+    objects' volumes are in it); with a density grid, a Volume object reading the same .vdb,
+    placed by the same axis conversion (OpenVDB's index-to-world map is kept: Glint and
+    Blender both put voxel (i, j, k)'s value at the map's image of (i, j, k))."""
+    medium = s["media"][s["fog"]]
+    if medium["grid"] is None:
+        nt = scene.world.node_tree
+        out = next(n for n in nt.nodes if n.type == "OUTPUT_WORLD")
+        volume_nodes(nt, medium, out.inputs["Volume"])
+        scene.world.cycles.homogeneous_volume = True
+        return None
+    vol = bpy.data.volumes.new("fog")
+    vol.filepath = medium["grid"]
+    vol.render.precision = "FULL"   # not half floats
+    vol.render.clipping = 0.0       # no voxel is taken for empty
+    vol.render.space = "OBJECT"
+    vol.render.step_size = 0.0      # automatic: the voxel size, times the scene's step rate
+    m = bpy.data.materials.new("fog")
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    attr = nt.nodes.new("ShaderNodeAttribute")
+    attr.attribute_type = "GEOMETRY"
+    attr.attribute_name = "density"
+    volume_nodes(nt, medium, out.inputs["Volume"], density=attr.outputs["Fac"])
+    m.cycles.volume_interpolation = "LINEAR"
+    vol.materials.append(m)
+    obj = bpy.data.objects.new("fog", vol)
+    obj.matrix_world = conv.to_4x4()
+    scene.collection.objects.link(obj)
+    vol.grids.load()
+    names = [g.name for g in vol.grids]
+    if "density" not in names:
+        fail(f"{medium['grid']}: no grid named 'density' ({names})")
+    return obj
+
+
+def set_background(scene, colour):
+    """Glint's `background r g b` in the path tracer: a constant environment light, seen by
+    camera rays too; black without one."""
+    world = scene.world or bpy.data.worlds.new("World")
+    scene.world = world
+    world.use_nodes = True
+    nt = world.node_tree
+    nt.nodes.clear()
+    bg = nt.nodes.new("ShaderNodeBackground")
+    bg.inputs["Color"].default_value = (*(colour or (0.0, 0.0, 0.0)), 1.0)
+    bg.inputs["Strength"].default_value = 1.0
+    out = nt.nodes.new("ShaderNodeOutputWorld")
+    nt.links.new(bg.outputs["Background"], out.inputs["Surface"])
+    world.cycles.sampling_method = "AUTOMATIC"
+
 
 
 def set_world(scene, hdr, scale, rotation):
@@ -310,17 +614,47 @@ def main():
         objs += import_gltf(path, conv)
     materials = sorted({slot.material for o in objs for slot in o.material_slots
                         if slot.material}, key=lambda m: m.name)
+    sheen = {}
+    if a.sheen_v1:
+        for path in s["meshes"]:
+            with open(path, encoding="utf-8") as f:
+                for gm in json.load(f).get("materials", ()):
+                    ext = gm.get("extensions", {}).get("KHR_materials_sheen")
+                    if ext is not None:
+                        sheen[gm.get("name", "")] = max(ext.get("sheenColorFactor", (0, 0, 0)))
     for m in materials:
         for n in list(m.node_tree.nodes):
+            if n.type == "BSDF_PRINCIPLED" and m.name.split(".")[0] in sheen:
+                n.inputs["Sheen"].default_value = sheen[m.name.split(".")[0]]
+                n.inputs["Sheen Tint"].default_value = 1.0
+                print(f"gltf_cycles.py: --sheen-v1: {m.name}: Sheen "
+                      f"{sheen[m.name.split('.')[0]]:g}, Sheen Tint 1", flush=True)
             if n.type == "BSDF_PRINCIPLED" and not a.multiscatter:
                 n.distribution = "GGX"
             if a.lambert and n.type == "BSDF_PRINCIPLED" and plain_dielectric(n):
                 lambert(m.node_tree, n)
-    set_world(scene, *s["environment"])
+    objs += add_shapes(s, conv)
+    if s["environment"]:
+        set_world(scene, *s["environment"])
+    else:
+        set_background(scene, s["background"])
+    fog = add_fog(scene, s, conv) if s["fog"] else None
     add_camera(scene, conv, s["camera"], *s["size"])
     bounces = s["maxdepth"] - 1
     configure_cycles(scene, a, bounces)
+    scene.cycles.volume_step_rate = a.volume_step_rate
+    scene.cycles.volume_max_steps = 4096
     triangles = sum(len(o.data.polygons) for o in objs)
+    for name, m in s["media"].items():
+        print(f"gltf_cycles.py: medium {name}: sigma_a {tuple(round(x, 5) for x in m['sigma_a'])}"
+              f", sigma_s {tuple(round(x, 5) for x in m['sigma_s'])}, g {m['g']}"
+              f"{', density ' + m['grid'] if m['grid'] else ''}"
+              f"{' (the fog)' if name == s['fog'] else ''}", flush=True)
+    if fog is not None:
+        grid = next(g for g in fog.data.grids if g.name == "density")
+        print(f"gltf_cycles.py: fog grid 'density' {grid.data_type}, "
+              f"matrix_object {[list(map(lambda x: round(x, 6), r)) for r in grid.matrix_object]}",
+              flush=True)
     print(f"gltf_cycles.py: Blender {bpy.app.version_string}, Cycles CPU, {len(objs)} objects, "
           f"{triangles} faces, materials:", flush=True)
     for m in materials:

@@ -19,7 +19,14 @@
 # Options (defaults in brackets):
 #   --spp N [1024]  --cycles-spp N [SPP]  --threads N [2]
 #   --assets "LIST" [metal dielectric normalmap normaltilt emissive]
-#   --docs DIR     also copy the side-by-side PNGs there as gltf-cycles-ASSET.png
+#   --docs DIR     also copy the side-by-side PNGs there as PREFIXASSET.png
+#   --docs-prefix P [gltf-cycles-]
+#   --tests DIR    where ASSET.test are [this folder]; default OUT_DIR: cycles-NAME-out beside
+#                  the repository, NAME the folder's name
+#   --khronos DIR  Khronos' glTF models, linked as OUT_DIR/assets/khronos for the scenes that
+#                  name khronos/... [../shared/real-world/gltf-ext beside the repository]
+# A scene that names smoke.vdb gets it from BUILD_DIR/tools/glint_make_smoke_vdb; a line
+# `# cycles-args: ARGS` in a scene passes ARGS to gltf_cycles.py.
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -30,6 +37,7 @@ usage() {
     exit 2
 }
 spp=1024 cycles_spp= threads=2 assets="metal dielectric normalmap normaltilt emissive" docs=
+docs_prefix=gltf-cycles- tests=$here khronos=$repo/../shared/real-world/gltf-ext
 positional=()
 while [ $# -gt 0 ]; do
     case $1 in
@@ -38,6 +46,9 @@ while [ $# -gt 0 ]; do
         --threads) threads=${2:?}; shift 2 ;;
         --assets) assets=${2:?}; shift 2 ;;
         --docs) docs=${2:?}; shift 2 ;;
+        --docs-prefix) docs_prefix=${2:?}; shift 2 ;;
+        --tests) tests=$(cd "${2:?}" && pwd); shift 2 ;;
+        --khronos) khronos=${2:?}; shift 2 ;;
         -h | --help) usage ;;
         -*) echo "run.sh: unknown option $1" >&2; usage ;;
         *) positional+=("$1"); shift ;;
@@ -49,10 +60,10 @@ for n in "$spp" "$cycles_spp" "$threads"; do
     [[ $n =~ ^[1-9][0-9]*$ ]] || { echo "run.sh: '$n' is not a positive integer" >&2; exit 2; }
 done
 for a in $assets; do
-    [ -f "$here/$a.test" ] || { echo "run.sh: no asset '$a' ($here/$a.test)" >&2; exit 2; }
+    [ -f "$tests/$a.test" ] || { echo "run.sh: no asset '$a' ($tests/$a.test)" >&2; exit 2; }
 done
 build=$(cd "${positional[0]}" && pwd) || usage
-out=${positional[1]:-$repo/../cycles-gltf-out}
+out=${positional[1]:-$repo/../cycles-$(basename "$tests")-out}
 mkdir -p "$out/assets" "$out/logs"
 out=$(cd "$out" && pwd)
 glint=$build/glint
@@ -65,7 +76,7 @@ for x in "$glint" "$imgdiff"; do
     [ -x "$x" ] || { echo "run.sh: $x not found: build $build first" >&2; exit 1; }
 done
 
-echo "glTF materials: Glint's path tracer against Blender Cycles, $(date -u '+%Y-%m-%d %H:%M UTC')"
+echo "$(basename "$tests")/: Glint's path tracer against Blender Cycles, $(date -u '+%Y-%m-%d %H:%M UTC')"
 echo "Machine: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) hardware threads;" \
     "1-minute load average at start: $(cut -d' ' -f1 /proc/loadavg)"
 echo "Cycles: $(blender --version 2>/dev/null | head -1), CPU, $threads threads, $cycles_spp spp;" \
@@ -73,7 +84,15 @@ echo "Cycles: $(blender --version 2>/dev/null | head -1), CPU, $threads threads,
 echo "Output: $out"
 
 python3 "$here/make_assets.py" "$out/assets"
-for a in $assets; do cp "$here/$a.test" "$out/assets/"; done
+scenes=()
+for a in $assets; do cp "$tests/$a.test" "$out/assets/"; scenes+=("$out/assets/$a.test"); done
+if grep -qs 'khronos/' "${scenes[@]}"; then
+    [ -d "$khronos" ] || { echo "run.sh: no Khronos models at $khronos (--khronos)" >&2; exit 1; }
+    ln -sfn "$(cd "$khronos" && pwd)" "$out/assets/khronos"
+fi
+if grep -qs 'smoke\.vdb' "${scenes[@]}" && [ ! -f "$out/assets/smoke.vdb" ]; then
+    "$build/tools/glint_make_smoke_vdb" "$out/assets/smoke.vdb" >/dev/null
+fi
 
 # glint_render ASSET SEED OUT.exr -> "render_s cpu_s"
 glint_render() {
@@ -92,9 +111,11 @@ glint_render() {
 # cycles_render ASSET OUT.exr -> "render_s cpu_s"
 cycles_render() {
     local log=$out/logs/cycles-$1.log
+    local extra
+    read -ra extra < <(sed -n 's/^# cycles-args: //p' "$out/assets/$1.test")
     if ! blender -b --factory-startup --python "$here/gltf_cycles.py" -- \
         --scene "$out/assets/$1.test" --out "$2" --spp "$cycles_spp" --threads "$threads" \
-        --seed 0 >"$log" 2>&1; then
+        --seed 0 "${extra[@]}" >"$log" 2>&1; then
         echo "run.sh: Blender failed; $log:" >&2
         grep -v '^Fra:' "$log" >&2
         exit 1
@@ -147,7 +168,7 @@ for a in $assets; do
             "$out/glint-normaltilt_nosun-${spp}spp-seed0.exr" 32 2>&1 | grep '^BLOCK' | sed 's/^/    /'
     fi
     if [ -n "$docs" ]; then
-        cp "$out/side-$a.png" "$docs/gltf-cycles-$a.png"
+        cp "$out/side-$a.png" "$docs/$docs_prefix$a.png"
     fi
     printf '%-11s %7.4f %7.4f %9.4f %8.4f %8.4f %9.4f %8s %8s %8s %8s\n' "$a" \
         "$(echo "$cmp" | field ssim mean)" "$(echo "$noise" | field ssim mean)" \
