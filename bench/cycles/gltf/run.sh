@@ -112,7 +112,7 @@ glint_render() {
 cycles_render() {
     local log=$out/logs/cycles-$1.log
     local extra
-    read -ra extra < <(sed -n 's/^# cycles-args: //p' "$out/assets/$1.test")
+    read -ra extra < <(sed -n 's/^# cycles-args: //p' "$out/assets/$1.test") || true
     if ! blender -b --factory-startup --python "$here/gltf_cycles.py" -- \
         --scene "$out/assets/$1.test" --out "$2" --spp "$cycles_spp" --threads "$threads" \
         --seed 0 "${extra[@]}" >"$log" 2>&1; then
