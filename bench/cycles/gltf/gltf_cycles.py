@@ -26,6 +26,15 @@ nothing Glint renders goes unnoticed here) and builds the same scene:
     no clamping, no glossy filter (blur_glossy 0), caustics on, a box pixel filter 1 pixel
     wide; view transform Standard; output a 32-bit float RGB OpenEXR of linear radiance.
 
+Issue 23 (bench/cycles/layers-media/README.md) adds the subset of Glint's own commands that
+its media scenes use: `background r g b` (the world's colour), `quadLight` (a quad emitting from
+its front face only), `diffuse` (Lambert), `transmission`/`ior`/`roughness` (a Glass BSDF, GGX
+of roughness sqrt(alpha)), `sphere` (a smooth icosphere), `plane` (a square 2 km wide),
+`medium`, `interior` and `fog` (Volume Scatter + Volume Absorption on a material's or the
+world's Volume output; a density grid as a Volume object reading the same .vdb). Option
+--sheen-v1 gives materials with KHR_materials_sheen Principled v1's sheen, which the importer
+leaves out. A line `# cycles-args: ARGS` in a scene is read by run.sh, not here.
+
 It prints one line that scripts parse, with the wall-clock and CPU time of
 bpy.ops.render.render alone:
 
@@ -45,6 +54,9 @@ import time
 import bpy
 from bpy_extras.io_utils import axis_conversion
 from mathutils import Matrix, Quaternion, Vector
+
+
+VDB_SHIFT = 1.0  # --vdb-shift
 
 
 def fail(message):
@@ -71,6 +83,9 @@ def parse_args():
                         "material that has it the Principled BSDF's own (v1) sheen instead, "
                         "Sheen = the largest channel of sheenColorFactor, Sheen Tint 1 (towards "
                         "the base colour's hue: v1's sheen has no colour of its own)")
+    p.add_argument("--vdb-shift", type=float, default=1.0,
+                   help="move a density grid by this many half voxels down each index axis, to "
+                        "undo Blender 3.4's half-voxel offset (default 1; 0: Blender's placement)")
     p.add_argument("--volume-step-rate", type=float, default=0.25,
                    help="Cycles' volume step rate for density grids (its ray marching steps, "
                         "in voxels; default 0.25, Blender's 1)")
@@ -458,8 +473,7 @@ def add_shapes(s, conv):
 def add_fog(scene, s, conv):
     """`fog NAME`: homogeneous, the world's Volume (the camera and everything outside the
     objects' volumes are in it); with a density grid, a Volume object reading the same .vdb,
-    placed by the same axis conversion (OpenVDB's index-to-world map is kept: Glint and
-    Blender both put voxel (i, j, k)'s value at the map's image of (i, j, k))."""
+    placed by the same axis conversion and moved by half a voxel (below)."""
     medium = s["media"][s["fog"]]
     if medium["grid"] is None:
         nt = scene.world.node_tree
@@ -485,12 +499,22 @@ def add_fog(scene, s, conv):
     m.cycles.volume_interpolation = "LINEAR"
     vol.materials.append(m)
     obj = bpy.data.objects.new("fog", vol)
-    obj.matrix_world = conv.to_4x4()
     scene.collection.objects.link(obj)
     vol.grids.load()
     names = [g.name for g in vol.grids]
     if "density" not in names:
         fail(f"{medium['grid']}: no grid named 'density' ({names})")
+    # OpenVDB puts voxel (i, j, k)'s value at the grid's image of the integer point (i, j, k),
+    # and so does Glint (io/vdb/vdb_reader.cpp). Blender 3.4's Cycles, built without NanoVDB
+    # as Debian's is, copies the grid into a dense 3D texture whose texel centres
+    # ((n + 0.5) / dim) it maps to index min + n + 0.5 (intern/cycles/scene/image_vdb.cpp,
+    # texture_to_index = translate(min) x scale(dim)): every value half a voxel up each index
+    # axis (later Cycles shift it back: "Shift by half a voxel to sample at voxel centers").
+    # Measured here: the smoke plume's centroid 0.7 pixel right and 0.5 up in Cycles, half a
+    # voxel at that distance. --vdb-shift 0 keeps Blender's placement.
+    grid = next(g for g in vol.grids if g.name == "density")
+    half = grid.matrix_object.to_3x3() @ Vector((0.5, 0.5, 0.5))
+    obj.matrix_world = conv.to_4x4() @ Matrix.Translation(-VDB_SHIFT * half)
     return obj
 
 
@@ -605,6 +629,8 @@ def main():
     if not out.lower().endswith(".exr"):
         fail("--out must name an .exr file")
     s = read_scene(a.scene)
+    global VDB_SHIFT
+    VDB_SHIFT = a.vdb_shift
     conv = axis_conversion(from_forward="-Z", from_up="Y", to_forward="Y", to_up="Z")
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj, do_unlink=True)

@@ -142,7 +142,8 @@ for a in $assets; do
     else
         read -r tc cc < <(cycles_render "$a" "$c")
         echo "  Cycles: $tc s render ($cc CPU s)"
-        grep -E '^  ' "$out/logs/cycles-$a.log" | sed 's/^/  importer: /' | head -20
+        { grep -E '^  |^gltf_cycles.py: (medium|fog|--sheen)' "$out/logs/cycles-$a.log" |
+            sed 's/^/  cycles: /' | head -40; } || true
     fi
     "$imgdiff" --preview "$out/glint-$a.ppm" "$g"
     "$imgdiff" --preview "$out/cycles-$a.ppm" "$c"
