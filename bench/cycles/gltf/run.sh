@@ -19,7 +19,8 @@
 # Options (defaults in brackets):
 #   --spp N [1024]  --cycles-spp N [SPP]  --threads N [2]
 #   --assets "LIST" [metal dielectric normalmap normaltilt emissive]
-#   --docs DIR     also copy the side-by-side PNGs there as PREFIXASSET.png
+#   --docs DIR     also copy the side-by-side PNGs there as PREFIXASSET.png (at half size
+#                  where the PNG is over 300 KB)
 #   --docs-prefix P [gltf-cycles-]
 #   --tests DIR    where ASSET.test are [this folder]; default OUT_DIR: cycles-NAME-out beside
 #                  the repository, NAME the folder's name
@@ -169,7 +170,13 @@ for a in $assets; do
             "$out/glint-normaltilt_nosun-${spp}spp-seed0.exr" 32 2>&1 | grep '^BLOCK' | sed 's/^/    /'
     fi
     if [ -n "$docs" ]; then
-        cp "$out/side-$a.png" "$docs/$docs_prefix$a.png"
+        if [ "$(stat -c %s "$out/side-$a.png")" -gt 307200 ]; then
+            # A noisy render compresses badly: the docs get it at half size beyond 300 KB.
+            python3 "$here/side_by_side.py" --half "$docs/$docs_prefix$a.png" "$out/glint-$a.ppm" \
+                "$out/cycles-$a.ppm" "$out/diff-$a.ppm"
+        else
+            cp "$out/side-$a.png" "$docs/$docs_prefix$a.png"
+        fi
     fi
     printf '%-11s %7.4f %7.4f %9.4f %8.4f %8.4f %9.4f %8s %8s %8s %8s\n' "$a" \
         "$(echo "$cmp" | field ssim mean)" "$(echo "$noise" | field ssim mean)" \

@@ -3,7 +3,10 @@
 `imgdiff --ssim --diff X.ppm` write them) side by side, left to right, into one PNG, with a
 gap of GAP white pixels between them. Python's standard library only.
 
-    side_by_side.py OUT.png A.ppm B.ppm [C.ppm ...] [--gap 4]
+    side_by_side.py OUT.png A.ppm B.ppm [C.ppm ...] [--gap 4] [--half]
+
+--half averages each image's 2 x 2 blocks first (for the docs, where a noisy render's PNG
+would be too large).
 """
 
 import argparse
@@ -49,13 +52,30 @@ def write_png(path, w, h, rows):
                 + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
+def halved(w, h, data):
+    """The image at half its width and height, each pixel the mean of a 2 x 2 block."""
+    hw, hh = w // 2, h // 2
+    out = bytearray(3 * hw * hh)
+    for y in range(hh):
+        r0, r1 = 3 * w * 2 * y, 3 * w * (2 * y + 1)
+        for x in range(hw):
+            for c in range(3):
+                i = 6 * x + c
+                out[3 * (y * hw + x) + c] = (data[r0 + i] + data[r0 + i + 3] + data[r1 + i] +
+                                             data[r1 + i + 3] + 2) // 4
+    return hw, hh, bytes(out)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("out")
     p.add_argument("images", nargs="+")
     p.add_argument("--gap", type=int, default=4)
+    p.add_argument("--half", action="store_true", help="average 2 x 2 blocks first")
     a = p.parse_args()
     imgs = [read_ppm(x) for x in a.images]
+    if a.half:
+        imgs = [halved(*i) for i in imgs]
     h = imgs[0][1]
     if any(i[1] != h for i in imgs):
         sys.exit("side_by_side.py: error: the images differ in height")
