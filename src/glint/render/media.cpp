@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "glint/math/sampling.h"
@@ -38,6 +39,51 @@ bool extent(const Medium& m, const Ray& ray, double tEnd, double& t0, double& t1
 /// The distance to the next tentative collision at rate `rate` per unit of ray parameter.
 double nextCollision(double rate, Rng& rng) { return -std::log(1 - rng.uniform()) / rate; }
 
+/// Calls visit(ta, tb, bound) for the consecutive pieces [ta, tb) of [t0, t1) along `ray`, each
+/// with a bound on the medium's density over it, until visit returns false: one piece for a
+/// homogeneous medium or a grid without majorants, else one per block of the majorant grid the
+/// ray crosses (a 3-D DDA, Amanatides and Woo 1987, in the grid's index space, where the ray
+/// keeps its parameter).
+template <typename Visit>
+void forEachMajorant(const Medium& m, const Ray& ray, double t0, double t1, Visit visit) {
+    if (m.homogeneous() || !m.majorants) {
+        visit(t0, t1, m.densityBound);
+        return;
+    }
+    const MajorantGrid& g = *m.majorants;
+    constexpr double B = MajorantGrid::kBlock;
+    const Vec3 o = m.worldFromIndex.inversePoint(ray.origin);
+    const Vec3 d = m.worldFromIndex.inverseVector(ray.dir);
+    const Vec3 start = o + d * t0;
+    const int n[3] = {g.nx, g.ny, g.nz};
+    int cell[3], step[3];
+    double next[3], delta[3];
+    for (int a = 0; a < 3; ++a) {
+        cell[a] = std::clamp(static_cast<int>(std::floor(start[a] / B)), 0, n[a] - 1);
+        if (d[a] > 0) {
+            step[a] = 1;
+            next[a] = ((cell[a] + 1) * B - o[a]) / d[a];
+            delta[a] = B / d[a];
+        } else if (d[a] < 0) {
+            step[a] = -1;
+            next[a] = (cell[a] * B - o[a]) / d[a];
+            delta[a] = -B / d[a];
+        } else {
+            step[a] = 0;
+            next[a] = delta[a] = std::numeric_limits<double>::infinity();
+        }
+    }
+    for (double t = t0; t < t1;) {
+        const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
+        const double tb = std::min(std::max(next[a], t), t1);
+        if (!visit(t, tb, static_cast<double>(g.at(cell[0], cell[1], cell[2])))) return;
+        t = tb;
+        cell[a] += step[a];
+        if (cell[a] < 0 || cell[a] >= n[a]) return;
+        next[a] += delta[a];
+    }
+}
+
 }  // namespace
 
 double HenyeyGreenstein::eval(const Vec3& wo, const Vec3& wi) const {
@@ -61,29 +107,36 @@ Vec3 HenyeyGreenstein::sample(const Vec3& wo, Point2 u) const {
 }
 
 MediumEvent sampleMedium(const Medium& m, const Ray& ray, double tEnd, Rng& rng, Vec3& beta) {
-    const Vec3 sigmaT = m.sigmaT();
-    const double majorant = maxComponent(sigmaT) * m.densityBound;  // per unit length
+    const double sigmaMax = maxComponent(m.sigmaT());  // per unit length, at density 1
     double t0, t1;
-    if (!(majorant > 0) || !extent(m, ray, tEnd, t0, t1)) return {};
-    const double rate = majorant * length(ray.dir);  // per unit of ray parameter
-    for (double t = t0;;) {
-        t += nextCollision(rate, rng);
-        if (!(t < t1)) return {};
-        const double d = m.homogeneous() ? 1.0 : m.density(ray.origin + ray.dir * t);
-        const Vec3 sa = m.sigmaA * d, ss = m.sigmaS * d;
-        const Vec3 sn = max(Vec3(majorant) - sa - ss, Vec3(0));
-        const double ps = mean(ss) / majorant, pn = mean(sn) / majorant;
-        const double u = rng.uniform();
-        if (u < ps) {
-            beta = beta * ss / (majorant * ps);
-            return {MediumEvent::Kind::Scattered, t};
+    if (!(sigmaMax * m.densityBound > 0) || !extent(m, ray, tEnd, t0, t1)) return {};
+    const double len = length(ray.dir);
+    MediumEvent event;
+    forEachMajorant(m, ray, t0, t1, [&](double ta, double tb, double bound) {
+        const double majorant = sigmaMax * bound;  // per unit length, over [ta, tb)
+        if (!(majorant > 0)) return true;          // nothing here to collide with
+        for (double t = ta;;) {
+            t += nextCollision(majorant * len, rng);
+            if (!(t < tb)) return true;  // on into the next piece: collisions are memoryless
+            const double d = m.homogeneous() ? 1.0 : m.density(ray.origin + ray.dir * t);
+            const Vec3 sa = m.sigmaA * d, ss = m.sigmaS * d;
+            const Vec3 sn = max(Vec3(majorant) - sa - ss, Vec3(0));
+            const double ps = mean(ss) / majorant, pn = mean(sn) / majorant;
+            const double u = rng.uniform();
+            if (u < ps) {
+                beta = beta * ss / (majorant * ps);
+                event = {MediumEvent::Kind::Scattered, t};
+                return false;
+            }
+            if (u < ps + pn) {
+                beta = beta * sn / (majorant * pn);
+                continue;
+            }
+            event = {MediumEvent::Kind::Absorbed, t};
+            return false;
         }
-        if (u < ps + pn) {
-            beta = beta * sn / (majorant * pn);
-            continue;
-        }
-        return {MediumEvent::Kind::Absorbed, t};
-    }
+    });
+    return event;
 }
 
 Vec3 mediumTransmittance(const Medium& m, const Ray& ray, double tEnd, Rng& rng) {
@@ -97,21 +150,27 @@ Vec3 mediumTransmittance(const Medium& m, const Ray& ray, double tEnd, Rng& rng)
         const double d = (t1 - t0) * len;
         return {std::exp(-sigmaT.x * d), std::exp(-sigmaT.y * d), std::exp(-sigmaT.z * d)};
     }
-    const double majorant = maxComponent(sigmaT) * m.densityBound;
-    if (!(majorant > 0)) return Vec3(1);
+    const double sigmaMax = maxComponent(sigmaT);
     Vec3 tr(1);
-    for (double t = t0;;) {
-        t += nextCollision(majorant * len, rng);
-        if (!(t < t1)) return tr;
-        const double d = m.density(ray.origin + ray.dir * t);
-        tr = tr * max(Vec3(1) - sigmaT * (d / majorant), Vec3(0));
-        // Russian roulette once little is left: unbiased, and bounded work.
-        const double most = maxComponent(tr);
-        if (most < 0.05) {
-            if (rng.uniform() >= 0.5) return Vec3(0);
-            tr = tr * 2.0;
+    forEachMajorant(m, ray, t0, t1, [&](double ta, double tb, double bound) {
+        const double majorant = sigmaMax * bound;
+        if (!(majorant > 0)) return true;
+        for (double t = ta;;) {
+            t += nextCollision(majorant * len, rng);
+            if (!(t < tb)) return true;
+            const double d = m.density(ray.origin + ray.dir * t);
+            tr = tr * max(Vec3(1) - sigmaT * (d / majorant), Vec3(0));
+            // Russian roulette once little is left: unbiased, and bounded work.
+            if (maxComponent(tr) < 0.05) {
+                if (rng.uniform() >= 0.5) {
+                    tr = Vec3(0);
+                    return false;
+                }
+                tr = tr * 2.0;
+            }
         }
-    }
+    });
+    return tr;
 }
 
 }  // namespace glint

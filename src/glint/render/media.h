@@ -4,10 +4,11 @@
 /// function that scatters there.
 ///
 /// Sampling is delta tracking against a majorant (Woodcock; pbrt-v4's "null scattering"):
-/// tentative collisions are drawn at the rate sigma_maj, the largest extinction along the ray
-/// (the homogeneous sigma_t's largest channel, or it times the grid's largest density), and each
-/// is a real scattering, an absorption or a null collision. Colours differ per channel, so the
-/// event is chosen by the channels' mean probabilities and the throughput takes the ratio of
+/// tentative collisions are drawn at the rate sigma_maj, a bound on the extinction (the
+/// homogeneous sigma_t's largest channel; in a grid, it times the largest density of each
+/// block of the majorant grid the ray crosses, scene/medium.h, stepped through block by block),
+/// and each is a real scattering, an absorption or a null collision. Colours differ per channel, so
+/// the event is chosen by the channels' mean probabilities and the throughput takes the ratio of
 /// each channel's coefficient to that probability (spectral tracking, Kutz et al. 2017,
 /// without its hero wavelength): unbiased in every channel, and exact for grey media.
 /// Transmittance along shadow rays is exact for homogeneous media and ratio tracking (Novak et

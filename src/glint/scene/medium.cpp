@@ -25,6 +25,40 @@ double DensityGrid::lookup(const Vec3& p) const {
     return lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
 }
 
+MajorantGrid::MajorantGrid(const DensityGrid& grid) {
+    constexpr int B = kBlock;
+    nx = (grid.nx + B - 1) / B;
+    ny = (grid.ny + B - 1) / B;
+    nz = (grid.nz + B - 1) / B;
+    bound.assign(static_cast<size_t>(nx) * ny * nz, 0.0f);
+    // Each voxel raises the bound of every block whose interpolation reaches it: voxel i is
+    // read anywhere in [i - 0.5, i + 1.5], so by blocks floor((i - 1) / B) to floor((i + 1) / B).
+    auto blocks = [](int i, int n, int& lo, int& hi) {
+        lo = std::max(0, (i - 1) / B - (i - 1 < 0));
+        hi = std::min(n - 1, (i + 1) / B);
+    };
+    for (int k = 0; k < grid.nz; ++k) {
+        int c0, c1;
+        blocks(k, nz, c0, c1);
+        for (int j = 0; j < grid.ny; ++j) {
+            int b0, b1;
+            blocks(j, ny, b0, b1);
+            for (int i = 0; i < grid.nx; ++i) {
+                const float d = grid.at(i, j, k);
+                if (!(d > 0)) continue;
+                int a0, a1;
+                blocks(i, nx, a0, a1);
+                for (int c = c0; c <= c1; ++c)
+                    for (int b = b0; b <= b1; ++b)
+                        for (int a = a0; a <= a1; ++a) {
+                            float& m = bound[(static_cast<size_t>(c) * ny + b) * nx + a];
+                            m = std::max(m, d);
+                        }
+            }
+        }
+    }
+}
+
 float DensityGrid::maxDensity() const {
     float m = 0;
     for (float d : density) m = std::max(m, d);

@@ -38,6 +38,23 @@ struct DensityGrid {
     float maxDensity() const;
 };
 
+/// Bounds on a density grid's density over coarse blocks of kBlock^3 voxels: the majorants that
+/// delta and ratio tracking step through block by block (render/media.cpp), so that the empty
+/// and thin parts of a smoke plume cost few tentative collisions. Block (a, b, c) covers
+/// [a kBlock, (a + 1) kBlock] x ... of the grid's index space; its bound is the largest voxel
+/// among those DensityGrid::lookup interpolates anywhere inside it (one voxel beyond the block
+/// on every side), so it bounds the density there.
+struct MajorantGrid {
+    static constexpr int kBlock = 8;
+    int nx = 0, ny = 0, nz = 0;  ///< Blocks along each axis.
+    std::vector<float> bound;    ///< nx * ny * nz bounds, x fastest.
+
+    explicit MajorantGrid(const DensityGrid& grid);
+    float at(int a, int b, int c) const {
+        return bound[(static_cast<size_t>(c) * ny + b) * nx + a];
+    }
+};
+
 /// A medium: homogeneous, or scaled by a density grid.
 struct Medium {
     std::string name;
@@ -50,6 +67,8 @@ struct Medium {
     /// The grid's largest density (1 when homogeneous): with sigma_t, the majorant that
     /// tracking samples against. Set with the grid (grid->maxDensity() visits every voxel).
     double densityBound = 1;
+    /// The grid's bounds block by block (null: densityBound everywhere along the grid).
+    std::shared_ptr<const MajorantGrid> majorants;
 
     Vec3 sigmaT() const { return sigmaA + sigmaS; }
     bool homogeneous() const { return grid == nullptr; }

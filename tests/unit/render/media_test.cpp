@@ -130,6 +130,94 @@ TEST(MediumTracking, AConstantGridIsTheHomogeneousMediumInsideItsBoxAndNothingOu
     EXPECT_EQ(beta, Vec3(1));
 }
 
+/// A sparse grid of 40 x 20 x 12 voxels, placed rotated and scaled: empty but for a dense
+/// slab with holes at x in [16, 24) and a few single voxels elsewhere (what a majorant grid is
+/// for).
+std::shared_ptr<DensityGrid> sparseGrid() {
+    auto g = std::make_shared<DensityGrid>();
+    g->nx = 40;
+    g->ny = 20;
+    g->nz = 12;
+    g->density.assign(size_t(40) * 20 * 12, 0.0f);
+    for (int k = 0; k < 12; ++k)
+        for (int j = 0; j < 20; ++j)
+            for (int i = 16; i < 24; ++i)
+                g->density[(size_t(k) * 20 + j) * 40 + i] = (i + j + k) % 5 == 0 ? 0.0f : 3.0f;
+    g->density[(size_t(3) * 20 + 5) * 40 + 2] = 6;
+    g->density[(size_t(11) * 20 + 19) * 40 + 39] = 1;
+    g->density[(size_t(6) * 20 + 10) * 40 + 31] = 0.5f;
+    return g;
+}
+
+TEST(MajorantGrid, BoundsTheInterpolatedDensityEverywhereInEachBlock) {
+    const auto g = sparseGrid();
+    const MajorantGrid majorants(*g);
+    EXPECT_EQ(majorants.nx, 5);
+    EXPECT_EQ(majorants.ny, 3);
+    EXPECT_EQ(majorants.nz, 2);
+    Rng rng(17);
+    int tight = 0;
+    for (int n = 0; n < 200000; ++n) {
+        const Vec3 p(rng.uniform() * 40, rng.uniform() * 20, rng.uniform() * 12);
+        const double d = g->lookup(p);
+        const int a = std::min(int(p.x / 8), 4), b = std::min(int(p.y / 8), 2),
+                  c = std::min(int(p.z / 8), 1);
+        ASSERT_LE(d, majorants.at(a, b, c) + 1e-6) << p.x << " " << p.y << " " << p.z;
+        tight += d > 0.9 * majorants.at(a, b, c);
+    }
+    EXPECT_GT(tight, 0);
+    // Blocks hold what reaches into them, and empty ones are empty.
+    EXPECT_EQ(majorants.at(0, 0, 0), 6.0f);  // the voxel (2, 5, 3)
+    EXPECT_EQ(majorants.at(0, 1, 1), 0.0f);
+    EXPECT_EQ(majorants.at(1, 2, 1), 3.0f);  // x in [8, 16]: the slab's voxel 16 reads from 15.5
+    EXPECT_EQ(majorants.at(4, 0, 0), 0.0f);
+    EXPECT_EQ(majorants.at(4, 1, 0), 0.5f);  // the voxel (31, 10, 6) reads up to x = 32.5
+}
+
+TEST(MediumTracking, TrackingBlockByBlockAgreesWithTheOpticalDepthAlongTheRay) {
+    // Ratio tracking's transmittance and delta tracking's chance of passing an absorbing
+    // medium, with the majorant grid and with the one global bound, against exp(-tau) with
+    // tau integrated along the ray by the midpoint rule.
+    Medium m;
+    m.sigmaA = Vec3(0.5, 0.2, 0.8);
+    m.grid = sparseGrid();
+    m.densityBound = 6;
+    m.worldFromIndex = *Transform::fromMatrix(
+        Mat4::translate(0.3, -1, 2) * Mat4::rotate(1, 2, 0.5, 23) * Mat4::scale(0.05, 0.05, 0.05));
+    Medium global = m;
+    m.majorants = std::make_shared<const MajorantGrid>(*m.grid);
+    const Vec3 from = m.worldFromIndex.point(Vec3(-3, 4, 2)),
+               to = m.worldFromIndex.point(Vec3(43, 15, 10));
+    const Ray ray{from, (to - from) * 0.5, 0, kInfinity};  // not unit
+    const double tEnd = 2;
+    double tau = 0;
+    constexpr int kSteps = 200000;
+    for (int s = 0; s < kSteps; ++s) {
+        const double t = (s + 0.5) * tEnd / kSteps;
+        tau += m.density(ray.origin + ray.dir * t) * tEnd / kSteps * length(ray.dir);
+    }
+    ASSERT_GT(tau, 0.3);
+    for (const Medium* medium : {&m, &global}) {
+        Rng rng(23);
+        std::array<test::MeanEstimate, 3> ratio, passed;
+        for (int k = 0; k < 100000; ++k) {
+            const Vec3 tr = mediumTransmittance(*medium, ray, tEnd, rng);
+            Vec3 beta(1);
+            const bool through =
+                sampleMedium(*medium, ray, tEnd, rng, beta).kind == MediumEvent::Kind::Passed;
+            for (int c = 0; c < 3; ++c) {
+                ratio[c].add(tr[c]);
+                passed[c].add(through ? beta[c] : 0);
+            }
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double expected = std::exp(-m.sigmaA[c] * tau);
+            EXPECT_NEAR(ratio[c].mean(), expected, 4 * ratio[c].standardError() + 1e-3) << c;
+            EXPECT_NEAR(passed[c].mean(), expected, 4 * passed[c].standardError() + 1e-3) << c;
+        }
+    }
+}
+
 /// The mean red value of a render of `text` at `spp` samples per pixel.
 double meanRender(const std::string& text, int spp) {
     auto scene = test::preparedScene(text);

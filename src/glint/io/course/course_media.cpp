@@ -76,6 +76,7 @@ void Parser::cmdMedium() {
             if (!placed) fail(i + 1, "the current transform makes the grid singular");
             m.worldFromIndex = *placed;
             m.densityBound = m.grid->maxDensity();
+            m.majorants = std::make_shared<const MajorantGrid>(*m.grid);
             i += named ? 3 : 2;
         } else if (key == "scale") {
             need(1);
