@@ -1,7 +1,6 @@
 #include "glint/render/sheen.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -24,33 +23,6 @@ double lambda(double cosTheta, double alpha) {
     if (x < 0.5) return std::exp(lambdaFit(x, alpha));
     return std::exp(2 * lambdaFit(0.5, alpha) - lambdaFit(1 - x, alpha));
 }
-
-constexpr int kRows = 24, kColumns = 32;
-
-/// The albedo table: rows uniform in the perceptual roughness sqrt(alpha) from
-/// sqrt(kMinSheenAlpha) to 1, columns uniform in sqrt(mu). Smooth sheens reflect only near
-/// grazing angles, where their albedo changes fastest with both.
-struct AlbedoTable {
-    std::array<float, kRows * kColumns> e{};
-    AlbedoTable() {
-        for (int r = 0; r < kRows; ++r)
-            for (int c = 0; c < kColumns; ++c) {
-                const double s = c / (kColumns - 1.0);
-                e[r * kColumns + c] =
-                    static_cast<float>(sheenAlbedoByQuadrature(rowAlpha(r), s * s, 48));
-            }
-    }
-    static double rowAlpha(int r) {
-        const double r0 = std::sqrt(kMinSheenAlpha);
-        const double p = r0 + (1 - r0) * r / (kRows - 1.0);
-        return p * p;
-    }
-    /// The fractional row of alpha.
-    static double rowOf(double alpha) {
-        const double r0 = std::sqrt(kMinSheenAlpha);
-        return std::clamp((std::sqrt(alpha) - r0) / (1 - r0), 0.0, 1.0) * (kRows - 1);
-    }
-};
 
 }  // namespace
 
@@ -84,14 +56,30 @@ double sheenAlbedoByQuadrature(double alpha, double mu, int steps) {
     return 2 * sum * dTheta * dPhi;
 }
 
+namespace sheen_albedo_table {
+
+double rowAlpha(int r) {
+    const double r0 = std::sqrt(kMinSheenAlpha);
+    const double p = r0 + (1 - r0) * r / (kRows - 1.0);
+    return p * p;
+}
+
+double columnMu(int c) {
+    const double s = c / (kColumns - 1.0);
+    return s * s;
+}
+
+}  // namespace sheen_albedo_table
+
 double sheenAlbedo(double alpha, double mu) {
-    static const AlbedoTable table;
-    const double r = AlbedoTable::rowOf(alpha);
+    using namespace sheen_albedo_table;
+    const double root0 = std::sqrt(kMinSheenAlpha);
+    const double r = std::clamp((std::sqrt(alpha) - root0) / (1 - root0), 0.0, 1.0) * (kRows - 1);
     const double c = std::sqrt(std::clamp(mu, 0.0, 1.0)) * (kColumns - 1);
     const int r0 = std::min(static_cast<int>(r), kRows - 2);
     const int c0 = std::min(static_cast<int>(c), kColumns - 2);
     const double fr = r - r0, fc = c - c0;
-    auto at = [&](int rr, int cc) { return static_cast<double>(table.e[rr * kColumns + cc]); };
+    auto at = [&](int rr, int cc) { return static_cast<double>(kE[rr * kColumns + cc]); };
     const double top = at(r0, c0) + (at(r0, c0 + 1) - at(r0, c0)) * fc;
     const double bottom = at(r0 + 1, c0) + (at(r0 + 1, c0 + 1) - at(r0 + 1, c0)) * fc;
     return top + (bottom - top) * fr;

@@ -23,11 +23,25 @@ constexpr double kMinSheenAlpha = 0.0049;
 /// D V of the Charlie lobe (white) for o, i above the surface (z > 0), in 1 / sr.
 double sheenLobe(double alpha, const Vec3& o, const Vec3& i);
 
-/// The directional albedo E(mu) of sheenLobe() for a viewer at cos theta = mu, from a table
-/// over alpha and mu computed once by quadrature (bilinear between its entries).
+/// The directional albedo E(mu) of sheenLobe() for a viewer at cos theta = mu, from the table
+/// below (bilinear between its entries).
 double sheenAlbedo(double alpha, double mu);
 
-/// sheenAlbedo() by direct quadrature, the table's own reference (tests).
+/// sheenAlbedo() by direct quadrature, the table's reference (tests, and the tool that writes
+/// the table).
 double sheenAlbedoByQuadrature(double alpha, double mu, int steps);
+
+/// The table of sheenAlbedo(): rows uniform in the perceptual roughness sqrt(alpha) from
+/// sqrt(kMinSheenAlpha) to 1, columns uniform in sqrt(mu) (smooth sheens reflect only near
+/// grazing angles, where their albedo changes fastest with both). Each entry is
+/// sheenAlbedoByQuadrature(rowAlpha(r), columnMu(c), kSteps) rounded to float, written into
+/// sheen_albedo_table.cpp by tools/sheen_albedo_table.cpp (it took 0.5 s at every start when it
+/// was computed at run time); the unit tests recompute every entry.
+namespace sheen_albedo_table {
+constexpr int kRows = 24, kColumns = 32, kSteps = 48;
+double rowAlpha(int r);
+double columnMu(int c);
+extern const float kE[kRows * kColumns];
+}  // namespace sheen_albedo_table
 
 }  // namespace glint

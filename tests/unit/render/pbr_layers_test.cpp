@@ -202,6 +202,19 @@ TEST(PbrLayersFurnace, NoLayeredBsdfReflectsMoreThanItReceives) {
 
 // ---- The parts ----
 
+TEST(Sheen, TheCommittedAlbedoTableIsTheQuadratureItSaysItIs) {
+    // tools/sheen_albedo_table.cpp wrote sheen_albedo_table.cpp: every entry again, here.
+    using namespace sheen_albedo_table;
+    for (int r = 0; r < kRows; ++r)
+        for (int c = 0; c < kColumns; ++c) {
+            const double e = sheenAlbedoByQuadrature(rowAlpha(r), columnMu(c), kSteps);
+            ASSERT_NEAR(kE[r * kColumns + c], e, 1e-6 * std::max(1.0, e))
+                << "row " << r << ", column " << c << ": run tools/sheen_albedo_table.cpp";
+        }
+    // The lookup returns the entries at the nodes.
+    EXPECT_NEAR(sheenAlbedo(rowAlpha(5), columnMu(7)), kE[5 * kColumns + 7], 1e-6);
+}
+
 TEST(Sheen, TheAlbedoTableAgreesWithQuadratureAndTheLobeIsReciprocal) {
     for (double alpha : {kMinSheenAlpha, 0.02, 0.11, 0.37, 0.8, 1.0})
         for (double mu : {0.05, 0.2, 0.5, 0.77, 1.0}) {
