@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -35,7 +36,12 @@
 extern "C" const char* __lsan_default_suppressions() { return "leak:libopenvdb.so\n"; }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    static const std::string path = "/tmp/glint_fuzz_vdb." + std::to_string(getpid()) + ".vdb";
+    static const std::string path = [] {
+        std::atexit([] {
+            std::remove(("/tmp/glint_fuzz_vdb." + std::to_string(getpid()) + ".vdb").c_str());
+        });
+        return "/tmp/glint_fuzz_vdb." + std::to_string(getpid()) + ".vdb";
+    }();
     {
         std::ofstream out(path, std::ios::binary | std::ios::trunc);
         out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
