@@ -12,15 +12,29 @@ namespace {
 
 double mean(const Vec3& v) { return (v.x + v.y + v.z) / 3; }
 
-/// The part [t0, t1] of `ray` over [0, tEnd) where `m` may have any density: all of it when
-/// homogeneous, else where the ray crosses the grid's box (an affine map keeps ray parameters).
-bool extent(const Medium& m, const Ray& ray, double tEnd, double& t0, double& t1) {
+/// A ray in a grid's index space, where it keeps its parameter (the map is affine): placed once
+/// per tracking call, so that each collision looks the density up without a transform.
+struct IndexRay {
+    Vec3 o, d;
+    IndexRay(const Medium& m, const Ray& ray) {
+        if (m.homogeneous()) return;
+        o = m.worldFromIndex.inversePoint(ray.origin);
+        d = m.worldFromIndex.inverseVector(ray.dir);
+    }
+    /// The medium's density at parameter t (1 when homogeneous).
+    double density(const Medium& m, double t) const {
+        return m.homogeneous() ? 1.0 : m.grid->lookup(o + d * t);
+    }
+};
+
+/// The part [t0, t1] of the ray over [0, tEnd) where `m` may have any density: all of it when
+/// homogeneous, else where the ray (`r`, in index space) crosses the grid's box.
+bool extent(const Medium& m, const IndexRay& r, double tEnd, double& t0, double& t1) {
     t0 = 0;
     t1 = tEnd;
     if (m.homogeneous()) return true;
     const DensityGrid& g = *m.grid;
-    const Vec3 o = m.worldFromIndex.inversePoint(ray.origin);
-    const Vec3 d = m.worldFromIndex.inverseVector(ray.dir);
+    const Vec3 &o = r.o, &d = r.d;
     const double hi[3] = {static_cast<double>(g.nx), static_cast<double>(g.ny),
                           static_cast<double>(g.nz)};
     for (int a = 0; a < 3; ++a) {
@@ -45,15 +59,14 @@ double nextCollision(double rate, Rng& rng) { return -std::log(1 - rng.uniform()
 /// ray crosses (a 3-D DDA, Amanatides and Woo 1987, in the grid's index space, where the ray
 /// keeps its parameter).
 template <typename Visit>
-void forEachMajorant(const Medium& m, const Ray& ray, double t0, double t1, Visit visit) {
+void forEachMajorant(const Medium& m, const IndexRay& r, double t0, double t1, Visit visit) {
     if (m.homogeneous() || !m.majorants) {
         visit(t0, t1, m.densityBound);
         return;
     }
     const MajorantGrid& g = *m.majorants;
     constexpr double B = MajorantGrid::kBlock;
-    const Vec3 o = m.worldFromIndex.inversePoint(ray.origin);
-    const Vec3 d = m.worldFromIndex.inverseVector(ray.dir);
+    const Vec3 &o = r.o, &d = r.d;
     const Vec3 start = o + d * t0;
     const int n[3] = {g.nx, g.ny, g.nz};
     int cell[3], step[3];
@@ -108,17 +121,18 @@ Vec3 HenyeyGreenstein::sample(const Vec3& wo, Point2 u) const {
 
 MediumEvent sampleMedium(const Medium& m, const Ray& ray, double tEnd, Rng& rng, Vec3& beta) {
     const double sigmaMax = maxComponent(m.sigmaT());  // per unit length, at density 1
+    const IndexRay r(m, ray);
     double t0, t1;
-    if (!(sigmaMax * m.densityBound > 0) || !extent(m, ray, tEnd, t0, t1)) return {};
+    if (!(sigmaMax * m.densityBound > 0) || !extent(m, r, tEnd, t0, t1)) return {};
     const double len = length(ray.dir);
     MediumEvent event;
-    forEachMajorant(m, ray, t0, t1, [&](double ta, double tb, double bound) {
+    forEachMajorant(m, r, t0, t1, [&](double ta, double tb, double bound) {
         const double majorant = sigmaMax * bound;  // per unit length, over [ta, tb)
         if (!(majorant > 0)) return true;          // nothing here to collide with
         for (double t = ta;;) {
             t += nextCollision(majorant * len, rng);
             if (!(t < tb)) return true;  // on into the next piece: collisions are memoryless
-            const double d = m.homogeneous() ? 1.0 : m.density(ray.origin + ray.dir * t);
+            const double d = r.density(m, t);
             const Vec3 sa = m.sigmaA * d, ss = m.sigmaS * d;
             const Vec3 sn = max(Vec3(majorant) - sa - ss, Vec3(0));
             const double ps = mean(ss) / majorant, pn = mean(sn) / majorant;
@@ -142,8 +156,9 @@ MediumEvent sampleMedium(const Medium& m, const Ray& ray, double tEnd, Rng& rng,
 Vec3 mediumTransmittance(const Medium& m, const Ray& ray, double tEnd, Rng& rng) {
     const Vec3 sigmaT = m.sigmaT();
     if (sigmaT == Vec3(0)) return Vec3(1);
+    const IndexRay r(m, ray);
     double t0, t1;
-    if (!extent(m, ray, tEnd, t0, t1)) return Vec3(1);
+    if (!extent(m, r, tEnd, t0, t1)) return Vec3(1);
     const double len = length(ray.dir);
     if (m.homogeneous()) {
         if (!std::isfinite(t1)) return Vec3(0);
@@ -152,13 +167,13 @@ Vec3 mediumTransmittance(const Medium& m, const Ray& ray, double tEnd, Rng& rng)
     }
     const double sigmaMax = maxComponent(sigmaT);
     Vec3 tr(1);
-    forEachMajorant(m, ray, t0, t1, [&](double ta, double tb, double bound) {
+    forEachMajorant(m, r, t0, t1, [&](double ta, double tb, double bound) {
         const double majorant = sigmaMax * bound;
         if (!(majorant > 0)) return true;
         for (double t = ta;;) {
             t += nextCollision(majorant * len, rng);
             if (!(t < tb)) return true;
-            const double d = m.density(ray.origin + ray.dir * t);
+            const double d = r.density(m, t);
             tr = tr * max(Vec3(1) - sigmaT * (d / majorant), Vec3(0));
             // Russian roulette once little is left: unbiased, and bounded work.
             if (maxComponent(tr) < 0.05) {
