@@ -26,9 +26,9 @@ namespace {
 /// them, and a metadata value likewise: a corrupt length in a small file makes it allocate up to
 /// 4 GiB. These walk the same bytes first, from where the stream is (and put it back), and throw
 /// if a length or count points past `end`, so that OpenVDB only reads what the file can hold.
-class LengthCheck {
+class LengthCheck : BoundedReader {
   public:
-    LengthCheck(std::istream& is, int64_t end) : is_(is), end_(end), start_(is.tellg()) {}
+    LengthCheck(std::istream& is, int64_t end) : BoundedReader(is, end), start_(is.tellg()) {}
     ~LengthCheck() {
         is_.clear();
         is_.seekg(start_);
@@ -36,30 +36,16 @@ class LengthCheck {
     LengthCheck(const LengthCheck&) = delete;
     LengthCheck& operator=(const LengthCheck&) = delete;
 
-    template <typename T>
-    T number(const char* what) {
-        room(sizeof(T), what);
-        T v{};
-        is_.read(reinterpret_cast<char*>(&v), sizeof v);
-        if (!is_) fail(what);
-        return v;
-    }
-    void skip(uint64_t bytes, const char* what) {
-        room(bytes, what);
-        is_.seekg(static_cast<std::streamoff>(bytes), std::ios_base::cur);
-    }
-    /// Throws unless `bytes` more lie between where the stream is and the end.
-    void room(uint64_t bytes, const char* what) {
-        const int64_t at = is_.tellg();
-        if (at < 0 || at > end_ || bytes > static_cast<uint64_t>(end_ - at)) fail(what);
-    }
+    using BoundedReader::number;
+    using BoundedReader::room;
+    using BoundedReader::skip;
     void string(const char* what) { skip(number<uint32_t>(what), what); }
     /// A MetaMap: a count, then per entry a name, a type name and a value of a stated size.
     /// OpenVDB's delayed-loading metadata (type "__delayedload", in every grid written by
     /// OpenVDB 6 and later) has counts of its own inside, and is allocated by them.
     void metaMap(const char* what) {
         const int32_t count = number<int32_t>(what);
-        if (count < 0) fail(what);
+        if (count < 0) bad(what);
         for (int32_t i = 0; i < count; ++i) {
             string(what);
             const uint32_t typeLength = number<uint32_t>(what);
@@ -73,8 +59,7 @@ class LengthCheck {
             }
             const uint32_t size = number<uint32_t>(what);
             // OpenVDB reads a value of a fixed-size type by its type, whatever size is stated.
-            if (const int fixed = fixedSize(type); fixed >= 0 && size != uint32_t(fixed))
-                fail(what);
+            if (const int fixed = fixedSize(type); fixed >= 0 && size != uint32_t(fixed)) bad(what);
             const int64_t valueEnd = static_cast<int64_t>(is_.tellg()) + size;
             skip(size, what);
             if (type == "__delayedload" && size > 0) {
@@ -86,6 +71,10 @@ class LengthCheck {
     }
 
   private:
+    [[noreturn]] static void bad(const char* what) {
+        fail(std::string(what) + " holds a size or count that does not fit the file");
+    }
+
     /// The bytes of a metadata value of OpenVDB's type `type` whose size is its type's (-1 for
     /// the others: strings, delayed-loading metadata, types OpenVDB does not know).
     static int fixedSize(const std::string& type) {
@@ -110,7 +99,7 @@ class LengthCheck {
     void delayedLoad(uint32_t size, const char* what) {
         const int64_t end = static_cast<int64_t>(is_.tellg()) + size;
         const auto count = number<uint32_t>(what);
-        if (count > end_ / 64 + 1) fail(what);
+        if (count > end_ / 64 + 1) bad(what);
         list(count, 1, end, what);
         list(count, 8, end, what);
     }
@@ -120,23 +109,17 @@ class LengthCheck {
         const int64_t at = is_.tellg();
         if (itemBytes == 8 && bytes == std::numeric_limits<uint32_t>::max()) return;  // absent
         const uint64_t stored = bytes > 0 ? bytes : expanded;
-        if (at < 0 || stored > static_cast<uint64_t>(end - at)) fail(what);
+        if (at < 0 || stored > static_cast<uint64_t>(end - at)) bad(what);
         if (bytes > 0) {
             // A Blosc header: 4 bytes, the expanded size (uint32), the block size, the
             // compressed size.
-            if (bytes < 16) fail(what);
+            if (bytes < 16) bad(what);
             is_.seekg(4, std::ios_base::cur);
-            if (number<uint32_t>(what) > expanded + kBloscSlack) fail(what);
+            if (number<uint32_t>(what) > expanded + kBloscSlack) bad(what);
         }
         is_.seekg(at + static_cast<int64_t>(stored));
     }
 
-    [[noreturn]] void fail(const char* what) {
-        throw std::runtime_error(std::string("the file is truncated or corrupt: ") + what +
-                                 " runs past the end of the file");
-    }
-    std::istream& is_;
-    int64_t end_;
     std::streampos start_;
 };
 

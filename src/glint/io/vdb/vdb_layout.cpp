@@ -25,10 +25,10 @@
 namespace glint::vdb {
 namespace {
 
-class LayoutWalk {
+class LayoutWalk : BoundedReader {
   public:
     LayoutWalk(std::istream& is, ValueLayout layout)
-        : is_(is), layout_(layout), valueBytes_(layout.half ? 2 : 4) {}
+        : BoundedReader(is, 0), layout_(layout), valueBytes_(layout.half ? 2 : 4) {}
 
     void topology(int64_t end) {
         end_ = end;
@@ -125,39 +125,34 @@ class LayoutWalk {
         return n;
     }
 
-    template <typename T>
-    T number(const char* what) {
-        T v{};
-        read(&v, sizeof v, what);
-        return v;
-    }
-    void read(void* into, uint64_t bytes, const std::string& what) {
-        room(bytes, what);
-        is_.read(static_cast<char*>(into), static_cast<std::streamsize>(bytes));
-        if (!is_) fail(what + " runs past the end of the file");
-    }
-    void skip(uint64_t bytes, const std::string& what) {
-        room(bytes, what);
-        is_.seekg(static_cast<std::streamoff>(bytes), std::ios_base::cur);
-    }
-    void room(uint64_t bytes, const std::string& what) {
-        const int64_t at = is_.tellg();
-        if (at < 0 || at > end_ || bytes > static_cast<uint64_t>(end_ - at))
-            fail(what + " runs past the end of its part of the file");
-    }
-    [[noreturn]] static void fail(const std::string& why) {
-        throw std::runtime_error("the file is corrupt: " + why);
-    }
-
-    std::istream& is_;
     ValueLayout layout_;
     int valueBytes_;
-    int64_t end_ = 0;
     std::vector<Root> roots_;
     std::vector<int>* leaves_ = nullptr;
 };
 
 }  // namespace
+
+void BoundedReader::read(void* into, uint64_t bytes, const std::string& what) {
+    room(bytes, what);
+    is_.read(static_cast<char*>(into), static_cast<std::streamsize>(bytes));
+    if (!is_) fail(what + " runs past the end of the file");
+}
+
+void BoundedReader::skip(uint64_t bytes, const std::string& what) {
+    room(bytes, what);
+    is_.seekg(static_cast<std::streamoff>(bytes), std::ios_base::cur);
+}
+
+void BoundedReader::room(uint64_t bytes, const std::string& what) const {
+    const int64_t at = is_.tellg();
+    if (at < 0 || at > end_ || bytes > static_cast<uint64_t>(end_ - at))
+        fail(what + " runs past the end of its part of the file");
+}
+
+void BoundedReader::fail(const std::string& why) {
+    throw std::runtime_error("the file is truncated or corrupt: " + why);
+}
 
 void checkFloatTreeLayout(std::istream& is, ValueLayout layout, int64_t blockPos, int64_t endPos) {
     LayoutWalk walk(is, layout);

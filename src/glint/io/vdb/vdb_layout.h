@@ -10,8 +10,33 @@
 
 #include <cstdint>
 #include <istream>
+#include <string>
 
 namespace glint::vdb {
+
+/// Reads numbers from `is` and skips bytes, never past `end` (an offset in the file): the one
+/// primitive of the walks here and in vdb_contents.cpp. A read or skip that would pass `end`
+/// throws std::runtime_error("the file is truncated or corrupt: WHAT runs past ...").
+class BoundedReader {
+  public:
+    BoundedReader(std::istream& is, int64_t end) : is_(is), end_(end) {}
+
+    template <typename T>
+    T number(const std::string& what) {
+        T v{};
+        read(&v, sizeof v, what);
+        return v;
+    }
+    void read(void* into, uint64_t bytes, const std::string& what);
+    void skip(uint64_t bytes, const std::string& what);
+    /// Throws unless `bytes` more lie between where the stream is and the end.
+    void room(uint64_t bytes, const std::string& what) const;
+    [[noreturn]] static void fail(const std::string& why);
+
+  protected:
+    std::istream& is_;
+    int64_t end_;
+};
 
 /// How the grid's values are stored: the grid's compression flags (io::COMPRESS_*) and whether
 /// floats were saved as half floats.
