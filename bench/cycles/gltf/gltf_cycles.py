@@ -518,14 +518,19 @@ def add_fog(scene, s, conv):
     return obj
 
 
-def set_background(scene, colour):
-    """Glint's `background r g b` in the path tracer: a constant environment light, seen by
-    camera rays too; black without one."""
+def empty_world(scene):
+    """The scene's world (made if it has none) with an empty node tree: (world, tree)."""
     world = scene.world or bpy.data.worlds.new("World")
     scene.world = world
     world.use_nodes = True
-    nt = world.node_tree
-    nt.nodes.clear()
+    world.node_tree.nodes.clear()
+    return world, world.node_tree
+
+
+def set_background(scene, colour):
+    """Glint's `background r g b` in the path tracer: a constant environment light, seen by
+    camera rays too; black without one."""
+    world, nt = empty_world(scene)
     bg = nt.nodes.new("ShaderNodeBackground")
     bg.inputs["Color"].default_value = (*(colour or (0.0, 0.0, 0.0)), 1.0)
     bg.inputs["Strength"].default_value = 1.0
@@ -536,11 +541,7 @@ def set_background(scene, colour):
 
 
 def set_world(scene, hdr, scale, rotation):
-    world = scene.world or bpy.data.worlds.new("World")
-    scene.world = world
-    world.use_nodes = True
-    nt = world.node_tree
-    nt.nodes.clear()
+    world, nt = empty_world(scene)
     tex = nt.nodes.new("ShaderNodeTexEnvironment")
     tex.image = bpy.data.images.load(hdr)
     tex.image.colorspace_settings.name = "Linear"
