@@ -1,8 +1,11 @@
 #include "cli.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -20,6 +23,9 @@
 
 namespace glint::cli {
 namespace {
+
+/// Frames --frame and --frames may name: ten million, 115 hours at 24 fps.
+constexpr long long kMaxFrame = 10'000'000;
 
 /// Parses "WxH" within the scene limits; returns what is wrong, or nothing.
 std::string parseSize(const std::string& s, int& w, int& h) {
@@ -194,7 +200,63 @@ void printStats(const Scene& scene, double parse, double build, const RenderResu
                 static_cast<unsigned long long>(r.rays.nonFinite));
 }
 
-int prepare(const Options& opt, Prepared& out) {
+std::optional<double> Options::seconds() const {
+    if (timeAt) return timeAt;
+    if (frame) return static_cast<double>(*frame) / fps;
+    if (!animation.empty()) return 0.0;
+    return std::nullopt;
+}
+
+std::string parseFrameRange(const std::string& text, FrameRange& out) {
+    const std::string form =
+        "expected A:B or A:B:STEP (frames A to B, every STEP-th), got '" + text + "'";
+    long long v[3] = {0, 0, 1};
+    size_t at = 0, fields = 0;
+    for (bool whole = false; !whole; ++fields) {
+        if (fields == 3) return form;
+        const size_t end = std::min(text.find(':', at), text.size());
+        auto [p, ec] = std::from_chars(text.data() + at, text.data() + end, v[fields]);
+        if (at == end || ec != std::errc() || p != text.data() + end) return form;
+        whole = end == text.size();
+        at = end + 1;
+    }
+    if (fields < 2) return form;
+    if (std::abs(v[0]) > kMaxFrame || std::abs(v[1]) > kMaxFrame)
+        return "frames must be -" + std::to_string(kMaxFrame) + " to " + std::to_string(kMaxFrame) +
+               ", got '" + text + "'";
+    if (v[1] < v[0]) return "the last frame comes before the first in '" + text + "'";
+    if (v[2] < 1) return "the step must be at least 1 in '" + text + "'";
+    out = {v[0], v[1], v[2]};
+    return {};
+}
+
+std::string frameFileName(const std::string& pattern, long long frame) {
+    for (size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] == '#') {  // Blender's: a run of #s is the number, zero-padded
+            size_t end = pattern.find_first_not_of('#', i);
+            if (end == std::string::npos) end = pattern.size();
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%0*lld", static_cast<int>(end - i), frame);
+            return pattern.substr(0, i) + buf + pattern.substr(end);
+        }
+        if (pattern[i] != '%') continue;
+        size_t j = i + 1;
+        bool zero = j < pattern.size() && pattern[j] == '0';
+        if (zero) ++j;
+        int width = 0;
+        while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])) &&
+               width < 100)
+            width = width * 10 + (pattern[j++] - '0');
+        if (j < pattern.size() && pattern[j] == 'd') {
+            char buf[128];
+            std::snprintf(buf, sizeof buf, zero ? "%0*lld" : "%*lld", width, frame);
+            return pattern.substr(0, i) + buf + pattern.substr(j + 1);
+        }
+    }
+    return {};
+}
+
+int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
     using Clock = std::chrono::steady_clock;
     const bool demo = opt.scene.empty();
     int width = 0, height = 0;
@@ -253,6 +315,11 @@ int prepare(const Options& opt, Prepared& out) {
             options.lenient = opt.lenient;
             options.camera = CameraChoice::parse(opt.camera);
             options.look = look;
+            if (std::optional<double> t = opt.seconds()) {
+                options.time.animation = opt.animation;
+                options.time.seconds = *t;
+            }
+            options.assets = assets;
             ModelScene m = loadSceneFile(opt.scene, warnings, options);
             scene = std::move(m.scene);
             modelNote = std::move(m.note);
@@ -368,6 +435,44 @@ void addOptions(CLI::App& app, Options& opt) {
         ->group(input)
         ->check(numberIn(0.01, 179))
         ->type_name("DEG");
+
+    const char* time = "Time (docs/animation.md)";
+    app.add_option("--animation", opt.animation,
+                   "Which of a model's animations to play: its number (from 0) or name "
+                   "(default: the first); also for the glTF files a scene's mesh lines name")
+        ->group(time)
+        ->type_name("N|NAME");
+    auto* frameOption = app.add_option_function<long long>(
+                               "--frame", [&opt](long long f) { opt.frame = f; },
+                               "Render frame N: the animation at N / --fps seconds (frame 0 is "
+                               "its time 0)")
+                            ->group(time)
+                            ->check(integerIn(-kMaxFrame, kMaxFrame))
+                            ->type_name("N");
+    auto* timeOption = app.add_option_function<double>(
+                              "--time-at", [&opt](double t) { opt.timeAt = t; },
+                              "Render the animation at SECONDS (the file's own time), -1e6 to 1e6")
+                           ->group(time)
+                           ->check(numberIn(-1e6, 1e6))
+                           ->type_name("SECONDS");
+    auto* framesOption =
+        app.add_option("--frames", opt.frames,
+                       "Render frames A to B (every STEP-th) into files named by -o's pattern "
+                       "(out_%04d.png or out_####.png), loading the file once")
+            ->group(time)
+            ->check(CLI::Validator(
+                [](std::string& text) -> std::string {
+                    FrameRange r;
+                    return parseFrameRange(text, r);
+                },
+                "", ""))
+            ->type_name("A:B[:STEP]");
+    frameOption->excludes(timeOption)->excludes(framesOption);
+    timeOption->excludes(framesOption);
+    app.add_option("--fps", opt.fps, "Frames per second of --frame and --frames, 0.001 to 1000")
+        ->group(time)
+        ->check(numberIn(0.001, 1000))
+        ->type_name("FPS");
 
     const char* out = "Output";
     app.add_option("-o,--output", opt.output,

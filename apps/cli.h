@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "glint/accel/bvh.h"
+#include "glint/io/registry.h"
 #include "glint/render/display.h"
 #include "glint/render/renderer.h"
 #include "glint/scene/model.h"
@@ -64,7 +65,28 @@ struct Options {
     int denoise = 0;            ///< 1 --denoise, -1 --no-denoise, 0 the default (on for models).
     double noiseThreshold = 0;  ///< --noise-threshold; 0: a fixed number of samples.
     int minSpp = 0;             ///< --min-spp; 0: the default.
+    // Time (docs/animation.md).
+    std::string animation;           ///< --animation: its index or name; empty for the first.
+    std::optional<double> timeAt;    ///< --time-at SECONDS
+    std::optional<long long> frame;  ///< --frame N
+    double fps = 24;                 ///< --fps
+    std::string frames;              ///< --frames A:B[:STEP]: a sequence
+
+    /// The time to pose models at: --time-at, or --frame / --fps, or 0 with --animation alone;
+    /// none when no animation is asked for.
+    std::optional<double> seconds() const;
 };
+
+/// A range of frames, --frames A:B[:STEP]: A to B inclusive, every STEP-th.
+struct FrameRange {
+    long long first = 0, last = 0, step = 1;
+    long long count() const { return (last - first) / step + 1; }
+};
+/// Parses A:B[:STEP] (A <= B, STEP >= 1); returns what is wrong, or nothing.
+std::string parseFrameRange(const std::string& text, FrameRange& out);
+/// The file of frame `frame` in `pattern`: its first %d, %0Nd or run of #s replaced by the
+/// number (at least N digits); empty when the pattern has none.
+std::string frameFileName(const std::string& pattern, long long frame);
 
 /// Registers every option and flag of `glint` on `app`, storing into `opt`.
 void addOptions(CLI::App& app, Options& opt);
@@ -84,7 +106,8 @@ struct Prepared {
 
 /// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not
 /// built yet. Prints warnings and errors; returns kGoOn, or the exit code to end with.
-int prepare(const Options& opt, Prepared& out);
+/// `assets`: where model files are kept between the frames of a sequence (null: nowhere).
+int prepare(const Options& opt, Prepared& out, AssetCache* assets = nullptr);
 
 /// How a render samples and cleans its image, from the options and the scene (docs/denoising.md).
 struct SamplingPlan {

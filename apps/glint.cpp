@@ -9,6 +9,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -61,7 +62,9 @@ void installSignalHandlers() {
 
 const char* signalName(int sig) { return sig == SIGTERM ? "SIGTERM" : "SIGINT"; }
 
-int run(const Options& opt) {
+/// Renders the one frame `opt` asks for; `assets` keeps model files for the next frame of a
+/// sequence (null: none follows).
+int run(const Options& opt, glint::AssetCache* assets = nullptr) {
     using Clock = std::chrono::steady_clock;
     // A piece of the frame: its inputs are hashed as they are read, so that glint merge can
     // tell pieces of other scenes (or other versions of its meshes and textures) apart.
@@ -71,7 +74,7 @@ int run(const Options& opt) {
     std::optional<glint::InputLog> inputs;
     if (piece) inputs.emplace();
     Prepared prepared;
-    if (int code = prepare(opt, prepared); code != kGoOn) return code;
+    if (int code = prepare(opt, prepared, assets); code != kGoOn) return code;
     glint::PieceInfo pieceInfo;
     // Passes, denoising and adaptive sampling (docs/denoising.md).
     const SamplingPlan plan = planSampling(opt, prepared, piece, true);
@@ -227,6 +230,41 @@ int run(const Options& opt) {
     return 0;
 }
 
+/// Renders the frames --frames asks for, one file each, loading model files once; or the one
+/// frame of the other options.
+int runFrames(const Options& opt) {
+    if (opt.frames.empty()) return run(opt);
+    FrameRange range;
+    parseFrameRange(opt.frames, range);  // checked with the options
+    std::string pattern = opt.output;
+    if (pattern.empty())
+        pattern = std::filesystem::path(opt.scene.empty() ? "glint" : opt.scene).stem().string() +
+                  "_%04d.png";
+    if (frameFileName(pattern, 0).empty())
+        return usageError("--frames " + opt.frames +
+                          " writes a file per frame: -o needs a frame "
+                          "number in its name, as out_%04d.png or out_####.png, got '" +
+                          pattern + "'");
+    // A piece's hash covers the files it read: each frame of pieces reads them again.
+    glint::AssetCache assets;
+    const bool keep = !wantsPiece(opt);
+    for (long long i = 0, n = range.count(); i < n; ++i) {
+        Options frame = opt;
+        frame.frames.clear();
+        frame.frame = range.first + i * range.step;
+        frame.output = frameFileName(pattern, *frame.frame);
+        if (!opt.quiet)
+            std::fprintf(stderr, "glint: frame %lld (%lld of %lld)\n", *frame.frame, i + 1, n);
+        if (int code = run(frame, keep ? &assets : nullptr); code != 0) return code;
+        if (gStop.load()) {
+            std::fprintf(stderr, "glint: %s: stopped after frame %lld\n", signalName(gSignal),
+                         *frame.frame);
+            return 128 + gSignal;
+        }
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -265,7 +303,7 @@ int main(int argc, char** argv) {
     }
     installSignalHandlers();
     try {
-        return run(opt);
+        return runFrames(opt);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint: error: %s\n", e.what());
         return kExitSceneError;

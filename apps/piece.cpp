@@ -142,6 +142,9 @@ std::string pixelSettings(const Options& opt, const Scene& scene) {
            " environment=" + orDefault(environment) + " ground=" + orDefault(opt.ground) +
            " camera=" + orDefault(opt.camera) +
            (opt.fovy > 0 ? " fov=" + exactText(opt.fovy) : std::string()) +
+           (opt.seconds()
+                ? " animation=" + orDefault(opt.animation) + " time=" + exactText(*opt.seconds())
+                : std::string()) +
            " lenient=" + (opt.lenient ? "yes" : "no");
 }
 

@@ -61,6 +61,8 @@ std::unique_ptr<Scene> loadCourse(const std::string& path, std::vector<Diagnosti
     CourseOptions course;
     course.limits = options.limits;
     course.lenient = options.lenient;
+    course.time = options.time;
+    course.assets = options.assets;
     return loadCourseScene(path, warnings, course);
 }
 
@@ -71,12 +73,36 @@ Model loadObjModel(const std::string& path, std::vector<Diagnostic>& warnings,
     return singleMeshModel(loadObj(path, warnings, obj));
 }
 
+/// Poses at which an animated model's bounds are taken for framing: evenly spaced over its
+/// animation, both ends included.
+constexpr int kFramingPoses = 9;
+
 Model loadGltfModel(const std::string& path, std::vector<Diagnostic>& warnings,
                     const LoadOptions& options) {
     GltfOptions gltf;
     gltf.limits = options.limits;
     gltf.camera = options.camera;
-    return loadGltf(path, warnings, gltf);
+    // The camera choice is applied while posing: it is part of what is cached.
+    const std::string key = path + '\n' + options.camera.describe();
+    std::shared_ptr<GltfDocument> asset = options.assets ? options.assets->find(key) : nullptr;
+    if (!asset) {
+        asset = openGltf(path, warnings, gltf);
+        if (options.assets) options.assets->add(key, asset);
+    }
+    Model model = asset->pose(options.time, warnings);
+    if (model.animation) {
+        // Framed by the whole animation, whichever frame this is: each frame of a sequence, in
+        // one process or many, gets the same camera and ground.
+        const ModelAnimation& a = asset->animations()[*model.animation];
+        Bounds3f b;
+        for (int i = 0; i < kFramingPoses; ++i) {
+            ModelTime t = options.time;
+            t.seconds = a.start + (a.end - a.start) * i / (kFramingPoses - 1);
+            b.extend(asset->pose(t, warnings).bounds());
+        }
+        model.frameBounds = b;
+    }
+    return model;
 }
 
 /// Loads a model with `format`, and applies the camera choice where its loader has not (a
@@ -163,6 +189,16 @@ FormatChoice cannotRead(const std::string& what, FileUse use) {
 }
 
 }  // namespace
+
+std::shared_ptr<GltfDocument> AssetCache::find(const std::string& key) const {
+    for (const auto& [k, asset] : assets_)
+        if (k == key) return asset;
+    return nullptr;
+}
+
+void AssetCache::add(const std::string& key, std::shared_ptr<GltfDocument> asset) {
+    assets_.emplace_back(key, std::move(asset));
+}
 
 const std::vector<FileFormat>& fileFormats() {
     static const std::vector<FileFormat> formats = {

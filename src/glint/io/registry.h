@@ -28,6 +28,20 @@ enum class FileUse {
     Model,  ///< Meshes to place in a scene (the course's `mesh FILE`).
 };
 
+class GltfDocument;
+
+/// Model files parsed once for a sequence of frames: a glTF asset is posed at each frame's time
+/// (io/gltf/gltf_loader.h). Keyed by path and the options that change what is parsed.
+class AssetCache {
+  public:
+    /// The asset cached for `key`, or null.
+    std::shared_ptr<GltfDocument> find(const std::string& key) const;
+    void add(const std::string& key, std::shared_ptr<GltfDocument> asset);
+
+  private:
+    std::vector<std::pair<std::string, std::shared_ptr<GltfDocument>>> assets_;
+};
+
 /// What every loader may be asked.
 struct LoadOptions {
     LoadLimits limits;
@@ -42,6 +56,11 @@ struct LoadOptions {
     CameraChoice camera;
     /// How a model is shown (frameModelScene): the studio look unless asked otherwise.
     ModelLook look;
+    /// Which animation of a model file (and of the files a scene's `mesh` lines name) to play,
+    /// at what time; by default none.
+    ModelTime time{};
+    /// Where parsed model files are kept for the next frame; null: nowhere.
+    AssetCache* assets = nullptr;
 };
 
 /// A file format Glint knows, whether it reads it or not.

@@ -113,6 +113,14 @@ size_t Model::triangles() const {
     return n;
 }
 
+Bounds3f Model::bounds() const {
+    Bounds3f b;
+    for (const ModelPlacement& p : placements)
+        for (const Vec3f& v : meshes[p.mesh].positions)
+            b.extend(Vec3f(p.worldFromObject.point(Vec3(v))));
+    return b;
+}
+
 Model singleMeshModel(MeshData mesh) {
     Model model;
     model.name = mesh.name;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "glint/core/error.h"
+#include "glint/math/bbox.h"
 #include "glint/math/transform.h"
 #include "glint/scene/camera.h"
 #include "glint/scene/light.h"
@@ -75,6 +76,23 @@ struct CameraChoice {
     std::string describe() const;
 };
 
+/// When a model is posed: which of its file's animations, at what time.
+struct ModelTime {
+    /// The animation: its index (a decimal number) or its name; empty for the first.
+    std::string animation;
+    /// Seconds into the animation; none: no animation is played (the nodes' own transforms).
+    std::optional<double> seconds;
+
+    bool playing() const { return seconds.has_value(); }
+};
+
+/// One of a model file's animations, as listed for the user.
+struct ModelAnimation {
+    std::string name;
+    double start = 0, end = 0;  ///< Seconds: the first and last key of any of its samplers.
+    size_t channels = 0;
+};
+
 /// An extension of its format that a model file uses (glTF's KHR_materials_clearcoat, ...).
 struct FormatExtension {
     std::string name;
@@ -93,8 +111,18 @@ struct Model {
     std::vector<Light> lights;  ///< In the model's space.
     /// The format's extensions the file uses, by name (glTF's; none for other formats).
     std::vector<FormatExtension> extensions;
+    /// The file's animations (glTF's), played or not.
+    std::vector<ModelAnimation> animations;
+    /// What was played: "animation 0 'Walk' at 1.25 s"; empty when none was.
+    std::string posed;
+    std::optional<size_t> animation;  ///< The index of the animation played.
+    /// Bounds to frame the model by (frameModelScene) in place of its own: those of the whole
+    /// animation played, so that every frame of a sequence is framed alike.
+    std::optional<Bounds3f> frameBounds;
 
     size_t triangles() const;  ///< Triangles placed by all placements together.
+    /// The bounds of the vertices of every placed mesh, placed; empty for none.
+    Bounds3f bounds() const;
 };
 
 /// The model of one mesh placed once, as it is (an OBJ file); it takes the mesh's name.

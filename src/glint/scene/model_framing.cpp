@@ -44,8 +44,10 @@ struct Extent {
     double groundY() const { return lo.y - 1e-3 * radius; }
 };
 
-Extent extentOf(const Scene& scene, const std::string& name) {
-    Bounds3f b = scene.primitives.bounds();
+/// The extent of the model placed in `scene`, or of `frame` (Model::frameBounds) when set.
+Extent extentOf(const Scene& scene, const std::string& name,
+                const std::optional<Bounds3f>& frame = std::nullopt) {
+    Bounds3f b = frame && !frame->empty() ? *frame : scene.primitives.bounds();
     if (b.empty()) throw SceneError({name, 0, 0}, "the model has no faces of non-zero area");
     Extent e{Vec3(b.lo), Vec3(b.hi), {}, 0};
     e.center = (e.lo + e.hi) * 0.5;
@@ -88,7 +90,7 @@ void addKeyAndFill(Scene& scene) {
 }  // namespace
 
 std::string frameModel(Scene& scene, const std::string& name, Framing framing) {
-    const Extent e = extentOf(scene, name);
+    const Extent e = extentOf(scene, name, framing.bounds);
     std::string camera, lights, floor;
     if (framing.camera) {
         camera = placeCamera(scene, e);
@@ -171,7 +173,7 @@ ModelScene classicScene(const Model& model, int width, int height, const ModelLo
     Scene& scene = *placed.scene;
     const std::string& path = model.name;
     Framing framing{!model.camera, model.lights.empty(),
-                    look.groundOrDefault() != ModelGround::None};
+                    look.groundOrDefault() != ModelGround::None, model.frameBounds};
     ModelScene out;
     if (!framing.camera && !framing.lights) {
         extentOf(scene, path);  // throws for a model of nothing visible
@@ -199,7 +201,7 @@ ModelScene studioScene(const Model& model, int width, int height, const ModelLoo
     Placed placed = placeWithItsOwn(model, width, height);
     Scene& scene = *placed.scene;
     const std::string& path = model.name;
-    const Extent e = extentOf(scene, path);
+    const Extent e = extentOf(scene, path, model.frameBounds);
     scene.integrator = "path";
     scene.spp = kStudioSpp;
     scene.maxDepth = kStudioMaxDepth;
@@ -249,6 +251,16 @@ ModelScene frameModelScene(const Model& model, int width, int height, const Mode
                                  : classicScene(model, width, height, look);
     out.framed = true;
     out.extensions = model.extensions;
+    if (!model.posed.empty()) {
+        out.note += (out.note.empty() ? model.name + ": " : "; ") + "posed by " + model.posed +
+                    ", framed for the whole animation";
+    } else if (!model.animations.empty()) {
+        const size_t n = model.animations.size();
+        out.note += (out.note.empty() ? model.name + ": " : "; ") + "it has " + std::to_string(n) +
+                    (n == 1 ? " animation" : " animations") +
+                    ", not played (--frame N or --time-at SECONDS plays " +
+                    (n == 1 ? "it" : "one, --animation chooses which") + ")";
+    }
     return out;
 }
 

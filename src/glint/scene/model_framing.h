@@ -73,6 +73,8 @@ struct Framing {
     bool camera = true;  ///< A camera and a sky (and the floor, if `floor`).
     bool lights = true;  ///< A key and a fill light.
     bool floor = true;   ///< With the camera: a grey floor under the model.
+    /// Bounds to frame by in place of the scene's (Model::frameBounds).
+    std::optional<Bounds3f> bounds;
 };
 
 /// Adds to `scene`, which holds a model's geometry, what a bare model lacks in the classic look,

@@ -9,6 +9,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/input_file.h"
+#include "glint/scene/model.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
@@ -20,6 +21,10 @@ struct CourseOptions {
     /// popTransform without a pushTransform is ignored, each with a warning (one per command
     /// name, with a count), instead of being an error.
     bool lenient = false;
+    /// The animation its `mesh` files play, at what time (LoadOptions::time); and where they
+    /// are kept for the next frame (null: nowhere).
+    ModelTime time{};
+    class AssetCache* assets = nullptr;
 };
 
 /// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error, or if

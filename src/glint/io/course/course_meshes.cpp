@@ -30,6 +30,8 @@ void Parser::cmdMesh() {
         // Errors inside the mesh file name that file (and its line and column for OBJ).
         LoadOptions options;
         options.limits = limits_;
+        options.time = time_;
+        options.assets = assets_;
         it = models_.emplace(path, format.format->loadModel(path, warnings_, options)).first;
     }
     // Placed when the file ends (SceneBuilder::finish), so that a mesh placed several times is

@@ -55,7 +55,9 @@ class Parser {
           file_(file),
           warnings_(warnings),
           limits_(options.limits),
-          lenient_(options.lenient) {}
+          lenient_(options.lenient),
+          time_(options.time),
+          assets_(options.assets) {}
 
     std::unique_ptr<Scene> run();
     static const std::vector<Command>& commands();
@@ -190,6 +192,8 @@ class Parser {
     std::vector<Diagnostic>& warnings_;
     LoadLimits limits_;
     bool lenient_;
+    ModelTime time_;            ///< Of the files `mesh` names.
+    class AssetCache* assets_;  ///< Where they are kept; may be null.
     SceneBuilder builder_;
 
     int line_ = 0;

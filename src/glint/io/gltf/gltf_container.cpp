@@ -330,8 +330,6 @@ void checkAsset(Context& ctx) {
     if (!version.starts_with("2."))
         ctx.fail("glTF version '" + version + "' is not supported (Glint reads 2.0)");
     checkRequiredExtensions(ctx, ctx.model.extensionsRequired);
-    if (!ctx.model.animations.empty())
-        ctx.warnOnce("animations", "animations are not supported: nodes keep their own transforms");
 }
 
 }  // namespace glint::gltf

@@ -31,6 +31,14 @@ static_assert(std::endian::native == std::endian::little,
 
 struct Compression;  // gltf_compression.cpp
 
+/// The values an animation gives one node at the time posed (gltf_animations.cpp): each
+/// replaces the node's own.
+struct AnimatedNode {
+    std::optional<std::array<double, 3>> translation, scale;
+    std::optional<std::array<double, 4>> rotation;  ///< A unit quaternion x, y, z, w.
+    std::optional<std::vector<double>> weights;     ///< Morph target weights.
+};
+
 /// What loading one asset shares: the file, tinygltf's model of it, and the warnings.
 struct Context {
     Context(const std::string& file, std::vector<Diagnostic>& warnings, const GltfOptions& options);
@@ -44,6 +52,8 @@ struct Context {
     /// What the compression extensions need (gltf_compression.cpp): null when the file uses
     /// none. Its decoded data is made when first asked for, through a const Context too.
     std::shared_ptr<Compression> compression;
+    /// By node, what the animation played gives it; empty when none is played.
+    std::vector<AnimatedNode> animated;
 
     /// Throws SceneError naming the file.
     [[noreturn]] void fail(const std::string& message) const;
@@ -181,9 +191,35 @@ MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& m
 std::vector<Mat4> readMatrices(const Context& ctx, int index, size_t count,
                                const std::string& user);
 
-/// A node's transform relative to its parent: its matrix, or translation x rotation x scale.
+/// Node `node`'s transform relative to its parent: its matrix, or translation x rotation x
+/// scale, each as the animation played gives it (ctx.animated) or as the node holds it.
 /// `label` names the node in messages.
-Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label);
+Mat4 localMatrix(const Context& ctx, size_t node, const std::string& label);
+
+/// The elements of an accessor as floats, normalised integers mapped to [0, 1] or [-1, 1].
+struct FloatElements {
+    std::vector<float> values;  ///< count x components
+    size_t count = 0, components = 0;
+    std::string label;  ///< "accessor 7 (input of animation 0, sampler 2)"
+};
+
+/// Reads accessor `index` (`user` refers to it, for messages), which must hold floats, or
+/// normalised integers when `normalised` (animation outputs of rotations and weights may).
+/// Every value must be finite.
+FloatElements readFloats(const Context& ctx, int index, const std::string& user, bool normalised);
+
+// Animations (gltf_animations.cpp).
+
+/// The file's animations, for the user: names, channel counts and the range of their key
+/// times (from the input accessors' min and max, which glTF requires; nothing is read).
+std::vector<ModelAnimation> listAnimations(const Context& ctx);
+
+/// Plays the animation `time` chooses at its time into ctx.animated; returns its index, and
+/// says what was played in `played` ("animation 0 'Walk' at 1.25 s"). A file without
+/// animations stays still (none is returned) unless one is named. Throws SceneError, naming the
+/// animation and its sampler or channel, for data that cannot be played: a missing animation (the
+/// message lists them), key times not increasing, counts that disagree, values not finite.
+std::optional<size_t> playAnimation(Context& ctx, const ModelTime& time, std::string& played);
 
 /// A node placing a mesh with a skin: its placement is posed by the skin (gltf_skins.cpp).
 struct SkinnedPlacement {

@@ -13,6 +13,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <system_error>
 
 #include "glint/core/mapped_file.h"
@@ -91,7 +92,9 @@ Vec3 applyVector(const Mat4& m, const Vec3& v) {
 
 }  // namespace
 
-Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string& label) {
+Mat4 localMatrix(const Context& ctx, size_t node, const std::string& label) {
+    const tinygltf::Node& n = ctx.model.nodes[node];
+    const AnimatedNode* animated = node < ctx.animated.size() ? &ctx.animated[node] : nullptr;
     auto numbers = [&](const std::vector<double>& v, size_t count, const char* what) {
         if (v.empty()) return false;
         if (v.size() != count)
@@ -102,6 +105,7 @@ Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string&
         return true;
     };
     Mat4 m;
+    // An animated node has no matrix (glTF 2.0, "Animations"); playAnimation refuses one.
     if (numbers(n.matrix, 16, "matrix")) {
         for (int c = 0; c < 4; ++c)  // glTF stores matrices column by column
             for (int r = 0; r < 4; ++r) m.m[r][c] = n.matrix[static_cast<size_t>(c * 4 + r)];
@@ -118,6 +122,11 @@ Mat4 localMatrix(const Context& ctx, const tinygltf::Node& n, const std::string&
         if (!(len > 0) || !std::isfinite(len))
             ctx.fail(label + ": its rotation must be a non-zero quaternion");
         for (int i = 0; i < 4; ++i) q[i] = n.rotation[static_cast<size_t>(i)] / len;
+    }
+    if (animated) {
+        if (animated->translation) std::copy_n(animated->translation->begin(), 3, t);
+        if (animated->scale) std::copy_n(animated->scale->begin(), 3, s);
+        if (animated->rotation) std::copy_n(animated->rotation->begin(), 4, q);
     }
     const double x = q[0], y = q[1], z = q[2], w = q[3];
     const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
@@ -315,7 +324,7 @@ void walkNodes(Context& ctx, Model& out, std::vector<SkinnedPlacement>& skinned)
                      " is reached twice: glTF nodes form trees (no node has two parents "
                      "or is its own ancestor)");
         visited[index] = true;
-        const Mat4 world = p.parent * localMatrix(ctx, n, label);
+        const Mat4 world = p.parent * localMatrix(ctx, index, label);
 
         if (n.mesh != -1) {
             if (n.mesh < 0 || static_cast<size_t>(n.mesh) >= ctx.model.meshes.size())
@@ -371,7 +380,7 @@ void walkNodes(Context& ctx, Model& out, std::vector<SkinnedPlacement>& skinned)
 /// need of memory; the meshes that skinned placements use with the joints and weights of
 /// their vertices, into `weights` (by mesh).
 void readMeshes(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& skinned,
-                std::vector<VertexWeights>& weights) {
+                Materials& materials, std::vector<VertexWeights>& weights) {
     const size_t meshes = ctx.model.meshes.size();
     out.meshes.resize(meshes);
     std::vector<std::optional<MeshCounts>> counts(meshes);
@@ -426,7 +435,6 @@ void readMeshes(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& s
                  std::to_string(static_cast<unsigned long long>(placed)) +
                  " triangles stored), more than the " + formatBytes(double(available)) +
                  " available");
-    Materials materials(ctx);
     weights.resize(meshes);
     for (size_t i = 0; i < meshes; ++i)
         if (counts[i])
@@ -437,33 +445,91 @@ void readMeshes(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& s
 }  // namespace
 }  // namespace gltf
 
-Model parseGltf(std::string_view bytes, const std::string& fileName,
-                std::vector<Diagnostic>& warnings, const GltfOptions& options) {
-    gltf::Context ctx(fileName, warnings, options);
-    gltf::parseContainer(ctx, bytes);
-    gltf::checkAsset(ctx);
+/// The parsed file, its images as decoded so far, and the warnings given.
+struct GltfDocument::Impl {
+    Impl(const std::string& fileName, const GltfOptions& options_)
+        : file(fileName), options(options_), ctx(file, warnings, options), materials(ctx) {}
+
+    /// Moves the warnings given since the last call into `out`, each message once per asset.
+    void report(std::vector<Diagnostic>& out) {
+        for (Diagnostic& d : warnings)
+            if (reported.insert(d.message).second) out.push_back(std::move(d));
+        warnings.clear();
+    }
+
+    std::string file;
+    GltfOptions options;
+    std::vector<Diagnostic> warnings;
+    gltf::Context ctx;
+    gltf::Materials materials;
+    std::vector<FormatExtension> extensions;
+    std::vector<ModelAnimation> animations;
+    std::set<std::string> reported;
+};
+
+GltfDocument::GltfDocument(std::string_view bytes, const std::string& fileName,
+                     std::vector<Diagnostic>& warnings, const GltfOptions& options)
+    : impl_(std::make_unique<Impl>(fileName, options)) {
+    try {
+        gltf::parseContainer(impl_->ctx, bytes);
+        gltf::checkAsset(impl_->ctx);
+        impl_->extensions = gltf::reportExtensions(impl_->ctx);
+        impl_->animations = gltf::listAnimations(impl_->ctx);
+    } catch (...) {
+        impl_->report(warnings);
+        throw;
+    }
+    impl_->report(warnings);
+}
+
+GltfDocument::~GltfDocument() = default;
+
+const std::vector<ModelAnimation>& GltfDocument::animations() const { return impl_->animations; }
+
+Model GltfDocument::pose(const ModelTime& time, std::vector<Diagnostic>& warnings) {
+    gltf::Context& ctx = impl_->ctx;
     Model out;
-    out.name = fileName;
-    out.extensions = gltf::reportExtensions(ctx);
-    std::vector<gltf::SkinnedPlacement> skinned;
-    gltf::walkNodes(ctx, out, skinned);
-    std::vector<gltf::VertexWeights> weights;
-    gltf::readMeshes(ctx, out, skinned, weights);
-    if (!skinned.empty()) gltf::poseSkins(ctx, out, skinned, weights);
+    try {
+        out.name = impl_->file;
+        out.extensions = impl_->extensions;
+        out.animations = impl_->animations;
+        ctx.animated.clear();
+        if (time.playing()) out.animation = gltf::playAnimation(ctx, time, out.posed);
+        std::vector<gltf::SkinnedPlacement> skinned;
+        gltf::walkNodes(ctx, out, skinned);
+        std::vector<gltf::VertexWeights> weights;
+        gltf::readMeshes(ctx, out, skinned, impl_->materials, weights);
+        if (!skinned.empty()) gltf::poseSkins(ctx, out, skinned, weights);
+    } catch (...) {
+        impl_->report(warnings);
+        throw;
+    }
+    impl_->report(warnings);
     return out;
 }
 
-Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
-               const GltfOptions& options) {
+Model parseGltf(std::string_view bytes, const std::string& fileName,
+                std::vector<Diagnostic>& warnings, const GltfOptions& options) {
+    GltfDocument asset(bytes, fileName, warnings, options);
+    return asset.pose(options.time, warnings);
+}
+
+std::shared_ptr<GltfDocument> openGltf(const std::string& path, std::vector<Diagnostic>& warnings,
+                                    const GltfOptions& options) {
     if (std::string problem = inputFileProblem(path); !problem.empty())
         throw SceneError({path, 0, 0}, "cannot read glTF: " + problem);
     try {
         MappedFile file(path);
-        return parseGltf(file.text(), path, warnings, options);
+        return std::make_shared<GltfDocument>(file.text(), path, warnings, options);
     } catch (const std::system_error& e) {
         throw SceneError({path, 0, 0},
                          std::string("cannot read glTF: ") + std::strerror(e.code().value()));
     }
+}
+
+Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
+               const GltfOptions& options) {
+    return openGltf(path, warnings, options)->pose(options.time, warnings);
 }
 
 }  // namespace glint

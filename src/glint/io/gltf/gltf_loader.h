@@ -8,6 +8,7 @@
 /// place it (Model::meshes is indexed like the file's meshes; a mesh posed by a skin and used
 /// otherwise too is posed in a copy appended after them).
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,6 +32,8 @@ struct GltfOptions {
     /// CPU seconds libdraco may take for the file's Draco meshes together, beyond 20 us per
     /// index decoded: corrupt Draco data can make it spin (docs/robustness.md).
     double dracoSeconds = 2;
+    /// Which animation to play, at what time (parseGltf, loadGltf); by default none.
+    ModelTime time{};
 };
 
 /// Glint's light colour for a glTF light of `intensity` (candela for point lights, lux for
@@ -45,7 +48,33 @@ constexpr double kGltfLightScale = 0.31830988618379067;  // 1 / pi
 Model parseGltf(std::string_view bytes, const std::string& fileName,
                 std::vector<Diagnostic>& warnings, const GltfOptions& options = {});
 
-/// Reads and parses the glTF file at `path`.
+/// A glTF asset parsed once and posed at any time of its animations: a sequence of frames
+/// reads the file once and decodes each image once (the meshes are read again at each pose).
+class GltfDocument {
+  public:
+    /// Parses `bytes` as parseGltf does, and checks it; nothing is posed yet.
+    GltfDocument(std::string_view bytes, const std::string& fileName,
+              std::vector<Diagnostic>& warnings, const GltfOptions& options = {});
+    ~GltfDocument();
+    GltfDocument(const GltfDocument&) = delete;
+    GltfDocument& operator=(const GltfDocument&) = delete;
+
+    /// The file's animations.
+    const std::vector<ModelAnimation>& animations() const;
+    /// The model at `time` (options.time is not used here), with the options' camera choice.
+    /// Appends the warnings not given before by this asset; throws SceneError as parseGltf.
+    Model pose(const ModelTime& time, std::vector<Diagnostic>& warnings);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Reads the glTF file at `path` and parses it into an asset to pose.
+std::shared_ptr<GltfDocument> openGltf(const std::string& path, std::vector<Diagnostic>& warnings,
+                                    const GltfOptions& options = {});
+
+/// Reads and parses the glTF file at `path`, posed at options.time.
 Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
                const GltfOptions& options = {});
 

@@ -695,4 +695,28 @@ std::vector<Mat4> readMatrices(const Context& ctx, int index, size_t count,
     return out;
 }
 
+FloatElements readFloats(const Context& ctx, int index, const std::string& user, bool normalised) {
+    AccessorView v = viewAccessor(ctx, index, user);
+    if (normalised)
+        expectFloats(ctx, v,
+                     {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                      TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                     "floats, or normalised bytes or shorts");
+    else
+        expectFloats(ctx, v, {}, "floats");
+    FloatElements out;
+    out.count = v.count;
+    out.components = static_cast<size_t>(v.components);
+    out.label = v.label;
+    out.values.resize(out.count * out.components);
+    forEachElement(ctx, v, [&](size_t i, const float* c) {
+        std::copy_n(c, out.components, out.values.data() + i * out.components);
+    });
+    for (size_t i = 0; i < out.values.size(); ++i)
+        if (!std::isfinite(out.values[i]))
+            ctx.fail(v.label + ": element " + std::to_string(i / out.components) +
+                     " is not finite");
+    return out;
+}
+
 }  // namespace glint::gltf

@@ -51,8 +51,7 @@ class NodeWorlds {
         }
         for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
             const int p = parent_[*it];
-            const Mat4 local =
-                localMatrix(ctx_, nodes[*it], describe("node", *it, nodes[*it].name));
+            const Mat4 local = localMatrix(ctx_, *it, describe("node", *it, nodes[*it].name));
             world_[*it] = p == kRoot ? local : *world_[static_cast<size_t>(p)] * local;
         }
         return *world_[node];
