@@ -178,13 +178,21 @@ struct VertexWeights {
     std::vector<Vertex> vertices;
 };
 
+/// The number of morph targets of glTF mesh `mesh` (in range), checked: every primitive has as
+/// many, and the mesh's `weights`, when present, has one finite number per target.
+size_t morphTargetCount(const Context& ctx, int mesh);
+
 /// Reads glTF mesh `mesh` (checked by countMesh) into a MeshData: its primitives' triangles,
 /// with positions, normals, texture coordinates (both sets), colours and tangents (generated,
 /// MikkTSpace-compatibly, for primitives whose material has a normal map and that have no
 /// TANGENT), and their materials through `materials`. `counts` (from countMesh) reserves the
 /// storage. With `weights`, also reads the joints and weights of its vertices for skinning.
+/// Positions, normals and tangents are morphed by its morph targets with `morphWeights` (one
+/// finite weight per target, as morphTargetCount() counts them); null: the mesh's own
+/// `weights`, or zeros (its base shape) when it has none.
 MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials,
-                  VertexWeights* weights = nullptr);
+                  VertexWeights* weights = nullptr,
+                  const std::vector<double>* morphWeights = nullptr);
 
 /// The matrices (MAT4, column-major in the file) of accessor `index`, at least `count` of them;
 /// `user` names who refers to it, for messages.

@@ -1,7 +1,8 @@
 // glTF meshes as MeshData: accessors checked against their buffer views and buffers before a
 // byte is read, converted to float (normalised integers included), sparse accessors applied,
-// and each mesh's primitives gathered into one MeshData, with tangents generated where a normal
-// map needs them. Also the joints and weights of skinned vertices and the skins' matrices.
+// and each mesh's primitives gathered into one MeshData, morphed by its morph targets, with
+// tangents generated where a normal map needs them. Also the joints and weights of skinned
+// vertices and the skins' matrices.
 
 #include <algorithm>
 #include <array>
@@ -327,9 +328,16 @@ void expectFloats(const Context& ctx, const AccessorView& v, std::initializer_li
     ctx.fail(v.label + ": its components must be " + what);
 }
 
+/// The checked accessors of one morph target of a primitive: displacements (VEC3, one per
+/// vertex) of its POSITION, NORMAL and TANGENT; index -1 for those the target does not move.
+struct TargetViews {
+    AccessorView position, normal, tangent;
+};
+
 /// The checked accessors of a primitive.
 struct PrimitiveViews {
     AccessorView position, normal, uv, uv1, color, tangent, indices;
+    std::vector<TargetViews> targets;             ///< Its morph targets, in order.
     std::array<AccessorView, 2> joints, weights;  ///< JOINTS_n and WEIGHTS_n (skins only).
     bool hasNormal = false, hasUv = false, hasUv1 = false, hasColor = false, hasTangent = false;
     bool hasIndices = false;
@@ -389,6 +397,32 @@ bool viewPrimitive(Context& ctx, int mesh, size_t k, bool report, PrimitiveViews
         expectFloats(ctx, v, {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT},
                      "floats, or normalised bytes or shorts");
     });
+    // Morph targets (the glTF specification, 3.7.2.2): POSITION, NORMAL and TANGENT move;
+    // other attributes are not morphed.
+    out.targets.assign(p.targets.size(), {});
+    for (size_t t = 0; t < p.targets.size(); ++t)
+        for (const auto& [name, index] : p.targets[t]) {
+            TargetViews& target = out.targets[t];
+            AccessorView* view = name == "POSITION"  ? &target.position
+                                 : name == "NORMAL"  ? &target.normal
+                                 : name == "TANGENT" ? &target.tangent
+                                                     : nullptr;
+            if (!view) {
+                if (report)
+                    ctx.warnOnce("morph attributes", label + ": morph target attribute " + name +
+                                                         " is ignored: only POSITION, NORMAL and "
+                                                         "TANGENT are morphed");
+                continue;
+            }
+            *view = viewAccessor(ctx, index,
+                                 name + " of morph target " + std::to_string(t) + " of " + label);
+            expectComponents(ctx, *view, 3, TINYGLTF_TYPE_VEC3);
+            expectFloats(ctx, *view, {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT},
+                         "floats, or normalised bytes or shorts");
+            if (view->count != vertices)
+                ctx.fail(view->label + ": it has " + std::to_string(view->count) +
+                         " elements, but POSITION has " + std::to_string(vertices));
+        }
     for (int set = 0; skin && set < 2; ++set) {
         const std::string suffix = set == 0 ? "_0" : "_1";
         const size_t s = static_cast<size_t>(set);
@@ -427,8 +461,43 @@ bool viewPrimitive(Context& ctx, int mesh, size_t k, bool report, PrimitiveViews
     return out.triangles > 0;
 }
 
-/// Appends the positions of accessor `v` to `out`; returns the index of the first.
-uint32_t appendPositions(const Context& ctx, const AccessorView& v, MeshData& out) {
+/// The displacements of one attribute of a primitive's vertices by its morph targets: each
+/// target's accessor (checked by viewPrimitive) with its weight, none of weight 0.
+using Displacements = std::vector<std::pair<const AccessorView*, double>>;
+
+/// The displacements of the attribute `which` picks by the morph targets of `v` with `weights`
+/// (one per target).
+Displacements displacementsOf(const PrimitiveViews& v, AccessorView TargetViews::*which,
+                              const std::vector<double>& weights) {
+    Displacements out;
+    for (size_t t = 0; t < v.targets.size(); ++t) {
+        const AccessorView& view = v.targets[t].*which;
+        if (weights[t] != 0 && view.index >= 0) out.push_back({&view, weights[t]});
+    }
+    return out;
+}
+
+/// Calls `add(i, w d)` for each vertex i and each displacement d, of weight w, of `moves`: the
+/// glTF specification's morphing, base + sum of w_i d_i. Displacements must be finite.
+template <typename F>
+void displace(const Context& ctx, const Displacements& moves, F add) {
+    std::vector<Vec3f> d;  // one target's displacements, sparse values applied
+    for (const auto& [v, weight] : moves) {
+        d.resize(v->count);
+        forEachElement(ctx, *v, [&](size_t i, const float* c) { d[i] = {c[0], c[1], c[2]}; });
+        for (size_t i = 0; i < v->count; ++i) {
+            if (!isFinite(d[i]))
+                ctx.fail(v->label + ": element " + std::to_string(i) +
+                         " is not a finite displacement");
+            add(i, weight * Vec3(d[i]));
+        }
+    }
+}
+
+/// Appends the positions of accessor `v` to `out`, moved by `moves`; returns the index of the
+/// first.
+uint32_t appendPositions(const Context& ctx, const AccessorView& v, MeshData& out,
+                         const Displacements& moves) {
     const size_t first = out.positions.size();
     if (first + v.count >= MeshData::kNone)
         ctx.fail(v.label + ": the mesh has more than 4 billion vertices");
@@ -438,19 +507,31 @@ uint32_t appendPositions(const Context& ctx, const AccessorView& v, MeshData& ou
     for (size_t i = 0; i < v.count; ++i)
         if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
             ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite position");
+    if (moves.empty()) return static_cast<uint32_t>(first);
+    displace(ctx, moves, [&](size_t i, const Vec3& d) { p[i] = Vec3f(Vec3(p[i]) + d); });
+    for (size_t i = 0; i < v.count; ++i)
+        if (!isFinite(p[i]))
+            ctx.fail(v.label + ": element " + std::to_string(i) +
+                     " is not a finite position once morphed");
     return static_cast<uint32_t>(first);
 }
 
-/// The same for normals, normalised (zero stays zero).
-uint32_t appendNormals(const Context& ctx, const AccessorView& v, MeshData& out) {
+/// The same for normals, normalised after they are moved (zero stays zero).
+uint32_t appendNormals(const Context& ctx, const AccessorView& v, MeshData& out,
+                       const Displacements& moves) {
     const size_t first = out.normals.size();
     out.normals.resize(first + v.count);
     Vec3f* p = out.normals.data() + first;
     forEachElement(ctx, v, [&](size_t i, const float* c) { p[i] = {c[0], c[1], c[2]}; });
+    for (size_t i = 0; i < v.count; ++i)
+        if (!isFinite(p[i]))
+            ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite normal");
+    displace(ctx, moves, [&](size_t i, const Vec3& d) { p[i] = Vec3f(Vec3(p[i]) + d); });
     for (size_t i = 0; i < v.count; ++i) {
         Vec3 n(p[i]);
         if (!isFinite(n))
-            ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite normal");
+            ctx.fail(v.label + ": element " + std::to_string(i) +
+                     " is not a finite normal once morphed");
         double len = length(n);
         p[i] = Vec3f(len > 0 ? n / len : Vec3(0));
     }
@@ -490,16 +571,26 @@ uint32_t appendColors(const Context& ctx, const AccessorView& v, MeshData& out) 
     return static_cast<uint32_t>(first);
 }
 
-/// The same for tangents: xyz normalised (zero stays zero), w the sign of the file's w.
-uint32_t appendTangents(const Context& ctx, const AccessorView& v, MeshData& out) {
+/// The same for tangents: xyz moved (w is not), then normalised (zero stays zero); w the sign
+/// of the file's w.
+uint32_t appendTangents(const Context& ctx, const AccessorView& v, MeshData& out,
+                        const Displacements& moves) {
     const size_t first = out.tangents.size();
     out.tangents.resize(first + v.count);
     std::array<float, 4>* p = out.tangents.data() + first;
     forEachElement(ctx, v, [&](size_t i, const float* c) { p[i] = {c[0], c[1], c[2], c[3]}; });
+    for (size_t i = 0; i < v.count; ++i)
+        if (!isFinite(Vec3(p[i][0], p[i][1], p[i][2])) || !std::isfinite(p[i][3]))
+            ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite tangent");
+    displace(ctx, moves, [&](size_t i, const Vec3& d) {
+        Vec3 t = Vec3(p[i][0], p[i][1], p[i][2]) + d;
+        p[i] = {float(t.x), float(t.y), float(t.z), p[i][3]};
+    });
     for (size_t i = 0; i < v.count; ++i) {
         Vec3 t(p[i][0], p[i][1], p[i][2]);
-        if (!isFinite(t) || !std::isfinite(p[i][3]))
-            ctx.fail(v.label + ": element " + std::to_string(i) + " is not a finite tangent");
+        if (!isFinite(t))
+            ctx.fail(v.label + ": element " + std::to_string(i) +
+                     " is not a finite tangent once morphed");
         double len = length(t);
         t = len > 0 ? t / len : Vec3(0);
         p[i] = {float(t.x), float(t.y), float(t.z), p[i][3] < 0 ? -1.0f : 1.0f};
@@ -546,10 +637,9 @@ MeshCounts countMesh(Context& ctx, int mesh) {
     auto count = [](std::set<int>& seen, const AccessorView& view, size_t& n) {
         if (seen.insert(view.index).second) n += view.count;
     };
+    morphTargetCount(ctx, mesh);
     for (size_t k = 0; k < m.primitives.size(); ++k) {
         PrimitiveViews v;
-        if (!m.primitives[k].targets.empty())
-            ctx.warnOnce("morph", "morph targets are not supported: meshes keep their base shape");
         if (!viewPrimitive(ctx, mesh, k, true, v)) continue;
         count(positions, v.position, c.positions);
         if (v.hasNormal) count(normals, v.normal, c.normals);
@@ -570,9 +660,49 @@ MeshCounts countMesh(Context& ctx, int mesh) {
     return c;
 }
 
-MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials,
-                  VertexWeights* weights) {
+size_t morphTargetCount(const Context& ctx, int mesh) {
     const tinygltf::Mesh& m = ctx.model.meshes[static_cast<size_t>(mesh)];
+    const std::string label = describe("mesh", static_cast<size_t>(mesh), m.name);
+    auto targets = [](size_t n) {
+        return std::to_string(n) + (n == 1 ? " morph target" : " morph targets");
+    };
+    const size_t n = m.primitives.empty() ? 0 : m.primitives[0].targets.size();
+    for (size_t k = 1; k < m.primitives.size(); ++k)
+        if (m.primitives[k].targets.size() != n)
+            ctx.fail(primitiveLabel(ctx, mesh, k) + ": it has " +
+                     targets(m.primitives[k].targets.size()) + ", but primitive 0 has " +
+                     std::to_string(n) + " (every primitive of a mesh must have as many)");
+    if (!m.weights.empty()) {
+        if (m.weights.size() != n)
+            ctx.fail(label + ": it has " + std::to_string(m.weights.size()) + " weights, but " +
+                     targets(n) + " (one weight per target)");
+        for (size_t i = 0; i < n; ++i)
+            if (!std::isfinite(m.weights[i]))
+                ctx.fail(label + ": weight " + std::to_string(i) + " is not a finite number");
+    }
+    return n;
+}
+
+MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& materials,
+                  VertexWeights* weights, const std::vector<double>* morphWeights) {
+    const tinygltf::Mesh& m = ctx.model.meshes[static_cast<size_t>(mesh)];
+    // The weights of its morph targets: given, the mesh's own, or zeros (the base shape).
+    const size_t targets = morphTargetCount(ctx, mesh);
+    std::vector<double> morph(targets, 0.0);
+    if (morphWeights) {
+        const std::string label = describe("mesh", static_cast<size_t>(mesh), m.name);
+        if (morphWeights->size() != targets)
+            ctx.fail(label + ": " + std::to_string(morphWeights->size()) +
+                     " morph target weights are given for its " + std::to_string(targets) +
+                     (targets == 1 ? " morph target" : " morph targets"));
+        for (size_t i = 0; i < targets; ++i)
+            if (!std::isfinite((*morphWeights)[i]))
+                ctx.fail(label + ": morph target weight " + std::to_string(i) +
+                         " is not a finite number");
+        morph = *morphWeights;
+    } else if (!m.weights.empty()) {
+        morph = m.weights;  // checked by morphTargetCount
+    }
     MeshData out;
     out.name = ctx.file;
     out.positions.reserve(counts.positions);
@@ -601,14 +731,27 @@ MeshData readMesh(Context& ctx, int mesh, const MeshCounts& counts, Materials& m
         PrimitiveViews v;
         if (!viewPrimitive(ctx, mesh, k, false, v, weights != nullptr))
             continue;  // countMesh has warned
+        // Positions, normals and tangents are morphed where they are appended: by the targets
+        // of the first primitive that uses their accessors.
+        auto morphed = [&](auto append, AccessorView TargetViews::*which) {
+            return
+                [&v, &morph, append, which](const Context& c, const AccessorView& a, MeshData& o) {
+                    return append(c, a, o, displacementsOf(v, which, morph));
+                };
+        };
         const bool newPositions = !positionBase.contains(v.position.index);
-        const uint32_t pBase = base(positionBase, v.position, appendPositions);
+        const uint32_t pBase =
+            base(positionBase, v.position, morphed(appendPositions, &TargetViews::position));
         if (weights && newPositions) readWeights(ctx, v, pBase, *weights);
-        const uint32_t nBase = v.hasNormal ? base(normalBase, v.normal, appendNormals) : 0;
+        const uint32_t nBase =
+            v.hasNormal ? base(normalBase, v.normal, morphed(appendNormals, &TargetViews::normal))
+                        : 0;
         const uint32_t uBase = v.hasUv ? base(uvBase, v.uv, appendUv0) : 0;
         const uint32_t u1Base = v.hasUv1 ? base(uv1Base, v.uv1, appendUv1) : 0;
         const uint32_t cBase = v.hasColor ? base(colorBase, v.color, appendColors) : 0;
-        const uint32_t tBase = v.hasTangent ? base(tangentBase, v.tangent, appendTangents) : 0;
+        const uint32_t tBase = v.hasTangent ? base(tangentBase, v.tangent,
+                                                   morphed(appendTangents, &TargetViews::tangent))
+                                            : 0;
         uint32_t material = MeshData::kNone;
         if (p.material >= 0) {
             auto [it, added] = materialIds.emplace(p.material, 0);

@@ -42,6 +42,30 @@ class GltfAsset {
         return add(bytes.data(), values.size(), size, componentType, type, normalized);
     }
 
+    /// A sparse accessor of `count` float elements of `type`: zeros (or `dense`, when given)
+    /// but for the elements at `indices`, which take `values`. Returns its index.
+    int sparseFloats(size_t count, const char* type, const std::vector<int>& indices,
+                     const std::vector<float>& values, const std::vector<float>& dense = {}) {
+        std::string a = "{";
+        if (!dense.empty())
+            a += R"("bufferView": )" +
+                 std::to_string(view(dense.data(), dense.size() * sizeof(float))) + ", ";
+        std::string packed;
+        for (int i : indices) {
+            uint32_t u = static_cast<uint32_t>(i);
+            packed.append(reinterpret_cast<const char*>(&u), 4);  // little-endian
+        }
+        const size_t indexView = view(packed.data(), packed.size());
+        const size_t valueView = view(values.data(), values.size() * sizeof(float));
+        a += R"("componentType": )" + std::to_string(kFloat) + R"(, "count": )" +
+             std::to_string(count) + R"(, "type": ")" + type + R"(", "sparse": {"count": )" +
+             std::to_string(indices.size()) + R"(, "indices": {"bufferView": )" +
+             std::to_string(indexView) + R"(, "componentType": )" + std::to_string(kUint) +
+             R"(}, "values": {"bufferView": )" + std::to_string(valueView) + "}}}";
+        accessors_.push_back(a);
+        return static_cast<int>(accessors_.size() - 1);
+    }
+
     /// The asset as JSON text: `body` (members of the top-level object after "asset",
     /// "buffers", "bufferViews" and "accessors", e.g. R"("meshes": [...], "nodes": [...])").
     std::string text(const std::string& body) const {
@@ -67,14 +91,19 @@ class GltfAsset {
         return 16;
     }
 
-    int add(const void* data, size_t values, size_t size, int componentType, const char* type,
-            bool normalized) {
+    /// A bufferView of `bytes` bytes of `data`; returns its index.
+    size_t view(const void* data, size_t bytes) {
         while (bin_.size() % 4) bin_.push_back('\0');
         const size_t offset = bin_.size();
-        bin_.append(static_cast<const char*>(data), values * size);
+        bin_.append(static_cast<const char*>(data), bytes);
         views_.push_back(R"({"buffer": 0, "byteOffset": )" + std::to_string(offset) +
-                         R"(, "byteLength": )" + std::to_string(values * size) + "}");
-        std::string a = R"({"bufferView": )" + std::to_string(views_.size() - 1) +
+                         R"(, "byteLength": )" + std::to_string(bytes) + "}");
+        return views_.size() - 1;
+    }
+
+    int add(const void* data, size_t values, size_t size, int componentType, const char* type,
+            bool normalized) {
+        std::string a = R"({"bufferView": )" + std::to_string(view(data, values * size)) +
                         R"(, "componentType": )" + std::to_string(componentType) +
                         R"(, "count": )" + std::to_string(values / componentsOf(type)) +
                         R"(, "type": ")" + type + "\"";
