@@ -51,8 +51,7 @@ std::optional<size_t> chooseAnimation(const Context& ctx, const std::string& nam
 size_t targetsOf(const Context& ctx, int node) {
     const int mesh = ctx.model.nodes[static_cast<size_t>(node)].mesh;
     if (mesh < 0 || static_cast<size_t>(mesh) >= ctx.model.meshes.size()) return 0;
-    const auto& primitives = ctx.model.meshes[static_cast<size_t>(mesh)].primitives;
-    return primitives.empty() ? 0 : primitives[0].targets.size();
+    return morphTargetCount(ctx, mesh);
 }
 
 }  // namespace

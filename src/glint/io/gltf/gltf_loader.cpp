@@ -436,10 +436,23 @@ void readMeshes(Context& ctx, Model& out, const std::vector<SkinnedPlacement>& s
                  " triangles stored), more than the " + formatBytes(double(available)) +
                  " available");
     weights.resize(meshes);
+    // Morph weights are the node's (animated, or its own `weights`), else the mesh's: those of
+    // the first node that places the mesh, and a mesh is read once.
+    std::vector<const std::vector<double>*> morph(meshes, nullptr);
+    std::vector<bool> seen(meshes);
+    for (const ModelPlacement& p : out.placements) {
+        if (seen[p.mesh]) continue;
+        seen[p.mesh] = true;
+        const tinygltf::Node& node = ctx.model.nodes[p.node];
+        if (p.node < ctx.animated.size() && ctx.animated[p.node].weights)
+            morph[p.mesh] = &*ctx.animated[p.node].weights;
+        else if (!node.weights.empty())
+            morph[p.mesh] = &node.weights;
+    }
     for (size_t i = 0; i < meshes; ++i)
         if (counts[i])
             out.meshes[i] = readMesh(ctx, static_cast<int>(i), *counts[i], materials,
-                                     skinnedMesh[i] ? &weights[i] : nullptr);
+                                     skinnedMesh[i] ? &weights[i] : nullptr, morph[i]);
 }
 
 }  // namespace
@@ -468,7 +481,7 @@ struct GltfDocument::Impl {
 };
 
 GltfDocument::GltfDocument(std::string_view bytes, const std::string& fileName,
-                     std::vector<Diagnostic>& warnings, const GltfOptions& options)
+                           std::vector<Diagnostic>& warnings, const GltfOptions& options)
     : impl_(std::make_unique<Impl>(fileName, options)) {
     try {
         gltf::parseContainer(impl_->ctx, bytes);
@@ -515,7 +528,7 @@ Model parseGltf(std::string_view bytes, const std::string& fileName,
 }
 
 std::shared_ptr<GltfDocument> openGltf(const std::string& path, std::vector<Diagnostic>& warnings,
-                                    const GltfOptions& options) {
+                                       const GltfOptions& options) {
     if (std::string problem = inputFileProblem(path); !problem.empty())
         throw SceneError({path, 0, 0}, "cannot read glTF: " + problem);
     try {
