@@ -66,8 +66,21 @@ std::vector<ModelAnimation> listAnimations(const Context& ctx) {
         for (const tinygltf::AnimationSampler& s : a.samplers) {
             if (s.input < 0 || static_cast<size_t>(s.input) >= ctx.model.accessors.size()) continue;
             const tinygltf::Accessor& input = ctx.model.accessors[static_cast<size_t>(s.input)];
-            if (input.minValues.size() != 1 || input.maxValues.size() != 1) continue;
-            const double lo = input.minValues[0], hi = input.maxValues[0];
+            double lo = 0, hi = 0;
+            if (input.minValues.size() == 1 && input.maxValues.size() == 1) {
+                lo = input.minValues[0];
+                hi = input.maxValues[0];
+            } else {
+                // glTF requires min and max of key times; a file without them is read.
+                try {
+                    const FloatElements times = readFloats(ctx, s.input, "input", false);
+                    if (times.values.empty()) continue;
+                    lo = *std::min_element(times.values.begin(), times.values.end());
+                    hi = *std::max_element(times.values.begin(), times.values.end());
+                } catch (const SceneError&) {
+                    continue;  // said when the animation is played
+                }
+            }
             if (!std::isfinite(lo) || !std::isfinite(hi) || lo > hi) continue;
             m.start = any ? std::min(m.start, lo) : lo;
             m.end = any ? std::max(m.end, hi) : hi;
@@ -136,22 +149,21 @@ std::optional<size_t> playAnimation(Context& ctx, const ModelTime& time, std::st
         track.times.assign(input.values.begin(), input.values.end());
         track.values.assign(output.values.begin(), output.values.end());
         const size_t perKey = track.interpolation == Interpolation::CubicSpline ? 3 : 1;
-        if (weights) {
-            // One weight per morph target of the node's mesh, for each key.
-            const size_t targets = targetsOf(ctx, ch.target_node);
-            if (targets == 0)
-                ctx.fail(channel + ": it animates the morph weights of " +
-                         describe("node", node, nodes[node].name) +
-                         ", whose mesh has no morph targets");
-            track.width = targets;
-            if (output.count != input.count * perKey * targets)
-                ctx.fail(sampler + ": it has " + std::to_string(input.count) + " key times and " +
-                         std::to_string(output.count) + " output values, not " +
-                         std::to_string(input.count * perKey * targets) + " (" +
-                         std::to_string(targets) + " morph weights per key" +
-                         (perKey == 3 ? ", with in- and out-tangents" : "") + ")");
-        } else {
-            track.width = expected;
+        // Weights: one per morph target of the node's mesh, for each key.
+        const size_t targets = weights ? targetsOf(ctx, ch.target_node) : 1;
+        if (targets == 0)
+            ctx.fail(channel + ": it animates the morph weights of " +
+                     describe("node", node, nodes[node].name) +
+                     ", whose mesh has no morph targets");
+        track.width = weights ? targets : expected;
+        if (output.count != input.count * perKey * targets) {
+            std::string why;
+            if (weights) why = std::to_string(targets) + " morph weights per key";
+            if (perKey == 3) why += (why.empty() ? "" : ", ") + std::string("with tangents");
+            ctx.fail(sampler + ": it has " + std::to_string(input.count) + " key times and " +
+                     std::to_string(output.count) + " output values, not " +
+                     std::to_string(input.count * perKey * targets) +
+                     (why.empty() ? "" : " (" + why + ")"));
         }
         if (std::string problem = track.problem(); !problem.empty())
             ctx.fail(sampler + " (" + path + " of " + describe("node", node, nodes[node].name) +

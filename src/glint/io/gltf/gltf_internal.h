@@ -219,7 +219,7 @@ FloatElements readFloats(const Context& ctx, int index, const std::string& user,
 // Animations (gltf_animations.cpp).
 
 /// The file's animations, for the user: names, channel counts and the range of their key
-/// times (from the input accessors' min and max, which glTF requires; nothing is read).
+/// times (from the input accessors' min and max, which glTF requires, else read).
 std::vector<ModelAnimation> listAnimations(const Context& ctx);
 
 /// Plays the animation `time` chooses at its time into ctx.animated; returns its index, and
