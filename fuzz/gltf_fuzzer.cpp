@@ -8,7 +8,8 @@
 // input; any other exception escapes and libFuzzer reports it. A model that loads becomes the
 // scene `glint model.gltf` makes (its camera and lights, or Glint's framing) and is rendered
 // small (models are capped so that each input stays fast); a pixel that is NaN or infinite
-// aborts.
+// aborts. A file with animations is posed still, then rendered posed at 37% of its first
+// animation (io/gltf/gltf_animations.cpp).
 
 #include <cstdint>
 #include <string_view>
@@ -24,6 +25,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return glint::fuzz::loadAndRenderModel(
         std::string_view(reinterpret_cast<const char*>(data), size), "glint_fuzz_gltf",
         [&](std::string_view input, std::vector<glint::Diagnostic>& warnings) {
-            return glint::parseGltf(input, "fuzz.gltf", warnings, options);
+            glint::GltfDocument document(input, "fuzz.gltf", warnings, options);
+            glint::Model still = document.pose({}, warnings);
+            if (document.animations().empty()) return still;
+            const glint::ModelAnimation& a = document.animations()[0];
+            return document.pose({"", a.start + 0.37 * (a.end - a.start)}, warnings);
         });
 }
