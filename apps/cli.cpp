@@ -230,6 +230,29 @@ std::string parseFrameRange(const std::string& text, FrameRange& out) {
     return {};
 }
 
+std::string parseShutter(const std::string& text, double& open, double& close) {
+    const std::string form =
+        "expected OPEN:CLOSE in frames from the frame rendered (-0.25:0.25 is Cycles' shutter "
+        "0.5 centred on it), got '" +
+        text + "'";
+    const size_t colon = text.find(':');
+    if (colon == std::string::npos) return form;
+    double v[2];
+    const char* ends[2] = {text.data() + colon, text.data() + text.size()};
+    const char* at = text.data();
+    for (int i = 0; i < 2; ++i) {
+        auto [p, ec] = std::from_chars(at, ends[i], v[i]);
+        if (at == ends[i] || ec != std::errc() || p != ends[i] || !std::isfinite(v[i])) return form;
+        at = ends[i] + 1;
+    }
+    if (std::abs(v[0]) > 1000 || std::abs(v[1]) > 1000)
+        return "the shutter must lie within 1000 frames of the frame, got '" + text + "'";
+    if (v[1] < v[0]) return "the shutter closes before it opens in '" + text + "'";
+    open = v[0];
+    close = v[1];
+    return {};
+}
+
 std::string frameFileName(const std::string& pattern, long long frame) {
     for (size_t i = 0; i < pattern.size(); ++i) {
         if (pattern[i] == '#') {  // Blender's: a run of #s is the number, zero-padded
@@ -319,6 +342,16 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
                 options.time.animation = opt.animation;
                 options.time.seconds = *t;
             }
+            if (!opt.shutter.empty()) {
+                double open = 0, close = 0;
+                parseShutter(opt.shutter, open, close);  // checked with the options
+                if (close > open) {
+                    options.time.animation = opt.animation;
+                    options.time.seconds = opt.seconds().value_or(0);
+                    options.time.shutterOpen = open / opt.fps;
+                    options.time.shutterClose = close / opt.fps;
+                }
+            }
             options.assets = assets;
             ModelScene m = loadSceneFile(opt.scene, warnings, options);
             scene = std::move(m.scene);
@@ -340,6 +373,8 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
     }
     if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
     if (opt.fovy > 0 && scene->camera) scene->camera->fovyDegrees = opt.fovy;
+    if (opt.fovy > 0)
+        for (CameraSpec& c : scene->cameraMotion) c.fovyDegrees = opt.fovy;
     scene->clampIndirect = opt.clampIndirect;
     scene->caustics = opt.caustics == "on";
     if (!opt.integrator.empty()) scene->integrator = opt.integrator;
@@ -469,6 +504,18 @@ void addOptions(CLI::App& app, Options& opt) {
             ->type_name("A:B[:STEP]");
     frameOption->excludes(timeOption)->excludes(framesOption);
     timeOption->excludes(framesOption);
+    app.add_option("--shutter", opt.shutter,
+                   "Motion blur: the shutter is open from OPEN to CLOSE frames from the frame "
+                   "rendered (-0.25:0.25 is Cycles' shutter 0.5 centred on it; 0:1 blurs to the "
+                   "next frame)")
+        ->group(time)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                double a = 0, b = 0;
+                return parseShutter(text, a, b);
+            },
+            "", ""))
+        ->type_name("OPEN:CLOSE");
     app.add_option("--fps", opt.fps, "Frames per second of --frame and --frames, 0.001 to 1000")
         ->group(time)
         ->check(numberIn(0.001, 1000))

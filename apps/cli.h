@@ -71,11 +71,16 @@ struct Options {
     std::optional<long long> frame;  ///< --frame N
     double fps = 24;                 ///< --fps
     std::string frames;              ///< --frames A:B[:STEP]: a sequence
+    std::string shutter;             ///< --shutter OPEN:CLOSE, in frames from the frame
 
     /// The time to pose models at: --time-at, or --frame / --fps, or 0 with --animation alone;
     /// none when no animation is asked for.
     std::optional<double> seconds() const;
 };
+
+/// Parses --shutter OPEN:CLOSE (frames from the frame rendered, OPEN <= CLOSE, each within
+/// +-1000); returns what is wrong, or nothing.
+std::string parseShutter(const std::string& text, double& open, double& close);
 
 /// A range of frames, --frames A:B[:STEP]: A to B inclusive, every STEP-th.
 struct FrameRange {

@@ -145,6 +145,28 @@ TEST(CliAnimation, ASceneFilesMeshLinePlaysItsAnimation) {
     EXPECT_EQ(readBytes(dir + "/alone.png"), readBytes(dir + "/s_48.png"));
 }
 
+TEST(CliAnimation, AShutterBlursWhatMovesAndNothingElse) {
+    std::string dir = animatedDir("anim-shutter");
+    writeFile(dir + "/still.gltf", quad(R"("translation": [0, 0, 0])"));
+    const std::string view = " --camera orbit:0,80,4,0,0.5,0 --ground none" + kSmall;
+    ASSERT_EQ(runGlint("anim.gltf --frame 24 -o sharp.png" + view, dir).exitCode, 0);
+    CommandResult r = runGlint("anim.gltf --frame 24 --shutter -6:6 -o blur.png" + view, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(readBytes(dir + "/blur.png"), readBytes(dir + "/sharp.png"));
+    // A shutter of zero length is the still frame; so is a still model with a shutter.
+    ASSERT_EQ(runGlint("anim.gltf --frame 24 --shutter 0:0 -o zero.png" + view, dir).exitCode, 0);
+    EXPECT_EQ(readBytes(dir + "/zero.png"), readBytes(dir + "/sharp.png"));
+    ASSERT_EQ(runGlint("still.gltf -o s.png" + view, dir).exitCode, 0);
+    ASSERT_EQ(runGlint("still.gltf --shutter -0.5:0.5 -o s2.png" + view, dir).exitCode, 0);
+    EXPECT_EQ(readBytes(dir + "/s.png"), readBytes(dir + "/s2.png"));
+    for (const char* bad :
+         {"--shutter 1:0", "--shutter 0.5", "--shutter a:b", "--shutter 0:2000"}) {
+        r = runGlint(std::string("anim.gltf ") + bad + kSmall, dir);
+        EXPECT_EQ(r.exitCode, 2) << bad;
+        EXPECT_TRUE(contains(r.err, "--shutter")) << bad << "\n" << r.err;
+    }
+}
+
 TEST(CliAnimation, PiecesOfOneFrameMergeAndPiecesOfTwoDoNot) {
     std::string dir = animatedDir("anim-pieces");
     const std::string common = "anim.gltf --size 40x30 --spp 2 -q";

@@ -1,6 +1,9 @@
 #include "glint/accel/bvh.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -23,21 +26,92 @@ bool hitPlanes(const bvh::BvhData& d, const TraversalRay& ray, Hit& hit) {
     return found;
 }
 
-/// hitPlanes for each active ray of a packet (out of line: packets without planes do not pay
-/// for its registers).
-[[gnu::noinline]] void hitPlanes8(const bvh::BvhData& d, const RayPacket8& rays, HitPacket8& hits) {
-    for (int i = 0; i < 8; ++i) {
-        if (!(rays.active >> i & 1)) continue;
-        Hit h = hits[i];
-        if (hitPlanes(d, rays.rays[i], h)) hits.set(i, h);
-    }
-}
-
 bool planeOccludes(const bvh::BvhData& d, const TraversalRay& ray) {
     for (const PlaneSearch& p : d.planes) {
         float t;
         if (intersectPlane(p, ray, t)) return true;
     }
+    return false;
+}
+
+/// The tree searches of kernels `isa`.
+bool treeIntersect(Isa isa, const bvh::BvhData& d, const TraversalRay& ray, Hit& hit) {
+#if GLINT_HAVE_AVX2
+    if (isa == Isa::Avx2) return bvh::avx2::intersect(d, ray, hit);
+#endif
+#if GLINT_HAVE_SIMD128
+    if (isa == Isa::Simd128) return bvh::simd128::intersect(d, ray, hit);
+#endif
+    return bvh::portable::intersect(d, ray, hit);
+}
+
+bool treeOccluded(Isa isa, const bvh::BvhData& d, const TraversalRay& ray) {
+#if GLINT_HAVE_AVX2
+    if (isa == Isa::Avx2) return bvh::avx2::occluded(d, ray);
+#endif
+#if GLINT_HAVE_SIMD128
+    if (isa == Isa::Simd128) return bvh::simd128::occluded(d, ray);
+#endif
+    return bvh::portable::occluded(d, ray);
+}
+
+/// Whether `ray` meets box `b` within [tMin, tMax].
+bool meetsBox(const Bounds3f& b, const TraversalRay& ray, float tMax) {
+    float t0 = ray.tMin, t1 = tMax;
+    for (int a = 0; a < 3; ++a) {
+        float n = (b.lo[a] - ray.origin[a]) * ray.invDir[a];
+        float f = (b.hi[a] - ray.origin[a]) * ray.invDir[a];
+        if (n > f) std::swap(n, f);
+        t0 = std::max(t0, n);
+        t1 = std::min(t1, f * (1 + 4 * std::numeric_limits<float>::epsilon()));
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+/// Moving primitive `m` at the calling thread's shutter time: the ray mapped to where the
+/// primitive was added, and tested there (an instance by its mesh's tree). Closest hit: updates
+/// `hit` by the closerHit rule; any hit (`anyHit`): returns true at the first.
+bool hitMoving(Isa isa, const bvh::BvhData& d, const bvh::BvhData::Moving& m,
+               const TraversalRay& ray, Hit& hit, bool anyHit) {
+    const float best = anyHit ? ray.tMax : std::min(hit.t, ray.tMax);
+    if (!meetsBox(m.bounds, ray, best)) return false;
+    const Transform delta = m.path.delta(shutterTime());
+    const TraversalRay local(Vec3f(delta.inversePoint(Vec3(ray.origin))),
+                             Vec3f(delta.inverseVector(Vec3(ray.dir))), ray.tMin, ray.tMax);
+    if (m.search.kind == ShapeKind::Instance) {
+        Vec3f o, dir;
+        m.search.map(local, o, dir);
+        // Up to and including the best hit so far: a tie goes to the lower id.
+        const float tMax = !anyHit && hit.t < ray.tMax ? std::nextafter(hit.t, ray.tMax) : ray.tMax;
+        const TraversalRay inMesh(o, dir, ray.tMin, tMax);
+        const bvh::BvhData& mesh = *d.meshes[m.search.mesh()];
+        if (anyHit) return treeOccluded(isa, mesh, inMesh);
+        Hit sub;
+        if (!treeIntersect(isa, mesh, inMesh, sub) || !closerHit(sub.t, m.id, hit)) return false;
+        hit = {sub.t, m.id, sub.primId};
+        return true;
+    }
+    float t;
+    if (!intersectShape(m.search, local, t)) return false;
+    if (anyHit) return true;
+    if (!closerHit(t, m.id, hit)) return false;
+    hit = {t, m.id};
+    return true;
+}
+
+/// Everything beside the tree: planes, then moving primitives.
+bool hitBeside(Isa isa, const bvh::BvhData& d, const TraversalRay& ray, Hit& hit) {
+    bool found = hitPlanes(d, ray, hit);
+    for (const bvh::BvhData::Moving& m : d.moving) found |= hitMoving(isa, d, m, ray, hit, false);
+    return found;
+}
+
+bool besideOccludes(Isa isa, const bvh::BvhData& d, const TraversalRay& ray) {
+    if (planeOccludes(d, ray)) return true;
+    Hit unused;
+    for (const bvh::BvhData::Moving& m : d.moving)
+        if (hitMoving(isa, d, m, ray, unused, true)) return true;
     return false;
 }
 
@@ -101,7 +175,12 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
         data_.planes.push_back(prims.planeSearch(id));
         data_.planeIds.push_back(id);
     }
-    route_ = data_.planes.empty() ? isa_ : Isa::Auto;
+    data_.moving.clear();
+    if (prims.hasMotion())
+        for (uint32_t id = 0; id < prims.boundedCount(); ++id)
+            if (const MotionPath* m = prims.motion(id))
+                data_.moving.push_back({id, prims.bounds(id), prims.shapeSearch(id), *m});
+    route_ = data_.planes.empty() && data_.moving.empty() ? isa_ : Isa::Auto;
     bounds_ = s.bounds;
     stats_ = {};
     stats_.nodes = static_cast<uint32_t>(data_.nodes.size());
@@ -137,8 +216,19 @@ bool Bvh::occluded(const TraversalRay& ray) const {
     return occludedWithPlanes(ray);
 }
 
+/// hitBeside for each active ray of a packet (out of line: packets without planes or motion
+/// do not pay for its registers).
+[[gnu::noinline]] static void hitBeside8(Isa isa, const bvh::BvhData& d, const RayPacket8& rays,
+                                         HitPacket8& hits) {
+    for (int i = 0; i < 8; ++i) {
+        if (!(rays.active >> i & 1)) continue;
+        Hit h = hits[i];
+        if (hitBeside(isa, d, rays.rays[i], h)) hits.set(i, h);
+    }
+}
+
 void Bvh::intersect8(const RayPacket8& rays, HitPacket8& hits) const {
-    if (route_ == Isa::Auto) hitPlanes8(data_, rays, hits);
+    if (route_ == Isa::Auto) hitBeside8(isa_, data_, rays, hits);
 #if GLINT_HAVE_AVX2
     if (isa_ == Isa::Avx2) return bvh::avx2::intersect8(data_, rays, hits);
 #endif
@@ -149,26 +239,13 @@ void Bvh::intersect8(const RayPacket8& rays, HitPacket8& hits) const {
 }
 
 bool Bvh::intersectWithPlanes(const TraversalRay& ray, Hit& hit) const {
-    // Planes first: a hit on one bounds the search of the tree.
-    bool found = hitPlanes(data_, ray, hit);
-#if GLINT_HAVE_AVX2
-    if (isa_ == Isa::Avx2) return bvh::avx2::intersect(data_, ray, hit) || found;
-#endif
-#if GLINT_HAVE_SIMD128
-    if (isa_ == Isa::Simd128) return bvh::simd128::intersect(data_, ray, hit) || found;
-#endif
-    return bvh::portable::intersect(data_, ray, hit) || found;
+    // Beside the tree first: a hit there bounds the search of the tree.
+    bool found = hitBeside(isa_, data_, ray, hit);
+    return treeIntersect(isa_, data_, ray, hit) || found;
 }
 
 bool Bvh::occludedWithPlanes(const TraversalRay& ray) const {
-    if (planeOccludes(data_, ray)) return true;
-#if GLINT_HAVE_AVX2
-    if (isa_ == Isa::Avx2) return bvh::avx2::occluded(data_, ray);
-#endif
-#if GLINT_HAVE_SIMD128
-    if (isa_ == Isa::Simd128) return bvh::simd128::occluded(data_, ray);
-#endif
-    return bvh::portable::occluded(data_, ray);
+    return besideOccludes(isa_, data_, ray) || treeOccluded(isa_, data_, ray);
 }
 
 }  // namespace glint

@@ -5,8 +5,10 @@
 /// A shared mesh is triangles in their own space with a Bvh of their own; an instance places it
 /// under a transform, as one record in this tree whose test searches the mesh's tree: a
 /// two-level BVH (docs/design.md, "Instancing"). Infinite planes cannot have finite bounds: they
-/// are kept in a short list beside the tree, and intersect, occluded and intersect8 test them
-/// too, so every caller gets them; they are not part of bounds().
+/// are kept in a short list beside the tree, and so are moving primitives (Primitives::
+/// setMotion), tested at the calling thread's shutter time (math/motion.h); intersect,
+/// occluded and intersect8 test them too, so every caller gets them; they are not part of
+/// bounds().
 /// Layout: bvh_layout.h; build: bvh_build.h (and the files it names); kernels: bvh_isa_*.cpp,
 /// bvh_traverse.inl.
 
@@ -80,8 +82,8 @@ class Bvh {
     static Isa named(std::string_view name);
 
   private:
-    /// intersect and occluded for scenes with planes, out of line: the plane-free calls stay
-    /// plain tail calls into the kernels.
+    /// intersect and occluded for scenes with planes or moving primitives, out of line: the
+    /// other calls stay plain tail calls into the kernels.
     [[gnu::noinline]] bool intersectWithPlanes(const TraversalRay& ray, Hit& hit) const;
     [[gnu::noinline]] bool occludedWithPlanes(const TraversalRay& ray) const;
 

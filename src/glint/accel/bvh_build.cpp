@@ -177,7 +177,13 @@ BuildSummary build(const Primitives& prims, ThreadPool& pool, BvhData& out) {
     using namespace builder;
     out = BvhData{};
     BuildSummary summary;
-    uint32_t n = prims.boundedCount();  // planes are not in the tree (Bvh keeps them)
+    // Planes and moving primitives are not in the tree (Bvh keeps them beside it).
+    std::vector<uint32_t> still;  // the ids in the tree, when some primitives move
+    if (prims.hasMotion())
+        for (uint32_t id = 0; id < prims.boundedCount(); ++id)
+            if (!prims.motion(id)) still.push_back(id);
+    const uint32_t n =
+        prims.hasMotion() ? static_cast<uint32_t>(still.size()) : prims.boundedCount();
     if (n == 0) return summary;
 
     // The refs, and the range of them all, by chunks (boxes are unions: the same either way).
@@ -186,11 +192,12 @@ BuildSummary build(const Primitives& prims, ThreadPool& pool, BvhData& out) {
     parallelFor(pool, 0, n, kRefsChunk, [&](size_t first, size_t last) {
         Range& part = parts[first / kRefsChunk];
         for (auto i = static_cast<uint32_t>(first); i < last; ++i) {
-            Bounds3f b = prims.bounds(i);
+            const uint32_t id = still.empty() ? i : still[i];
+            Bounds3f b = prims.stillBounds(id);
             refs[i] = {{b.lo.x, b.lo.y, b.lo.z},
-                       i,
+                       id,
                        {b.hi.x, b.hi.y, b.hi.z},
-                       i < prims.triangleCount() ? 0u : 1u};
+                       id < prims.triangleCount() ? 0u : 1u};
             part.add(refs[i]);
         }
     });

@@ -16,6 +16,8 @@
 #include "glint/core/huge_pages.h"
 #include "glint/geometry/plane.h"
 #include "glint/geometry/shape_search.h"
+#include "glint/math/bbox.h"
+#include "glint/math/motion.h"
 
 namespace glint::bvh {
 
@@ -88,6 +90,16 @@ struct BvhData {
     /// The trees of the shared meshes that instance records name (ShapeSearch::mesh()); owned
     /// by their own Bvh objects, traversed with the same kernels.
     std::vector<const BvhData*> meshes;
+    /// Moving primitives (Primitives::setMotion), tested beside the tree by Bvh at the calling
+    /// thread's shutter time: each with the bounds it sweeps, its record where it was added
+    /// and its path.
+    struct Moving {
+        uint32_t id;
+        Bounds3f bounds;
+        ShapeSearch search;
+        MotionPath path;
+    };
+    std::vector<Moving> moving;
 
     size_t bytes() const {
         return nodes.size() * sizeof(Node8) + tris.size() * sizeof(Tri4) +

@@ -1,5 +1,7 @@
 #include "glint/geometry/primitives.h"
 
+#include <stdexcept>
+
 namespace glint {
 
 bool Primitives::pushTriangle(const Vec3& a, const Vec3& b, const Vec3& c, uint32_t material) {
@@ -195,7 +197,66 @@ Bounds3f Primitives::bounds() const {
     return b;
 }
 
+void Primitives::setMotion(uint32_t id, MotionPath path) {
+    if (id < triangleCount() || id >= boundedCount())
+        throw std::invalid_argument("only spheres, shapes and instances move");
+    const uint64_t key = motionKey(id);
+    auto it = std::lower_bound(motionKeys_.begin(), motionKeys_.end(), key);
+    const auto at = it - motionKeys_.begin();
+    if (it != motionKeys_.end() && *it == key) {
+        motions_[static_cast<size_t>(at)] = std::move(path);
+        return;
+    }
+    motionKeys_.insert(it, key);
+    motions_.insert(motions_.begin() + at, std::move(path));
+}
+
+namespace {
+
+/// `si`, found in the space `w` maps from, mapped by `w`.
+void mapInteraction(SurfaceInteraction& si, const Transform& w) {
+    si.p = w.point(si.p);
+    si.dpdu = w.vector(si.dpdu);
+    if (si.hasTangent) {
+        Vec3 t = w.vector(si.tangent);
+        double tl = length(t);
+        if (tl > 0 && std::isfinite(tl)) si.tangent = t / tl;
+        // A mirroring placement turns the frame's handedness.
+        if (w.determinant() < 0) si.tangentSign = -si.tangentSign;
+    }
+    si.ng = normalize(w.normal(si.ng));
+    Vec3 n = w.normal(si.n);
+    double len = length(n);
+    si.n = len > 0 && std::isfinite(len) ? n / len : si.ng;
+}
+
+}  // namespace
+
+bool Primitives::intersectMoving(uint32_t id, const MotionPath& m, const TraversalRay& ray,
+                                 Hit& hit) const {
+    const Transform d = m.delta(shutterTime());
+    const Vec3 o = d.inversePoint(Vec3(ray.origin)), dir = d.inverseVector(Vec3(ray.dir));
+    const TraversalRay local(Vec3f(o), Vec3f(dir), ray.tMin, ray.tMax);
+    if (isInstance(id)) return intersectInstance(id, local, hit);
+    float t;
+    if (!intersectShape(shapeSearch(id), local, t) || !closerHit(t, id, hit)) return false;
+    hit = {t, id};
+    return true;
+}
+
 SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const {
+    const MotionPath* m = motion(hit.primId);
+    if (!m) [[likely]]
+        return stillInteraction(ray, hit);
+    // Where the primitive was added, for the ray brought there; then moved back.
+    const Transform d = m->delta(shutterTime());
+    const Ray local{d.inversePoint(ray.origin), d.inverseVector(ray.dir), ray.tMin, ray.tMax};
+    SurfaceInteraction si = stillInteraction(local, hit);
+    mapInteraction(si, d);
+    return si;
+}
+
+SurfaceInteraction Primitives::stillInteraction(const Ray& ray, const Hit& hit) const {
     SurfaceInteraction si;
     if (hit.primId < triangleCount()) {
         const Triangle& tri = triangles_[hit.primId];
@@ -254,19 +315,7 @@ SurfaceInteraction Primitives::shapeInteraction(const Ray& ray, const Hit& hit) 
         const Transform& w = in.worldFromObject;
         Ray local{w.inversePoint(ray.origin), w.inverseVector(ray.dir), ray.tMin, ray.tMax};
         si = sharedMeshes_[in.search.mesh()]->interaction(local, Hit{hit.t, hit.subId});
-        si.p = w.point(si.p);
-        si.dpdu = w.vector(si.dpdu);
-        if (si.hasTangent) {
-            Vec3 t = w.vector(si.tangent);
-            double tl = length(t);
-            if (tl > 0 && std::isfinite(tl)) si.tangent = t / tl;
-            // A mirroring placement turns the frame's handedness.
-            if (w.determinant() < 0) si.tangentSign = -si.tangentSign;
-        }
-        si.ng = normalize(w.normal(si.ng));
-        Vec3 n = w.normal(si.n);
-        double len = length(n);
-        si.n = len > 0 && std::isfinite(len) ? n / len : si.ng;
+        mapInteraction(si, w);
     } else if (hit.primId < boundedCount()) {
         uint32_t i = hit.primId - triangleCount() - sphereCount();
         const Shape& s = shapes_[i];

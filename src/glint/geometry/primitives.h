@@ -12,6 +12,7 @@
 /// BVH holds the instances, each shared mesh has a BVH of its own). A hit on an instance
 /// carries the mesh's triangle in Hit::subId.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "glint/geometry/shapes.h"
 #include "glint/geometry/sphere.h"
 #include "glint/geometry/triangle.h"
+#include "glint/math/motion.h"
 #include "glint/math/transform.h"
 
 namespace glint {
@@ -144,8 +146,33 @@ class Primitives {
     uint32_t materialOf(uint32_t id) const;
     static constexpr uint32_t kMixedMaterials = UINT32_MAX;
 
-    /// Bounds of bounded primitive `id` (< boundedCount()).
+    // Motion over the shutter (math/motion.h).
+
+    /// Moves sphere, shape or instance `id` over the shutter along `path`, whose first key
+    /// placed it (an instance's placement is that key): at shutter time u it lies where
+    /// path.delta(u) takes it, and its bounds are those it sweeps. Triangles do not move:
+    /// a moving mesh is an instance.
+    void setMotion(uint32_t id, MotionPath path);
+    bool hasMotion() const { return !motionKeys_.empty(); }
+    /// The motion of primitive `id`; null when it does not move.
+    const MotionPath* motion(uint32_t id) const {
+        if (motionKeys_.empty()) [[likely]]
+            return nullptr;
+        if (id < triangleCount() || id >= boundedCount()) return nullptr;
+        const uint64_t key = motionKey(id);
+        auto it = std::lower_bound(motionKeys_.begin(), motionKeys_.end(), key);
+        return it != motionKeys_.end() && *it == key ? &motions_[it - motionKeys_.begin()]
+                                                     : nullptr;
+    }
+
+    /// Bounds of bounded primitive `id` (< boundedCount()); swept over the shutter if it moves.
     Bounds3f bounds(uint32_t id) const {
+        if (const MotionPath* m = motion(id)) [[unlikely]]
+            return m->sweep(stillBounds(id));
+        return stillBounds(id);
+    }
+    /// Bounds of bounded primitive `id` where it was added.
+    Bounds3f stillBounds(uint32_t id) const {
         if (id < triangleCount()) return triangles_[id].bounds();
         id -= triangleCount();
         if (id < sphereCount()) return spheres_[id].bounds();
@@ -163,6 +190,8 @@ class Primitives {
     /// Tests primitive `id` in float; if it is hit within the ray's range and closer than
     /// `hit` (closerHit), fills `hit` and returns true.
     bool intersect(uint32_t id, const TraversalRay& ray, Hit& hit) const {
+        if (const MotionPath* m = motion(id)) [[unlikely]]
+            return intersectMoving(id, *m, ray, hit);
         if (isInstance(id)) return intersectInstance(id, ray, hit);
         float t;
         bool found = id < triangleCount()  ? intersectTriangle(triangles_[id], ray, t)
@@ -216,6 +245,12 @@ class Primitives {
     const Instance& instance(uint32_t id) const {
         return instances_[id - triangleCount() - sphereCount() - shapeCount()];
     }
+    /// intersect() for a moving primitive: the ray mapped to where the primitive was added,
+    /// at the calling thread's shutter time.
+    [[gnu::noinline]] bool intersectMoving(uint32_t id, const MotionPath& m,
+                                           const TraversalRay& ray, Hit& hit) const;
+    /// interaction() of a primitive where it was added.
+    SurfaceInteraction stillInteraction(const Ray& ray, const Hit& hit) const;
     /// intersect() for an instance: every triangle of its mesh, one at a time (a reference
     /// for accelerators, which search the mesh's BVH instead).
     [[gnu::noinline]] bool intersectInstance(uint32_t id, const TraversalRay& ray, Hit& hit) const;
@@ -255,6 +290,16 @@ class Primitives {
     std::vector<Plane> planes_;               // few: a scene has a floor, perhaps a wall or two
     std::vector<PlaneSearch> planeSearch_;
     std::vector<uint32_t> planeMaterial_;
+    /// Moving primitives by kind and index within their kind (ids shift as triangles, spheres
+    /// and shapes are added; those do not), ascending; and their paths, in that order.
+    std::vector<uint64_t> motionKeys_;
+    std::vector<MotionPath> motions_;
+    uint64_t motionKey(uint32_t id) const {
+        uint64_t kind = 0, index = id - triangleCount();
+        if (index >= sphereCount()) index -= sphereCount(), kind = 1;
+        if (kind == 1 && index >= shapeCount()) index -= shapeCount(), kind = 2;
+        return kind << 32 | index;
+    }
 };
 
 }  // namespace glint

@@ -73,6 +73,44 @@ Model loadObjModel(const std::string& path, std::vector<Diagnostic>& warnings,
     return singleMeshModel(loadObj(path, warnings, obj));
 }
 
+/// Moves the placements and the camera of `model` (posed at the shutter's middle) as the
+/// animation moves them over the shutter of `time`: each placement whose transform changes
+/// gets its transforms at the shutter's keys (ModelPlacement::motion), the camera likewise.
+/// Deforming meshes (skins, morph targets) stay as posed at the middle.
+void addMotion(GltfDocument& asset, const ModelTime& time, Model& model,
+               std::vector<Diagnostic>& warnings) {
+    std::vector<Model> keys;
+    for (int k = 0; k < time.shutterKeys; ++k) {
+        ModelTime at = time;
+        at.seconds = time.keyTime(k);
+        at.shutterOpen = at.shutterClose = 0;
+        keys.push_back(asset.pose(at, warnings));
+    }
+    for (size_t i = 0; i < model.placements.size(); ++i) {
+        std::vector<Transform> path;
+        bool moves = false;
+        for (const Model& m : keys) {
+            if (m.placements.size() != model.placements.size()) return;  // cannot happen
+            path.push_back(m.placements[i].worldFromObject);
+            const Mat4 a = path.back().matrix(), b = path.front().matrix();
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 4; ++c) moves = moves || a.m[r][c] != b.m[r][c];
+        }
+        if (moves) model.placements[i].motion = std::move(path);
+    }
+    if (model.camera) {
+        bool moves = false;
+        for (const Model& m : keys) {
+            if (!m.camera) return;
+            model.cameraMotion.push_back(m.camera->spec);
+            const CameraSpec &a = m.camera->spec, &b = keys.front().camera->spec;
+            moves = moves || !(a.eye == b.eye && a.center == b.center && a.up == b.up &&
+                               a.fovyDegrees == b.fovyDegrees);
+        }
+        if (!moves) model.cameraMotion.clear();
+    }
+}
+
 /// Poses at which an animated model's bounds are taken for framing: evenly spaced over its
 /// animation, both ends included.
 constexpr int kFramingPoses = 9;
@@ -89,7 +127,14 @@ Model loadGltfModel(const std::string& path, std::vector<Diagnostic>& warnings,
         asset = openGltf(path, warnings, gltf);
         if (options.assets) options.assets->add(key, asset);
     }
-    Model model = asset->pose(options.time, warnings);
+    ModelTime middle = options.time;
+    if (middle.blurs()) {  // the still parts, and deforming meshes, at the shutter's middle
+        middle.seconds =
+            middle.seconds.value_or(0) + (middle.shutterOpen + middle.shutterClose) / 2;
+        middle.shutterOpen = middle.shutterClose = 0;
+    }
+    Model model = asset->pose(middle, warnings);
+    if (options.time.blurs() && model.animation) addMotion(*asset, options.time, model, warnings);
     if (model.animation) {
         // Framed by the whole animation, whichever frame this is: each frame of a sequence, in
         // one process or many, gets the same camera and ground.
@@ -113,10 +158,12 @@ Model loadModelAs(const FileFormat& format, const std::string& path,
     switch (options.camera.kind) {
         case CameraChoice::Kind::None:
             model.camera.reset();
+            model.cameraMotion.clear();
             break;
         case CameraChoice::Kind::Orbit:
             model.camera =
                 ModelCamera{options.camera.orbit.spec(), 0, options.camera.orbit.describe(), false};
+            model.cameraMotion.clear();
             break;
         case CameraChoice::Kind::Index:
         case CameraChoice::Kind::Name:

@@ -6,6 +6,7 @@
 
 #include "glint/core/parallel.h"
 #include "glint/core/spawn.h"
+#include "glint/math/motion.h"
 #include "glint/math/rng.h"
 
 namespace glint {
@@ -112,6 +113,9 @@ LightPassResult CausticPass::trace(int begin, int end, uint64_t seed, ThreadPool
         const uint64_t indexSeed = mixBits(seed ^ mixBits(0x9e3779b97f4a7c15ULL + index));
         const bool keepPhotons = index < begin + photonIndices;
         parallelFor(pool, 0, blocks, 1, [&](size_t first, size_t last) {
+            // Light paths see moving things where they are at the shutter's opening (not yet
+            // blurred: docs/animation.md), whichever thread traces them.
+            setShutterTime(0);
             for (size_t b = first; b < last; ++b) {
                 splats[b].clear();
                 blockPhotons[b].clear();

@@ -44,8 +44,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const Integrator* integrator = options.integrator ? options.integrator : ownIntegrator.get();
     const PixelSampler sampler(options.spp, options.seed, scene.filter,
                                options.progressivePositions);
+    // A scene where something moves: each camera sample has its own shutter time, drawn
+    // first from its random numbers, and its camera rays go one by one (a packet's would
+    // share one time).
+    const bool moving = scene.moves();
+    const bool movingCamera = scene.cameraMotion.size() > 1;
     // Per-sample random numbers only where something draws them.
-    const bool seeded = camera.hasLens() || integrator->usesRandomNumbers();
+    const bool seeded = camera.hasLens() || integrator->usesRandomNumbers() || moving;
     const int spp = sampler.samplesPerPixel();
     const int sampleBegin = std::clamp(options.sampleBegin, 0, spp);
     const int sampleEnd =
@@ -104,6 +109,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         Rng rng;                 ///< The sample's own random numbers, after the lens's.
         uint32_t index = 0;      ///< Within the pixel.
         uint64_t pixelSeed = 0;  ///< Of its pixel (seeded samples only).
+        float time = 0;          ///< On the shutter, 0 to 1 (scenes that move only).
     };
     // Light the integrator traces in a pass of its own, for the whole image (the path
     // tracer's caustics): each pixel's sum over this render's samples, added to its own.
@@ -133,11 +139,16 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                     bx + x, by + y,
                     [&](double px, double py) {
                         Rng rng(sampler.sampleSeed(bx + x, by + y, index++));
-                        Ray ray = camera.hasLens()
-                                      ? camera.generateRay(px, py, rng.uniform(), rng.uniform())
-                                      : camera.generateRay(px, py);
-                        samples.push_back(
-                            {y * 4 + x, ray, rng, static_cast<uint32_t>(index - 1), pixelSeed});
+                        const float time = moving ? static_cast<float>(rng.uniform()) : 0.0f;
+                        std::optional<Camera> atTime;
+                        if (movingCamera)
+                            atTime.emplace(cameraAt(scene.cameraMotion, time), scene.width,
+                                           scene.height);
+                        const Camera& c = atTime ? *atTime : camera;
+                        Ray ray = c.hasLens() ? c.generateRay(px, py, rng.uniform(), rng.uniform())
+                                              : c.generateRay(px, py);
+                        samples.push_back({y * 4 + x, ray, rng, static_cast<uint32_t>(index - 1),
+                                           pixelSeed, time});
                     },
                     sampleBegin, sampleEnd);
             }
@@ -154,10 +165,20 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 packet.set(k, TraversalRay(rays[k]));
             }
             HitPacket8 hits;
-            scene.bvh().intersect8(packet, hits);
+            if (!moving) {
+                scene.bvh().intersect8(packet, hits);
+            } else {
+                for (int k = 0; k < n; ++k) {
+                    setShutterTime(samples[i + k].time);
+                    Hit one;
+                    scene.bvh().intersect(packet.rays[k], one);
+                    hits.set(k, one);
+                }
+            }
             counts.camera += static_cast<uint64_t>(n);
             for (int k = 0; k < n; ++k) {
                 Hit hit = hits[k];
+                if (moving) setShutterTime(samples[i + k].time);
                 bool found = hit.t < std::numeric_limits<float>::infinity();
                 if (found && scene.filtersCameraHits()) [[unlikely]]
                     found = scene.filterHit(rays[k], hit, true);

@@ -1,5 +1,6 @@
 #include "glint/scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -18,6 +19,23 @@ Camera::Camera(const CameraSpec& spec, int width, int height) : eye_(spec.eye) {
     tanHalfX_ = tanHalfY_ * static_cast<double>(width) / static_cast<double>(height);
     apertureRadius_ = spec.apertureRadius;
     focusDistance_ = spec.focusDistance > 0 ? spec.focusDistance : length(spec.center - spec.eye);
+}
+
+CameraSpec cameraAt(const std::vector<CameraSpec>& keys, double u) {
+    if (keys.size() < 2) return keys.empty() ? CameraSpec{} : keys.front();
+    const double at = std::clamp(u, 0.0, 1.0) * static_cast<double>(keys.size() - 1);
+    const size_t k = std::min(static_cast<size_t>(at), keys.size() - 2);
+    const double s = at - static_cast<double>(k);
+    const CameraSpec &a = keys[k], &b = keys[k + 1];
+    auto mix = [s](auto x, auto y) { return x * (1 - s) + y * s; };
+    CameraSpec c = a;
+    c.eye = mix(a.eye, b.eye);
+    c.center = mix(a.center, b.center);
+    c.up = mix(a.up, b.up);
+    c.fovyDegrees = mix(a.fovyDegrees, b.fovyDegrees);
+    c.apertureRadius = mix(a.apertureRadius, b.apertureRadius);
+    c.focusDistance = mix(a.focusDistance, b.focusDistance);
+    return c;
 }
 
 Ray Camera::generateRay(double x, double y) const {

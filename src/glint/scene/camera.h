@@ -2,6 +2,7 @@
 /// The pinhole camera of the course: gluLookAt placement and a vertical field of view.
 
 #include <optional>
+#include <vector>
 
 #include "glint/core/ray.h"
 
@@ -16,6 +17,10 @@ struct CameraSpec {
     double apertureRadius = 0;
     double focusDistance = 0;
 };
+
+/// The spec at time u (0 to 1) of `keys`, evenly spaced over [0, 1]: eye, center, up, field
+/// of view and lens interpolated linearly between the two keys around u.
+CameraSpec cameraAt(const std::vector<CameraSpec>& keys, double u);
 
 class Camera {
   public:

@@ -120,9 +120,10 @@ MeshPlacement addMesh(Scene& scene, const MeshData& mesh, const Transform& world
 }
 
 void MeshPlacer::add(const MeshData& mesh, const Transform& worldFromObject,
-                     uint32_t defaultMaterial, FileLoc where, std::string what) {
-    placements_.push_back(
-        {&mesh, worldFromObject, defaultMaterial, std::move(where), std::move(what)});
+                     uint32_t defaultMaterial, FileLoc where, std::string what,
+                     std::shared_ptr<const MotionPath> motion) {
+    placements_.push_back({&mesh, worldFromObject, defaultMaterial, std::move(where),
+                           std::move(what), std::move(motion)});
 }
 
 std::vector<MeshPlacement> MeshPlacer::place(Scene& scene, std::vector<Diagnostic>* warnings) {
@@ -148,7 +149,7 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene, std::vector<Diagnosti
     for (size_t i = 0; i < placements_.size(); ++i) {
         const Placement& p = placements_[i];
         try {
-            if (uses[keys[i]] == 1) {
+            if (uses[keys[i]] == 1 && !p.motion) {
                 results.push_back(addMesh(scene, *p.mesh, p.worldFromObject, p.defaultMaterial));
                 continue;
             }
@@ -166,6 +167,8 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene, std::vector<Diagnosti
             if (it->second.index == MeshData::kNone) continue;
             // The placed mesh must lie in range, as placed vertices must.
             const Bounds3f& b = scene.primitives.addInstance(it->second.index, p.worldFromObject);
+            if (p.motion)
+                scene.primitives.setMotion(scene.primitives.boundedCount() - 1, *p.motion);
             if (!withinCoordinateRange(Vec3(b.lo)) || !withinCoordinateRange(Vec3(b.hi)))
                 throw SceneError({p.mesh->name, 0, 0},
                                  "the mesh lies beyond the supported coordinate range (1e18) "

@@ -6,12 +6,14 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "glint/core/error.h"
 #include "glint/core/huge_pages.h"
+#include "glint/math/motion.h"
 #include "glint/math/transform.h"
 #include "glint/scene/pbr_material.h"
 #include "glint/scene/scene.h"
@@ -87,8 +89,11 @@ class MeshPlacer {
     /// Records a placement of `mesh`, which must live until place() has run. `where` and
     /// `what` (e.g. "mesh 'bunny.obj'") prefix errors about this placement; `where` may be
     /// empty.
+    /// With `motion` (whose first key is `worldFromObject`), the placement moves over the
+    /// shutter: it becomes an instance that moves (Primitives::setMotion), even if alone.
     void add(const MeshData& mesh, const Transform& worldFromObject, uint32_t defaultMaterial,
-             FileLoc where = {}, std::string what = {});
+             FileLoc where = {}, std::string what = {},
+             std::shared_ptr<const MotionPath> motion = nullptr);
     size_t size() const { return placements_.size(); }
 
     /// Adds every recorded placement to `scene`, in the order recorded, and forgets them.
@@ -104,6 +109,7 @@ class MeshPlacer {
         uint32_t defaultMaterial;
         FileLoc where;
         std::string what;
+        std::shared_ptr<const MotionPath> motion;
     };
     std::vector<Placement> placements_;
 };

@@ -130,11 +130,34 @@ Model singleMeshModel(MeshData mesh) {
 }
 
 void placeModel(SceneBuilder& builder, const Model& model, const Transform& worldFromModel,
-                uint32_t defaultMaterial, const FileLoc& where, const std::string& what) {
+                uint32_t defaultMaterial, const FileLoc& where, const std::string& what,
+                const std::vector<Transform>* modelMotion) {
     // Placements at the model's origin take the scene's transform as it is: the transform an
     // OBJ file is placed by is exactly the scene's.
     const bool identity = worldFromModel.isIdentity();
+    const bool modelMoves = modelMotion && modelMotion->size() > 1;
     for (const ModelPlacement& p : model.placements) {
+        if (modelMoves || p.motion.size() > 1) {
+            // Both paths sampled at the same evenly spaced times, and composed.
+            const size_t n = std::max(modelMoves ? modelMotion->size() : 1, p.motion.size());
+            const MotionPath outer(modelMoves ? *modelMotion : std::vector{worldFromModel});
+            const MotionPath inner(p.motion.size() > 1 ? p.motion : std::vector{p.worldFromObject});
+            std::vector<Transform> keys;
+            for (size_t k = 0; k < n; ++k) {
+                const float u = static_cast<float>(k) / static_cast<float>(n - 1);
+                std::optional<Transform> t =
+                    Transform::fromMatrix(outer.at(u).matrix() * inner.at(u).matrix());
+                if (!t)
+                    throw SceneError({model.name, 0, 0},
+                                     "node " + std::to_string(p.node) +
+                                         ": its moving transform, with the scene's, is singular "
+                                         "or too large");
+                keys.push_back(*t);
+            }
+            builder.placeMesh(model.meshes[p.mesh], keys.front(), defaultMaterial, where, what,
+                              std::make_shared<const MotionPath>(keys));
+            continue;
+        }
         std::optional<Transform> t =
             identity ? p.worldFromObject
             : p.worldFromObject.isIdentity()

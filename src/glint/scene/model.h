@@ -5,6 +5,7 @@
 /// placeModel() puts a model in a scene being built, under a transform (the course's `mesh`
 /// command), and model_framing.h makes a whole scene of one (`glint model.obj`).
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -25,6 +26,9 @@ struct ModelPlacement {
     uint32_t mesh = 0;          ///< Index into Model::meshes.
     Transform worldFromObject;  ///< The model's space from the mesh's (a glTF node's transform).
     uint32_t node = 0;          ///< What placed it in the file (a glTF node), for messages.
+    /// A placement that moves over the shutter: worldFromObject at evenly spaced times from
+    /// the shutter's opening to its closing (the first is worldFromObject); empty when still.
+    std::vector<Transform> motion{};
 };
 
 /// The camera a model file brings.
@@ -82,8 +86,19 @@ struct ModelTime {
     std::string animation;
     /// Seconds into the animation; none: no animation is played (the nodes' own transforms).
     std::optional<double> seconds;
+    /// The shutter, in seconds from `seconds`: open <= close; equal, no motion blur.
+    double shutterOpen = 0, shutterClose = 0;
+    /// Keys of what moves, evenly spaced over the shutter: between them transforms are
+    /// interpolated (math/motion.h).
+    int shutterKeys = 5;
 
     bool playing() const { return seconds.has_value(); }
+    bool blurs() const { return shutterClose > shutterOpen; }
+    /// The time of shutter key k (0 to shutterKeys - 1).
+    double keyTime(int k) const {
+        return seconds.value_or(0) + shutterOpen +
+               (shutterClose - shutterOpen) * k / std::max(shutterKeys - 1, 1);
+    }
 };
 
 /// One of a model file's animations, as listed for the user.
@@ -108,6 +123,8 @@ struct Model {
     std::vector<MeshData> meshes;
     std::vector<ModelPlacement> placements;
     std::optional<ModelCamera> camera;
+    /// A camera that moves over the shutter: its specs at the shutter's keys; empty if still.
+    std::vector<CameraSpec> cameraMotion;
     std::vector<Light> lights;  ///< In the model's space.
     /// The format's extensions the file uses, by name (glTF's; none for other formats).
     std::vector<FormatExtension> extensions;
@@ -133,8 +150,10 @@ Model singleMeshModel(MeshData mesh);
 /// Triangles without a material of the model's take `defaultMaterial`; `where` and `what` prefix
 /// errors about the placements (MeshPlacer::add). The model's camera and lights are not used.
 /// Throws SceneError, naming the model's file, if a composed transform is singular. `model`
-/// must live until the builder has finished.
+/// must live until the builder has finished. With `modelMotion` (keys of worldFromModel over
+/// the shutter, the first worldFromModel), the whole model moves too.
 void placeModel(SceneBuilder& builder, const Model& model, const Transform& worldFromModel,
-                uint32_t defaultMaterial, const FileLoc& where = {}, const std::string& what = {});
+                uint32_t defaultMaterial, const FileLoc& where = {}, const std::string& what = {},
+                const std::vector<Transform>* modelMotion = nullptr);
 
 }  // namespace glint

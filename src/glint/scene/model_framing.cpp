@@ -153,6 +153,7 @@ Placed placeWithItsOwn(const Model& model, int width, int height) {
     std::string has;
     if (model.camera) {
         settings.camera = model.camera->spec;
+        settings.cameraMotion = model.cameraMotion;
         has = (model.camera->own ? "its " : "") + model.camera->description;
         // The file's camera knows its picture's shape, unless the command line says.
         if (width <= 0 && model.camera->aspectRatio > 0)

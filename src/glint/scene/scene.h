@@ -83,6 +83,12 @@ class Scene {
     std::string integrator = "whitted";
     std::string output;  ///< Output file the scene asks for; may be empty.
     std::optional<CameraSpec> camera;
+    /// A moving camera: its specs at evenly spaced times over the shutter, from its opening to
+    /// its closing (the first is `camera`); empty for a still one (docs/animation.md).
+    std::vector<CameraSpec> cameraMotion;
+    /// Whether anything moves over the shutter: the camera or a primitive. Each camera sample
+    /// of such a scene then has its own time (math/motion.h).
+    bool moves() const { return cameraMotion.size() > 1 || primitives.hasMotion(); }
     Background background;  ///< Black by default, as the course expects.
     /// An environment map (`environment`): radiance from every direction at infinity, in place
     /// of the background. Null: none.

@@ -51,6 +51,13 @@ class SceneBuilder {
         transformValid_ = false;
     }
     void pushTransform() { stack_.push_back(stack_.back()); }
+    /// The current transform as given (not checked).
+    const Mat4& matrix() const { return stack_.back(); }
+    /// Replaces the current transform.
+    void setMatrix(const Mat4& m) {
+        stack_.back() = m;
+        transformValid_ = false;
+    }
     /// Restores the transform pushed last. Returns false, and changes nothing, when nothing was
     /// pushed.
     bool popTransform();
@@ -151,9 +158,12 @@ class SceneBuilder {
     /// Places `mesh` by `worldFromObject`, its faces without a material of their own taking
     /// `defaultMaterial`, when the scene is finished (MeshPlacer); `mesh` must live until then.
     /// `where` and `what` prefix errors about this placement.
+    /// With `motion` (first key `worldFromObject`) it moves over the shutter (MeshPlacer::add).
     void placeMesh(const MeshData& mesh, const Transform& worldFromObject, uint32_t defaultMaterial,
-                   FileLoc where = {}, std::string what = {}) {
-        placer_.add(mesh, worldFromObject, defaultMaterial, std::move(where), std::move(what));
+                   FileLoc where = {}, std::string what = {},
+                   std::shared_ptr<const MotionPath> motion = nullptr) {
+        placer_.add(mesh, worldFromObject, defaultMaterial, std::move(where), std::move(what),
+                    std::move(motion));
     }
 
     /// Places the meshes, applies the lens to the camera and hands out the scene (not yet

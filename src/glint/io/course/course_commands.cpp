@@ -57,8 +57,72 @@ void Parser::cmdSphere() {
     Vec3 center = vec3(1);
     double radius = real(4);
     if (radius < 0) fail(4, "sphere radius must not be negative, got " + quoted(4));
-    if (!builder_.addSphere(center, radius))
+    addMoving([&] {
+        if (builder_.addSphere(center, radius)) return true;
         warn(4, "sphere of radius 0 is invisible and is skipped");
+        return false;
+    });
+}
+
+void Parser::cmdMotion() {
+    Motion m;
+    m.frame = builder_.matrix();
+    m.velocity = vec3(1);
+    if (ntok_ == 8) {
+        m.axis = vec3(4);
+        m.degreesPerSecond = number(7);
+        if (m.axis == Vec3(0)) fail(4, "rotation axis must not be zero");
+    } else if (ntok_ != 4) {
+        fail(0, "motion takes 3 numbers (a velocity) or 7 (and an axis and degrees per second)");
+    }
+    motion_.back() = m;
+}
+
+std::vector<Mat4> Parser::movedTransforms() {
+    const std::optional<Motion>& m = motion_.back();
+    if (!m) return {};
+    const std::optional<Mat4> inverseFrame = inverse(m->frame);
+    if (!inverseFrame) fail(0, "the transform a motion acts in is singular");
+    // At time tau the motion's translation and turn act where `motion` was given, before the
+    // transforms that came after it.
+    auto at = [&](double tau) {
+        const Vec3 d = m->velocity * tau;
+        return m->frame * Mat4::translate(d.x, d.y, d.z) *
+               Mat4::rotate(m->axis.x, m->axis.y, m->axis.z, m->degreesPerSecond * tau) *
+               *inverseFrame * builder_.matrix();
+    };
+    std::vector<Mat4> out;
+    if (!time_.blurs()) {
+        out.push_back(at(time_.seconds.value_or(0)));
+    } else {
+        for (int k = 0; k < time_.shutterKeys; ++k) out.push_back(at(time_.keyTime(k)));
+    }
+    return out;
+}
+
+void Parser::addMoving(const std::function<bool()>& add) {
+    const std::vector<Mat4> keys = movedTransforms();
+    if (keys.empty()) {
+        add();
+        return;
+    }
+    std::vector<Transform> path;
+    for (const Mat4& k : keys) {
+        std::optional<Transform> t = Transform::fromMatrix(k);
+        if (!t) fail(0, "the motion makes the transform singular or too large");
+        path.push_back(*t);
+    }
+    const Primitives& prims = builder_.scene().primitives;
+    const uint32_t spheres = prims.sphereCount(), shapes = prims.shapeCount();
+    builder_.pushTransform();
+    builder_.setMatrix(keys.front());
+    const bool added = add();
+    builder_.popTransform();
+    if (!added || path.size() < 2) return;
+    uint32_t id = prims.triangleCount() + prims.sphereCount() - 1;
+    if (prims.sphereCount() == spheres && prims.shapeCount() > shapes)
+        id = prims.triangleCount() + prims.sphereCount() + prims.shapeCount() - 1;
+    builder_.scene().primitives.setMotion(id, MotionPath(path));
 }
 
 void Parser::cmdMaxVerts() {
@@ -99,7 +163,17 @@ void Parser::cmdVertexNormal() {
     }
 }
 
+void Parser::noteStillTriangles() {
+    if (!motion_.back() || warnedStillTriangles_) return;
+    warnedStillTriangles_ = true;
+    warn(0, std::string(tok_[0].text) +
+                ": triangles do not follow a motion (they stay where the transform puts them); a "
+                "mesh that moves belongs in a mesh file, placed by `mesh` under the motion "
+                "(reported once)");
+}
+
 void Parser::cmdTri() {
+    noteStillTriangles();
     uint32_t i[3];
     for (int k = 0; k < 3; ++k) i[k] = vertexIndex(k + 1, vertices_.size(), "vertex", "vertices");
     const Transform& t = transform();
@@ -109,6 +183,7 @@ void Parser::cmdTri() {
 }
 
 void Parser::cmdTriNormal() {
+    noteStillTriangles();
     uint32_t i[3];
     for (int k = 0; k < 3; ++k)
         i[k] = vertexIndex(k + 1, normalVertices_.size(), "vertexnormal", "vertexnormals");
@@ -143,7 +218,10 @@ void Parser::cmdScale() {
 }
 
 void Parser::cmdPopTransform() {
-    if (builder_.popTransform()) return;
+    if (builder_.popTransform()) {
+        motion_.pop_back();
+        return;
+    }
     const std::string what = "popTransform without a matching pushTransform";
     if (!lenient_) fail(0, what + " (--lenient ignores it)");
     warnRepeated("popTransform", what + " ignored", "");

@@ -125,7 +125,10 @@ void Parser::cmdBox() {
         if (a[k] == b[k])
             fail(4 + k, std::string("box has zero extent along ") + "xyz"[k] +
                             ": both corners have " + "xyz"[k] + " = " + quoted(4 + k));
-    builder_.addShape(ShapeKind::Box, boxPlacement(a, b), 1);
+    addMoving([&] {
+        builder_.addShape(ShapeKind::Box, boxPlacement(a, b), 1);
+        return true;
+    });
 }
 
 void Parser::cmdCylinder() {
@@ -133,7 +136,10 @@ void Parser::cmdCylinder() {
     double r = real(7);
     if (a == b) fail(4, "the cylinder's end points coincide: its axis has no direction");
     if (!(r > 0)) fail(7, "cylinder radius must be positive, got " + quoted(7));
-    builder_.addShape(ShapeKind::Cylinder, cylinderPlacement(a, b, r), 1);
+    addMoving([&] {
+        builder_.addShape(ShapeKind::Cylinder, cylinderPlacement(a, b, r), 1);
+        return true;
+    });
 }
 
 void Parser::cmdCone() {
@@ -145,7 +151,10 @@ void Parser::cmdCone() {
     if (a == b) fail(5, "the cone's end points coincide: its axis has no direction");
     double k = 1;
     Mat4 placement = conePlacement(a, r0, b, r1, k);
-    builder_.addShape(ShapeKind::Cone, placement, k);
+    addMoving([&] {
+        builder_.addShape(ShapeKind::Cone, placement, k);
+        return true;
+    });
 }
 
 void Parser::cmdDisk() {
@@ -153,10 +162,14 @@ void Parser::cmdDisk() {
     double r = real(7);
     if (n == Vec3(0)) fail(4, "disk normal must not be zero");
     if (!(r > 0)) fail(7, "disk radius must be positive, got " + quoted(7));
-    builder_.addShape(ShapeKind::Disk, diskPlacement(c, n, r), 1);
+    addMoving([&] {
+        builder_.addShape(ShapeKind::Disk, diskPlacement(c, n, r), 1);
+        return true;
+    });
 }
 
 void Parser::cmdPolygon() {
+    noteStillTriangles();
     const int n = ntok_ - 1;
     std::vector<uint32_t> index(static_cast<size_t>(n));
     std::vector<Vec3> points(static_cast<size_t>(n));

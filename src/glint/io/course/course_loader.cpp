@@ -30,6 +30,7 @@ const std::vector<Command>& Parser::commands() {
         {"sphere", 4, 4, "x y z radius", &Parser::cmdSphere},
         {"pushTransform", 0, 0, "", &Parser::cmdPushTransform},
         {"popTransform", 0, 0, "", &Parser::cmdPopTransform},
+        {"motion", 3, 7, "vx vy vz [ax ay az degrees]", &Parser::cmdMotion},
         {"translate", 3, 3, "x y z", &Parser::cmdTranslate},
         {"rotate", 4, 4, "x y z degrees", &Parser::cmdRotate},
         {"scale", 3, 3, "x y z", &Parser::cmdScale},

@@ -39,7 +39,15 @@ void Parser::cmdMesh() {
     // its cameras and lights are the scene's business, and are not used.
     const std::string what = "mesh " + quoted(1);
     try {
-        placeModel(builder_, it->second, t, material, loc(tok_[0].column), what);
+        // Moved by a `motion`: where it puts the model at the scene's time, or over the shutter.
+        std::vector<Transform> keys;
+        for (const Mat4& k : movedTransforms()) {
+            std::optional<Transform> moved = Transform::fromMatrix(k);
+            if (!moved) fail(0, "the motion makes the transform singular or too large");
+            keys.push_back(*moved);
+        }
+        placeModel(builder_, it->second, keys.empty() ? t : keys.front(), material,
+                   loc(tok_[0].column), what, keys.size() > 1 ? &keys : nullptr);
     } catch (const SceneError& e) {
         fail(0, what + ": " + e.diagnostic().message);
     }

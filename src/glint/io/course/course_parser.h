@@ -5,6 +5,7 @@
 // course_meshes.cpp (meshes and textures). Internal to io/course: use course_loader.h.
 
 #include <array>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -124,7 +125,11 @@ class Parser {
     void cmdTranslate();
     void cmdRotate();
     void cmdScale();
-    void cmdPushTransform() { builder_.pushTransform(); }
+    void cmdPushTransform() {
+        builder_.pushTransform();
+        motion_.push_back(motion_.back());
+    }
+    void cmdMotion();
     void cmdPopTransform();
     void cmdDirectional();
     void cmdPoint();
@@ -192,8 +197,25 @@ class Parser {
     std::vector<Diagnostic>& warnings_;
     LoadLimits limits_;
     bool lenient_;
-    ModelTime time_;            ///< Of the files `mesh` names.
-    class AssetCache* assets_;  ///< Where they are kept; may be null.
+    ModelTime time_;            ///< The scene's time and shutter (`motion`, `mesh`).
+    class AssetCache* assets_;  ///< Where `mesh` files are kept; may be null.
+    /// `motion`: what moves what follows it, until its transform is popped.
+    struct Motion {
+        Mat4 frame;     ///< The transform when it was given: the motion acts inside it.
+        Vec3 velocity;  ///< Per second.
+        Vec3 axis{0, 1, 0};
+        double degreesPerSecond = 0;
+    };
+    std::vector<std::optional<Motion>> motion_{std::nullopt};  ///< By transform stack level.
+    bool warnedStillTriangles_ = false;
+    /// The current transform where the current motion puts it: at the scene's time (one
+    /// matrix), or at the shutter's keys (several); empty without a motion.
+    std::vector<Mat4> movedTransforms();
+    /// Adds one sphere or shape by `add` (false: nothing added) where the current motion
+    /// places it, moving over the shutter if there is one.
+    void addMoving(const std::function<bool()>& add);
+    /// Warns, once, that triangles given under a motion do not move.
+    void noteStillTriangles();
     SceneBuilder builder_;
 
     int line_ = 0;
