@@ -279,6 +279,18 @@ std::string frameFileName(const std::string& pattern, long long frame) {
     return {};
 }
 
+std::string sequencePattern(const Options& opt, std::string& pattern) {
+    pattern = opt.output;
+    if (pattern.empty())
+        pattern = std::filesystem::path(opt.scene.empty() ? "glint" : opt.scene).stem().string() +
+                  "_%04d.png";
+    if (!frameFileName(pattern, 0).empty()) return {};
+    return "--frames " + opt.frames +
+           " writes a file per frame: -o needs a frame number in its name, as out_%04d.png or "
+           "out_####.png, got '" +
+           pattern + "'";
+}
+
 int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
     using Clock = std::chrono::steady_clock;
     const bool demo = opt.scene.empty();

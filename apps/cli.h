@@ -92,6 +92,9 @@ std::string parseFrameRange(const std::string& text, FrameRange& out);
 /// The file of frame `frame` in `pattern`: its first %d, %0Nd or run of #s replaced by the
 /// number (at least N digits); empty when the pattern has none.
 std::string frameFileName(const std::string& pattern, long long frame);
+/// The file name pattern of the sequence --frames asks for: -o, else <scene-stem>_%04d.png (or
+/// glint_%04d.png for the demo). Returns what is wrong with it (no frame number), or nothing.
+std::string sequencePattern(const Options& opt, std::string& pattern);
 
 /// Registers every option and flag of `glint` on `app`, storing into `opt`.
 void addOptions(CLI::App& app, Options& opt);

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -236,15 +235,9 @@ int runFrames(const Options& opt) {
     if (opt.frames.empty()) return run(opt);
     FrameRange range;
     parseFrameRange(opt.frames, range);  // checked with the options
-    std::string pattern = opt.output;
-    if (pattern.empty())
-        pattern = std::filesystem::path(opt.scene.empty() ? "glint" : opt.scene).stem().string() +
-                  "_%04d.png";
-    if (frameFileName(pattern, 0).empty())
-        return usageError("--frames " + opt.frames +
-                          " writes a file per frame: -o needs a frame "
-                          "number in its name, as out_%04d.png or out_####.png, got '" +
-                          pattern + "'");
+    std::string pattern;
+    if (std::string problem = sequencePattern(opt, pattern); !problem.empty())
+        return usageError(problem);
     // A piece's hash covers the files it read: each frame of pieces reads them again.
     glint::AssetCache assets;
     const bool keep = !wantsPiece(opt);

@@ -1,5 +1,6 @@
 // glint-mpi: glint across the ranks of an MPI job, `mpirun -np N glint-mpi SCENE [options]`,
-// with glint's options and the same image, byte for byte (docs/scale-out.md, "MPI").
+// with glint's options and the same image, byte for byte (docs/scale-out.md, "MPI"); with
+// --frames, a sequence of such frames in one job, one after the other.
 //
 // Every rank loads the scene itself from the filesystem they share and rank 0 checks that they
 // all hold the same one (mpi_load.cpp); rank 0 then hands out tiles on demand, every rank
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <thread>
 
 #include "cli.h"
 #include "glint/core/atomic_file.h"
@@ -65,11 +67,15 @@ struct MpiOptions {
     std::string timings;
 };
 
-int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
+/// Renders the one frame `opt` asks for with every rank; `assets` keeps this rank's model files
+/// for the next frame of a sequence (null: none follows). Returns on rank 0 the exit code, on
+/// the others 0 (rank 0 speaks for the job).
+int run(const Options& opt, const MpiOptions& mpiOpt, Job& job,
+        glint::AssetCache* assets = nullptr) {
     using Clock = std::chrono::steady_clock;
     const bool root = job.rank == 0;
     Prepared prepared;
-    if (int code = glint::mpi::loadEverywhere(opt, prepared, job); code != kGoOn)
+    if (int code = glint::mpi::loadEverywhere(opt, prepared, job, assets); code != kGoOn)
         return root ? code : 0;  // rank 0 said why and ends the job with its code
     glint::Scene& scene = *prepared.scene;
     if (opt.check) {
@@ -176,6 +182,60 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
     return 0;
 }
 
+/// Rank 0's `code` to every rank. The others wait for it sleeping: MPI's blocking collectives
+/// spin, and between frames they wait while rank 0 denoises and writes the image, which a
+/// spinning rank on the same machine would slow.
+void shareFromRoot(int& code) {
+    MPI_Request request;
+    MPI_Ibcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    for (int done = 0;;) {
+        MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+        if (done) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+}
+
+/// Renders the frames --frames asks for, one file each, as glint does: every rank keeps the
+/// model files it parsed for the next frame, and mpirun's start and MPI's set-up are paid once
+/// for the sequence. Or the one frame of the other options (--frame, --time-at, or none).
+int runFrames(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
+    if (opt.frames.empty()) return run(opt, mpiOpt, job);
+    const bool root = job.rank == 0;
+    FrameRange range;
+    parseFrameRange(opt.frames, range);  // checked with the options
+    std::string pattern;
+    if (std::string problem = sequencePattern(opt, pattern); !problem.empty()) {
+        if (root) usageError(problem);
+        return kExitUsage;
+    }
+    glint::AssetCache assets;
+    for (long long i = 0, n = range.count(); i < n; ++i) {
+        Options frame = opt;
+        frame.frames.clear();
+        frame.frame = range.first + i * range.step;
+        frame.output = frameFileName(pattern, *frame.frame);
+        // --timings with a frame number in its name: a file per frame.
+        MpiOptions frameMpi = mpiOpt;
+        if (std::string t = frameFileName(mpiOpt.timings, *frame.frame); !t.empty())
+            frameMpi.timings = t;
+        if (root && !opt.quiet)
+            std::fprintf(stderr, "glint-mpi: frame %lld (%lld of %lld)\n", *frame.frame, i + 1, n);
+        int code = run(frame, frameMpi, job, &assets);
+        // Every rank has come through the frame's last collective; only rank 0 knows whether
+        // its image was written, and whether to go on: it tells the others.
+        if (root && code == 0) {
+            if (int sig = gInterrupt.load(); sig != 0) {
+                std::fprintf(stderr, "glint-mpi: %s: stopped after frame %lld\n", signalName(sig),
+                             *frame.frame);
+                code = 128 + sig;
+            }
+        }
+        shareFromRoot(code);
+        if (code != 0) return root ? code : 0;
+    }
+    return 0;
+}
+
 /// Parses the command line on every rank (all see the same one, so all agree); rank 0 alone
 /// prints help, the version or usage errors. Returns kGoOn or the exit code.
 int parse(int argc, char** argv, bool root, Options& opt, MpiOptions& mpiOpt) {
@@ -184,7 +244,8 @@ int parse(int argc, char** argv, bool root, Options& opt, MpiOptions& mpiOpt) {
         "\n  mpirun -np N glint-mpi SCENE [options]"
         "\nEvery rank reads the scene from a filesystem they all share; rank 0 hands out"
         "\ntiles, renders too, and writes the image, byte for byte glint's. -t sets each"
-        "\nrank's threads (default: the CPUs mpirun gives the rank).",
+        "\nrank's threads (default: the CPUs mpirun gives the rank). --frames renders a"
+        "\nsequence in one job, each frame on every rank.",
         "glint-mpi"};
     app.get_formatter()->column_width(30);
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -216,6 +277,13 @@ int parse(int argc, char** argv, bool root, Options& opt, MpiOptions& mpiOpt) {
             usageError("--time is not available in glint-mpi (every rank renders a fixed --spp)");
         return kExitUsage;
     }
+    if (!opt.part.empty() || !opt.crop.empty() || !opt.samples.empty()) {
+        if (root)
+            usageError(
+                "--part, --crop and --samples write frame pieces for glint merge: glint-mpi "
+                "renders whole frames (render pieces with glint)");
+        return kExitUsage;
+    }
     if (!root) mpiOpt.timings.clear();
     return kGoOn;
 }
@@ -239,7 +307,7 @@ int main(int argc, char** argv) {
         job.threads = opt.threads > 0 ? opt.threads : glint::mpi::availableCpus();
         installSignalHandlers();
         try {
-            code = run(opt, mpiOpt, job);
+            code = runFrames(opt, mpiOpt, job);
         } catch (const std::exception& e) {
             // Past the load check every rank's failures go to rank 0 as messages; this is for
             // what is left (an MPI error, memory for the image): end the job from here.

@@ -167,14 +167,14 @@ int availableCpus() {
     return std::max(CPU_COUNT(&set), 1);
 }
 
-int loadEverywhere(const cli::Options& opt, cli::Prepared& prepared, Job& job) {
+int loadEverywhere(const cli::Options& opt, cli::Prepared& prepared, Job& job, AssetCache* assets) {
     LoadStatus status;
     std::string text;
     {
         InputLog log;
         StderrCapture capture;
         try {
-            status.code = cli::prepare(opt, prepared);
+            status.code = cli::prepare(opt, prepared, assets);
         } catch (const std::exception& e) {
             std::fprintf(stderr, "glint: error: %s\n", e.what());
             status.code = cli::kExitSceneError;
@@ -229,6 +229,10 @@ int loadEverywhere(const cli::Options& opt, cli::Prepared& prepared, Job& job) {
 
     int decision = cli::kGoOn;
     if (job.rank == 0) {
+        // This load's figures (a sequence loads once per frame).
+        job.hosts.clear();
+        job.parseSeconds.clear();
+        job.threadsPerRank.clear();
         std::vector<std::string> texts;
         for (int r = 0; r < job.size; ++r) {
             const LoadStatus& s = all[static_cast<size_t>(r)];

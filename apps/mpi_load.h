@@ -28,8 +28,11 @@ struct Job {
 /// fails to load still reports), which checks that each loaded the scene, that the files'
 /// hash, the image size and the samples per pixel agree, and prints the warnings once (rank
 /// 0's) or every failure, naming the ranks. Returns cli::kGoOn on every rank if all is well,
-/// else on every rank the exit code to end with.
-int loadEverywhere(const cli::Options& opt, cli::Prepared& prepared, Job& job);
+/// else on every rank the exit code to end with. `assets`: where this rank keeps model files
+/// for the next frame of a sequence (null: nowhere); a frame read from it hashes only the files
+/// it read again, alike on every rank.
+int loadEverywhere(const cli::Options& opt, cli::Prepared& prepared, Job& job,
+                   AssetCache* assets = nullptr);
 
 /// CPUs this process may run on (its affinity mask, which mpirun's binding sets), at least 1.
 int availableCpus();

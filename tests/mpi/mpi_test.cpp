@@ -287,6 +287,139 @@ TEST(GlintMpi, UsageErrorsArePrintedOnceAndExit2) {
     r = runMpi("-np 2 " + kGlintMpi + " --time 5", dir);
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_TRUE(contains(r.err, "--time is not available in glint-mpi")) << r.err;
+    // Pieces are glint's: glint-mpi would render the whole frame into the piece's file.
+    for (const char* piece : {"--part 0/2", "--crop 0,8,0,8", "--samples 0:1"}) {
+        r = runMpi("-np 2 " + kGlintMpi + " " + piece + " -o p.exr", dir);
+        EXPECT_EQ(r.exitCode, 2) << piece << "\n" << r.err;
+        EXPECT_TRUE(contains(r.err, "glint-mpi renders whole frames")) << piece << "\n" << r.err;
+    }
+    EXPECT_FALSE(fs::exists(dir + "/p.exr"));
+}
+
+// Sequences (issue 24): tests/data/gltf/animated.gltf, 99 frames at 24 fps of two boxes
+// moving, framed by Glint for the whole animation, tiny.
+const std::string kAnimated = "'" + kData + "/gltf/animated.gltf'";
+const std::string kTiny = " --size 32x24 --spp 2 -t 1";
+
+/// How many of frames `first` to `last` are the same bytes in files `a` and `b` (patterns
+/// with %04d) in `dir`; every file must exist.
+int sameFrames(const std::string& dir, const std::string& a, const std::string& b, int first,
+               int last) {
+    int same = 0;
+    for (int n = first; n <= last; ++n) {
+        char x[64], y[64];
+        std::snprintf(x, sizeof x, a.c_str(), n);
+        std::snprintf(y, sizeof y, b.c_str(), n);
+        std::string bytes = readBytes(dir + "/" + x);
+        EXPECT_FALSE(bytes.empty()) << x;
+        same += !bytes.empty() && bytes == readBytes(dir + "/" + y);
+    }
+    return same;
+}
+
+TEST(GlintMpi, AHundredFrameSequenceGivesGlintsFramesByteForByte) {
+    std::string dir = freshDir("mpi-frames");
+    CommandResult one = runGlint(kAnimated + " --frames 0:99 -q -o g_%04d.png" + kTiny, dir);
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    // One job of three ranks renders every frame, rank 0 writing each file.
+    CommandResult mpi = runMpi(
+        "-np 3 " + kGlintMpi + " " + kAnimated + " --frames 0:99 -o m_%04d.png" + kTiny, dir);
+    ASSERT_EQ(mpi.exitCode, 0) << mpi.err;
+    EXPECT_TRUE(contains(mpi.err, "glint-mpi: frame 0 (1 of 100)\n")) << mpi.err;
+    EXPECT_TRUE(contains(mpi.err, "glint-mpi: frame 99 (100 of 100)\n")) << mpi.err;
+    EXPECT_TRUE(contains(mpi.err, "glint-mpi: wrote m_0099.png (32x24, 3 ranks)")) << mpi.err;
+    EXPECT_EQ(sameFrames(dir, "g_%04d.png", "m_%04d.png", 0, 99), 100);
+    // The frames are frames of an animation: no two neighbours alike.
+    EXPECT_NE(readBytes(dir + "/g_0041.png"), readBytes(dir + "/g_0042.png"));
+}
+
+TEST(GlintMpi, FrameTimeAtAndAStepPoseTheFramesGlintDoes) {
+    std::string dir = freshDir("mpi-frame");
+    const std::string mpi = "-np 2 " + kGlintMpi + " " + kAnimated + " -q";
+    ASSERT_EQ(runGlint(kAnimated + " --frame 42 -q -o g.png" + kTiny, dir).exitCode, 0);
+    CommandResult r = runMpi(mpi + " --frame 42 -o frame.png" + kTiny, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // Frame 42 at 24 fps is 1.75 s; at 12 fps, frame 21.
+    r = runMpi(mpi + " --time-at 1.75 -o time.png" + kTiny, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runMpi(mpi + " --frames 19:23:2 --fps 12 -o s_####.png" + kTiny, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string g = readBytes(dir + "/g.png");
+    ASSERT_FALSE(g.empty());
+    EXPECT_TRUE(readBytes(dir + "/frame.png") == g);
+    EXPECT_TRUE(readBytes(dir + "/time.png") == g);
+    EXPECT_TRUE(readBytes(dir + "/s_0021.png") == g);
+    EXPECT_TRUE(fs::exists(dir + "/s_0019.png") && fs::exists(dir + "/s_0023.png"));
+    EXPECT_FALSE(fs::exists(dir + "/s_0020.png"));
+    EXPECT_NE(readBytes(dir + "/s_0019.png"), g);
+}
+
+TEST(GlintMpi, TimingsOfASequenceGoToAFilePerFrameEachOfItsOwnLoad) {
+    std::string dir = freshDir("mpi-frame-timings");
+    CommandResult r = runMpi("-np 3 " + kGlintMpi + " " + kAnimated +
+                                 " --frames 4:5 -q -o f%d.png --timings t%d.json" + kTiny,
+                             dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* name : {"/t4.json", "/t5.json"}) {
+        std::string json = readBytes(dir + name);
+        EXPECT_TRUE(contains(json, "\"ranks\": 3,")) << name << json;
+        // Each frame's own load: one entry per rank, not the sequence's so far.
+        EXPECT_TRUE(contains(json, "\"threads\": [1, 1, 1],")) << name << json;
+    }
+}
+
+TEST(GlintMpi, SequenceUsageErrorsAreGlintsAndPrintedOnce) {
+    std::string dir = freshDir("mpi-frames-usage");
+    struct Case {
+        const char* args;
+        int code;
+        const char* message;
+    } cases[] = {
+        {"--frames 0:3 -o out.png", 2,
+         "glint: error: --frames 0:3 writes a file per frame: -o needs a frame number in its "
+         "name, as out_%04d.png or out_####.png, got 'out.png'"},
+        {"--frames 3:1", 2, "the last frame comes before the first in '3:1'"},
+        {"--frames 1:3:0", 2, "the step must be at least 1"},
+        {"--frame 1 --frames 1:2", 2, "excludes"},
+        {"--animation Walk --frames 0:1 -o w%d.png", 1,
+         "no animation is named 'Walk': the file has 1 animation: 0 = 'Turn'"},
+    };
+    for (const Case& c : cases) {
+        CommandResult r =
+            runMpi("-np 3 " + kGlintMpi + " " + kAnimated + " " + c.args + kTiny + " -q", dir);
+        EXPECT_EQ(r.exitCode, c.code) << c.args << "\n" << r.err;
+        size_t first = r.err.find(c.message);
+        ASSERT_NE(first, std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_EQ(r.err.find(c.message, first + 1), std::string::npos) << c.args << "\n" << r.err;
+    }
+    EXPECT_EQ(leftovers(dir), "");
+}
+
+TEST(GlintMpi, SigintMidSequenceKeepsTheFramesWrittenAndStopsEveryRank) {
+    std::string dir = freshDir("mpi-frames-sigint");
+    // Frames of a second or so each on three ranks of one thread.
+    Background job({"-np", "3", GLINT_MPI_BINARY, kData + "/gltf/animated.gltf", "--frames", "0:9",
+                    "--size", "160x120", "--spp", "256", "-t", "1", "-o", "f_%04d.png"},
+                   dir);
+    auto start = std::chrono::steady_clock::now();
+    while (!fs::exists(dir + "/f_0000.png") &&
+           std::chrono::steady_clock::now() - start < std::chrono::seconds(40))
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ASSERT_TRUE(fs::exists(dir + "/f_0000.png")) << readBytes(dir + "/.stderr");
+    ::kill(job.pid(), SIGINT);
+    int code = job.wait(std::chrono::seconds(30));
+    std::string err = readBytes(dir + "/.stderr");
+    EXPECT_NE(code, 0) << err;
+    EXPECT_NE(code, -1) << "the job did not end: " << err;
+    EXPECT_TRUE(contains(err, "glint-mpi: SIGTERM: stopped")) << err;
+    EXPECT_FALSE(fs::exists(dir + "/f_0009.png"));
+    // Whole frames only: no temporary file, no partial image.
+    for (const auto& e : fs::directory_iterator(dir)) {
+        std::string name = e.path().filename().string();
+        if (name == ".stdout" || name == ".stderr") continue;
+        EXPECT_EQ(name.size(), std::string("f_0000.png").size()) << name;
+        EXPECT_EQ(name.rfind("f_", 0), 0u) << name;
+    }
 }
 
 }  // namespace

@@ -344,6 +344,56 @@ for n in nodes:
 a.add("scenes", {"nodes": list(range(len(nodes)))})
 a.write_glb("scene.glb")
 
+# animated.gltf (buffer as a data: URI): animation 0 'Turn', 99 frames at 24 fps (0 to 4.125 s):
+# a red box turning a full turn about y (LINEAR rotation keys a quarter turn apart) as it rises
+# and falls (LINEAR translation), and a small blue box beside it stepping between three places
+# (STEP). No camera: Glint frames it for the whole animation. Every frame of 0 to 99 differs from
+# the next; the farm tests render 100 of them (tests/slurm/frames_test.sh, tests/mpi/).
+a = Asset()
+P, N, I = [], [], []
+for n, u, v in faces:  # the golden scene's box, without texture coordinates
+    base = len(P)
+    for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+        P.append(tuple(0.5 * (n[i] + su * u[i] + sv * v[i]) for i in range(3)))
+        N.append(n)
+    I += [base, base + 1, base + 2, base, base + 2, base + 3]
+box = {"POSITION": a.vec(P, "VEC3"), "NORMAL": a.vec(N, "VEC3")}
+box_indices = a.indices(I)
+for name, colour in (("red", [0.8, 0.15, 0.1, 1]), ("blue", [0.1, 0.25, 0.8, 1])):
+    material = a.add("materials", {"name": name, "pbrMetallicRoughness": {
+        "baseColorFactor": colour, "metallicFactor": 0, "roughnessFactor": 0.6}})
+    a.add("meshes", {"name": name + " box", "primitives": [{
+        "attributes": box, "indices": box_indices, "material": material}]})
+a.add("nodes", {"name": "turning", "mesh": 0, "translation": [0, 0.5, 0]})
+a.add("nodes", {"name": "stepping", "mesh": 1, "translation": [1.2, 0.2, 0],
+                "scale": [0.4, 0.4, 0.4]})
+a.add("scenes", {"nodes": [0, 1]})
+end = 99 / 24
+
+
+def keys(values):
+    """A float accessor of key values (rows) or key times (numbers)."""
+    if isinstance(values[0], (int, float)):
+        data = struct.pack("<%df" % len(values), *values)
+        return a.accessor(a.view(data), FLOAT, len(values), "SCALAR",
+                          min=[min(values)], max=[max(values)])
+    data = b"".join(struct.pack("<%df" % len(r), *r) for r in values)
+    return a.accessor(a.view(data), FLOAT, len(values), {3: "VEC3", 4: "VEC4"}[len(values[0])])
+
+
+turn_times = keys([end * k / 4 for k in range(5)])
+rise_times = keys([0, end / 2, end])
+step_times = keys([0, end / 3, 2 * end / 3])
+a.add("animations", {"name": "Turn", "samplers": [
+    {"input": turn_times, "output": keys([quaternion((0, 1, 0), 90 * k) for k in range(5)])},
+    {"input": rise_times, "output": keys([(0, 0.5, 0), (0, 1.1, 0), (0, 0.5, 0)])},
+    {"input": step_times, "interpolation": "STEP",
+     "output": keys([(1.2, 0.2, 0), (0, 0.2, 1.2), (-1.2, 0.2, 0)])}],
+    "channels": [{"sampler": 0, "target": {"node": 0, "path": "rotation"}},
+                 {"sampler": 1, "target": {"node": 0, "path": "translation"}},
+                 {"sampler": 2, "target": {"node": 1, "path": "translation"}}]})
+a.write_gltf("animated.gltf")
+
 
 # The error cases: each file is broken in one way.
 def broken(path, change):
