@@ -340,6 +340,7 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
     std::string modelNote;  // for a bare model: the camera, lights and floor Glint chose
     bool framed = false;    // a model framed as a scene
     std::vector<FormatExtension> extensions;  // a model file's
+    std::vector<ModelAnimation> animations;   // a model file's
     try {
         if (demo) {
             scene = parseCourseScene(kDemoScene, "demo.test", warnings);
@@ -370,6 +371,7 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
             modelNote = std::move(m.note);
             framed = m.framed;
             extensions = std::move(m.extensions);
+            animations = std::move(m.animations);
         }
     } catch (const SceneError& e) {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
@@ -443,6 +445,7 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
     out.demo = demo;
     out.model = framed;
     out.extensions = std::move(extensions);
+    out.animations = std::move(animations);
     return kGoOn;
 }
 

@@ -110,6 +110,8 @@ struct Prepared {
     bool model = false;  ///< A model file framed in the studio (not a scene).
     /// A model file's format extensions and what Glint does with each (`--check` lists them).
     std::vector<FormatExtension> extensions;
+    /// A model file's animations (`--check` lists them).
+    std::vector<ModelAnimation> animations;
 };
 
 /// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <optional>
@@ -110,6 +111,17 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr) {
             for (const glint::FormatExtension& e : prepared.extensions)
                 std::printf("  %-*s  %s\n", static_cast<int>(width), e.name.c_str(),
                             e.support.c_str());
+        }
+        // A model file's animations, as --animation names them.
+        if (!prepared.animations.empty()) {
+            std::printf("animations (%zu):\n", prepared.animations.size());
+            for (size_t i = 0; i < prepared.animations.size(); ++i) {
+                const glint::ModelAnimation& a = prepared.animations[i];
+                std::printf("  %zu  %s  %g to %g s (frames %.0f to %.0f at %g fps), %zu %s\n", i,
+                            a.name.empty() ? "(unnamed)" : ("'" + a.name + "'").c_str(), a.start,
+                            a.end, std::floor(a.start * opt.fps), std::ceil(a.end * opt.fps),
+                            opt.fps, a.channels, a.channels == 1 ? "channel" : "channels");
+            }
         }
         return 0;
     }

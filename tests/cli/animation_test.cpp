@@ -101,6 +101,12 @@ TEST(CliAnimation, TheNoteSaysWhatIsPlayed) {
                          "posed by animation 0 'Slide' at 0.25 s, framed for the whole "
                          "animation"))
         << r.err;
+    r = runGlint("anim.gltf --check", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out,
+                         "animations (1):\n  0  'Slide'  0 to 2 s (frames 0 to 48 at 24 "
+                         "fps), 2 channels\n"))
+        << r.out;
     r = runGlint("anim.gltf --size 40x30 --spp 1 -t 1 --frames 1:2 -o s%d.png", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "glint: frame 1 (1 of 2)")) << r.err;

@@ -252,6 +252,7 @@ ModelScene frameModelScene(const Model& model, int width, int height, const Mode
                                  : classicScene(model, width, height, look);
     out.framed = true;
     out.extensions = model.extensions;
+    out.animations = model.animations;
     if (!model.posed.empty()) {
         out.note += (out.note.empty() ? model.name + ": " : "; ") + "posed by " + model.posed +
                     ", framed for the whole animation";

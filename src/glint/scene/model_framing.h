@@ -29,6 +29,8 @@ struct ModelScene {
     std::string note;
     /// The model file's format extensions (Model::extensions): `glint --check` lists them.
     std::vector<FormatExtension> extensions;
+    /// The model file's animations (Model::animations): `glint --check` lists them.
+    std::vector<ModelAnimation> animations;
 };
 
 /// Camera rays per pixel of the studio look: enough for rough metal and soft shadows to come
