@@ -21,78 +21,9 @@ contrib=$source_dir/contrib/slurm
 # shellcheck source=tests/slurm/local_slurm.sh
 . "$here/local_slurm.sh"
 
-for tool in munged slurmctld slurmd sbatch squeue scancel sinfo scontrol; do
-    if ! command -v "$tool" >/dev/null; then
-        echo "frames_test: skipped: no $tool (Debian slurm-wlm and munge; make deps installs them)"
-        exit 77
-    fi
-done
-if [ "$(id -u)" != 0 ]; then
-    echo "frames_test: skipped: the private Slurm runs its daemons and jobs as root"
-    exit 77
-fi
-[ -x "$glint" ] || { echo "frames_test: error: no glint at $2" >&2; exit 1; }
-
-# A Slurm job or shell around this test must not leak into the private cluster's jobs.
-unset "${!SBATCH_@}" "${!SLURM_@}" "${!SALLOC_@}" "${!SRUN_@}" GLINT GLINT_MPI GLINT_MPI_LAUNCHER
-# Open MPI as root, on one machine, shared memory only (platform-notes.md); the jobs inherit it.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_pml=ob1 \
-    OMPI_MCA_btl=self,vader OMPI_MCA_rmaps_base_oversubscribe=1
-
-work=$(mktemp -d "${TMPDIR:-/tmp}/glint-frames.XXXXXX")
-chmod 755 "$work"
-cd "$work" || exit 1
-now() { date +%s.%N; }
-seconds() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", b - a }'; }
-BG=()  # NAME:PID of the background steps (bg)
-
-# The whole test has 100 s: a watchdog ends it (cleanup included) if a step hangs.
-limit=100
-(
-    sleep "$limit" &
-    sleeper=$!
-    trap 'kill "$sleeper" 2>/dev/null; exit 0' TERM
-    wait "$sleeper" && kill -TERM $$
-) &
-watchdog=$!
-cleanup() {
-    local entry
-    for entry in "${BG[@]}"; do  # those still running (a finished one's PID may be reused)
-        [ -f "$work/${entry%%:*}.time" ] || kill -TERM "${entry#*:}" 2>/dev/null
-    done
-    local_slurm_stop
-    kill "$watchdog" 2>/dev/null
-    wait "$watchdog" 2>/dev/null
-    if [ "$FAILURES" = 0 ] && [ "${finished:-0}" = 1 ]; then
-        rm -rf "$work"
-    else
-        echo "frames_test: kept $work; the daemons' logs:" >&2
-        tail -n 20 "$work"/slurm/log/*.log >&2 2>/dev/null
-    fi
-}
-trap cleanup EXIT
-trap 'echo "frames_test: error: out of time ($limit s) or interrupted" >&2; exit 1' TERM INT
-
-# bg NAME CMD...: runs CMD in the background (80 s at most), for collect NAME; cleanup ends it.
-bg() {
-    local name=$1
-    shift
-    (
-        trap '[ -n "${child:-}" ] && kill -TERM "$child" 2>/dev/null; exit 143' TERM
-        start=$(now)
-        timeout 80 "$@" >"$work/$name.out" 2>"$work/$name.err" &
-        child=$!
-        wait "$child"
-        echo $? >"$work/$name.rc"
-        seconds "$start" "$(now)" >"$work/$name.time"
-    ) &
-    BG+=("$name:$!")
-}
-# collect NAME: waits for bg NAME to end; sets RC, OUT, ERR like run does.
-collect() {
-    while [ ! -f "$work/$1.time" ]; do wait -n 2>/dev/null || sleep 0.1; done
-    RC=$(cat "$work/$1.rc") OUT=$(cat "$work/$1.out") ERR=$(cat "$work/$1.err")
-}
+# shellcheck source=tests/slurm/cluster_harness.sh
+. "$here/cluster_harness.sh"
+cluster_harness frames_test "$glint" 100 80
 job_id() { sed -n "s/^$1 jobs\{0,1\} \([0-9]*\).*/\1/p" <<<"$OUT"; }
 jobcomp() { grep "^JobId=$1 " "$work/slurm/log/jobcomp.txt" 2>/dev/null; }
 # same DIR A:B[:STEP] [REF]: how many frames of the range in DIR (f_NNNN.png) are byte for byte
@@ -211,7 +142,7 @@ jobs_time=$(seconds "$t2" "$(now)")
 
 finished=1
 trap - EXIT
-cleanup
+cluster_cleanup
 echo "frames_test: times: single-process sequence $ref_time s; every job $jobs_time s;" \
     "total $(seconds "$t0" "$(now)") s"
 finish
