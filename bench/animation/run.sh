@@ -14,8 +14,9 @@
 #   blur      the cost of motion blur: render time (--stats) and wall time with --shutter
 #             -0.25:0.25 against none at equal spp, RUNS interleaved pairs, medians and ratios,
 #             on BoxAnimated at frame 40 (a rigid node turning), scenes/spinning.test (spheres,
-#             boxes and cylinders moved by `motion`) and CesiumMan at frame 10 (a skinned mesh:
-#             not blurred, so what it costs is overhead); and whether the images differ.
+#             boxes and cylinders moved by `motion`; also with its picture's shutter 0:1) and
+#             CesiumMan at frame 10 (a skinned mesh: not blurred, so what it costs is
+#             overhead); and whether the images differ.
 # Usage: bench/animation/run.sh [OPTIONS] BUILD_DIR [OUT_DIR]
 #   BUILD_DIR  holds glint (a Release build)
 #   OUT_DIR    frames, logs and summary.md [a temporary folder, removed at the end]
@@ -192,14 +193,14 @@ fi
 if [ "$part" = blur ] || [ "$part" = all ]; then
     mkdir -p "$out/blur"
     : >"$out/blur/times.txt"
-    blur_case() {  # NAME FILE ARGS...: RUNS interleaved pairs, still and blurred
-        local name=$1 file=$2 r kind t0
-        shift 2
+    blur_case() {  # NAME SHUTTER FILE ARGS...: RUNS interleaved pairs, still and blurred
+        local name=$1 shutter=$2 file=$3 r kind t0
+        shift 3
         for ((r = 0; r < runs; r++)); do
             for kind in still blur; do
                 [ $((r % 2)) = 1 ] && kind=$([ $kind = still ] && echo blur || echo still)
                 local extra=()
-                [ $kind = blur ] && extra=(--shutter -0.25:0.25)
+                [ $kind = blur ] && extra=(--shutter "$shutter")
                 t0=$(now)
                 "$glint" "$file" "$@" "${extra[@]}" --size "$size" --spp "$spp" --no-denoise \
                     -t "$threads" -q --stats -o "$out/blur/${name}_$kind.png" \
@@ -215,9 +216,10 @@ if [ "$part" = blur ] || [ "$part" = all ]; then
         fi
     }
     : >"$out/blur/same.txt"
-    blur_case BoxAnimated "$box" --frame 40 --fps 24
-    blur_case spinning "$repo/scenes/spinning.test"
-    blur_case CesiumMan "$man" --frame 10 --fps 24
+    blur_case BoxAnimated -0.25:0.25 "$box" --frame 40 --fps 24
+    blur_case spinning -0.25:0.25 "$repo/scenes/spinning.test"
+    blur_case spinning_long 0:1 "$repo/scenes/spinning.test"
+    blur_case CesiumMan -0.25:0.25 "$man" --frame 10 --fps 24
     python3 - "$out/blur/times.txt" "$out/blur/same.txt" "$spp" <<'EOF' | tee -a "$summary"
 import statistics, sys
 t = {}
@@ -225,14 +227,16 @@ for line in open(sys.argv[1]):
     name, kind, wall, render = line.split()
     t.setdefault((name, kind), []).append((float(wall), float(render)))
 same = dict(l.split() for l in open(sys.argv[2]))
-what = {"BoxAnimated": "BoxAnimated, frame 40 (rigid: the inner box turning)",
-        "spinning": "scenes/spinning.test (rigid: `motion`)",
-        "CesiumMan": "CesiumMan, frame 10 (skinned: not blurred)"}
-print(f"## (c) The cost of motion blur: --shutter -0.25:0.25 against none, {sys.argv[3]} spp")
+what = {"BoxAnimated": "BoxAnimated, frame 40 (rigid: the inner box turning) | -0.25:0.25",
+        "spinning": "scenes/spinning.test (rigid: `motion`) | -0.25:0.25",
+        "spinning_long": "scenes/spinning.test, its picture's shutter | 0:1",
+        "CesiumMan": "CesiumMan, frame 10 (skinned: not blurred) | -0.25:0.25"}
+print(f"## (c) The cost of motion blur: --shutter against none, {sys.argv[3]} spp")
 print()
-print("| scene | render (s), still | blurred | ratio | wall (s), still | blurred | ratio | images |")
-print("|---|---|---|---|---|---|---|---|")
-for name in ("BoxAnimated", "spinning", "CesiumMan"):
+print("| scene | shutter | render (s), still | blurred | ratio | wall (s), still | blurred | "
+      "ratio | images |")
+print("|---|---|---|---|---|---|---|---|---|")
+for name in ("BoxAnimated", "spinning", "spinning_long", "CesiumMan"):
     s, b = t[(name, "still")], t[(name, "blur")]
     rs, rb = statistics.median(x[1] for x in s), statistics.median(x[1] for x in b)
     ws, wb = statistics.median(x[0] for x in s), statistics.median(x[0] for x in b)
