@@ -17,11 +17,15 @@
 #             boxes and cylinders moved by `motion`; also with its picture's shutter 0:1) and
 #             CesiumMan at frame 10 (a skinned mesh: not blurred, so what it costs is
 #             overhead); and whether the images differ.
+#   instructions  (not in `all`; needs valgrind) the blur part's cases counted by callgrind at
+#             320x180, SPP samples, one thread: instructions of the whole run, still and
+#             blurred, and their ratio, which the machine's load does not move.
 # Usage: bench/animation/run.sh [OPTIONS] BUILD_DIR [OUT_DIR]
 #   BUILD_DIR  holds glint (a Release build)
 #   OUT_DIR    frames, logs and summary.md [a temporary folder, removed at the end]
 # Options (defaults in brackets):
-#   --part sequence|phases|blur|all [all]   --runs N [3]   --spp N [16]   --size WxH [640x360]
+#   --part sequence|phases|blur|instructions|all [all: the first three]   --runs N [3]
+#   --spp N [16]   --size WxH [640x360]
 #   --threads N [2]   --frames N [100]   --step S [1: every frame; 4: every 4th of the N]
 #   --fps F [50: 100 frames cover CesiumMan's 2-second walk once]
 #   --models DIR  Khronos' samples [../shared/real-world/gltf-ext beside the repository]
@@ -56,7 +60,7 @@ done
 for n in "$runs" "$spp" "$threads" "$frames" "$step"; do
     [[ $n =~ ^[1-9][0-9]*$ ]] || { echo "run.sh: '$n' is not a positive integer" >&2; exit 2; }
 done
-case $part in sequence | phases | blur | all) ;; *) usage ;; esac
+case $part in sequence | phases | blur | instructions | all) ;; *) usage ;; esac
 build=$(cd "${positional[0]}" && pwd)
 glint=$build/glint
 [ -x "$glint" ] || { echo "run.sh: $glint not found: build it first" >&2; exit 1; }
@@ -97,25 +101,32 @@ if [ "$part" = sequence ] || [ "$part" = all ]; then
     : >"$out/seq/times.txt"
     one() {  # one process for the whole sequence, its --stats kept
         "$glint" "$man" --frames "0:$last:$step" -o "$out/seq/f_%04d.png" "${common[@]}" \
-            -q --stats >"$out/seq/stats_$1.txt"
+            -q --stats >"$out/seq/stats_$1.txt" 2>>"$out/seq/stderr.txt"
     }
     each() {  # a process per frame
         local n
         for n in $list; do
             "$glint" "$man" --frame "$n" -o "$(printf '%s/each/f_%04d.png' "$out" "$n")" \
-                "${common[@]}" -q
+                "${common[@]}" -q 2>>"$out/seq/stderr.txt"
         done
     }
+    TIMEFORMAT='%3R %3U %3S'  # bash's `time`: wall, then user and system CPU of the children
     for ((r = 0; r < runs; r++)); do
         for j in 0 1; do
             if [ $(((r + j) % 2)) = 0 ]; then
-                t0=$(now); one "$r"; echo "one $(elapsed "$t0")" >>"$out/seq/times.txt"
+                { time one "$r"; } 2>"$out/seq/time.txt"
+                echo "one $(cat "$out/seq/time.txt")" >>"$out/seq/times.txt"
             else
-                t0=$(now); each; echo "each $(elapsed "$t0")" >>"$out/seq/times.txt"
+                { time each; } 2>"$out/seq/time.txt"
+                echo "each $(cat "$out/seq/time.txt")" >>"$out/seq/times.txt"
             fi
             echo "run.sh: sequence round $((r + 1)) of $runs: $(tail -1 "$out/seq/times.txt")" >&2
         done
     done
+    if [ -s "$out/seq/stderr.txt" ]; then
+        echo "run.sh: glint wrote on stderr:" >&2
+        head "$out/seq/stderr.txt" >&2
+    fi
     identical=0
     for n in $list; do
         f=$(printf 'f_%04d.png' "$n")
@@ -126,23 +137,28 @@ if [ "$part" = sequence ] || [ "$part" = all ]; then
     python3 - "$out/seq/times.txt" "$count" "$last" "$step" "$identical" <<'EOF' | tee -a "$summary"
 import statistics, sys
 path, count, last, step, identical = sys.argv[1], *map(int, sys.argv[2:])
-t = {}
+t, cpu = {}, {}
 for line in open(path):
-    k, v = line.split()
-    t.setdefault(k, []).append(float(v))
+    k, wall, user, system = line.split()
+    t.setdefault(k, []).append(float(wall))
+    cpu.setdefault(k, []).append(float(user) + float(system))
 one, each = statistics.median(t["one"]), statistics.median(t["each"])
+cone, ceach = statistics.median(cpu["one"]), statistics.median(cpu["each"])
 span = f"0:{last}" + (f":{step}" if step > 1 else "")
 print(f"## (a) CesiumMan, {count} frames ({span}): one process against one per frame")
 print()
-print("| way | wall (s), median | runs | frames per minute | s per frame |")
-print("|---|---|---|---|---|")
+print("| way | wall (s), median | runs | frames per minute | s per frame | CPU (s), median | runs |")
+print("|---|---|---|---|---|---|---|")
 print(f"| one `glint --frames {span}` | {one:.1f} | {', '.join(f'{x:.1f}' for x in t['one'])} "
-      f"| {60 * count / one:.1f} | {one / count:.3f} |")
+      f"| {60 * count / one:.1f} | {one / count:.3f} | {cone:.1f} "
+      f"| {', '.join(f'{x:.1f}' for x in cpu['one'])} |")
 print(f"| {count} x `glint --frame N` | {each:.1f} | {', '.join(f'{x:.1f}' for x in t['each'])} "
-      f"| {60 * count / each:.1f} | {each / count:.3f} |")
+      f"| {60 * count / each:.1f} | {each / count:.3f} | {ceach:.1f} "
+      f"| {', '.join(f'{x:.1f}' for x in cpu['each'])} |")
 print()
-print(f"Ratio (one process per frame / one sequence): {each / one:.3f}; "
-      f"saved per frame: {(each - one) / count:.3f} s")
+print(f"Ratio (one process per frame / one sequence): wall {each / one:.3f}, CPU "
+      f"{ceach / cone:.3f}; saved per frame: wall {(each - one) / count:.3f} s, CPU "
+      f"{(ceach - cone) / count:.3f} s")
 print(f"Byte-identical frames (cmp): {identical} of {count}")
 print()
 EOF
@@ -242,6 +258,45 @@ for name in ("BoxAnimated", "spinning", "spinning_long", "CesiumMan"):
     ws, wb = statistics.median(x[0] for x in s), statistics.median(x[0] for x in b)
     print(f"| {what[name]} | {rs:.2f} | {rb:.2f} | {rb / rs:.2f} | {ws:.2f} | {wb:.2f} | "
           f"{wb / ws:.2f} | {'identical' if same[name] == 'identical' else 'differ'} |")
+print()
+EOF
+fi
+if [ "$part" = instructions ]; then
+    command -v valgrind >/dev/null || { echo "run.sh: valgrind not found" >&2; exit 1; }
+    mkdir -p "$out/instr"
+    : >"$out/instr/counts.txt"
+    count_case() {  # NAME SHUTTER FILE ARGS...: instructions of the whole run, still and blurred
+        local name=$1 shutter=$2 file=$3 kind
+        shift 3
+        for kind in still blur; do
+            local extra=()
+            [ $kind = blur ] && extra=(--shutter "$shutter")
+            valgrind --tool=callgrind --callgrind-out-file="$out/instr/$name.$kind.out" \
+                "$glint" "$file" "$@" "${extra[@]}" --size 320x180 --spp "$spp" --no-denoise \
+                -t 1 -q -o "$out/instr/${name}_$kind.png" 2>"$out/instr/$name.$kind.log"
+            echo "$name $kind $(awk '/Collected/ { print $4 }' "$out/instr/$name.$kind.log")" \
+                >>"$out/instr/counts.txt"
+        done
+    }
+    count_case BoxAnimated -0.25:0.25 "$box" --frame 40 --fps 24
+    count_case spinning -0.25:0.25 "$repo/scenes/spinning.test"
+    count_case spinning_long 0:1 "$repo/scenes/spinning.test"
+    count_case CesiumMan -0.25:0.25 "$man" --frame 10 --fps 24
+    python3 - "$out/instr/counts.txt" "$spp" <<'EOF' | tee -a "$summary"
+import sys
+n = {}
+for line in open(sys.argv[1]):
+    name, kind, ir = line.split()
+    n[(name, kind)] = int(ir)
+print(f"## (c') The cost of motion blur in instructions (callgrind, 320x180, {sys.argv[2]} spp, "
+      "-t 1, the whole run: loading and writing included)")
+print()
+print("| scene | shutter | instructions, still | blurred | ratio |")
+print("|---|---|---|---|---|")
+for name, shutter in (("BoxAnimated", "-0.25:0.25"), ("spinning", "-0.25:0.25"),
+                      ("spinning_long", "0:1"), ("CesiumMan", "-0.25:0.25")):
+    s, b = n[(name, "still")], n[(name, "blur")]
+    print(f"| {name} | {shutter} | {s / 1e6:.0f} M | {b / 1e6:.0f} M | {b / s:.3f} |")
 print()
 EOF
 fi
