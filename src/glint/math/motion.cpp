@@ -1,6 +1,7 @@
 #include "glint/math/motion.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace glint {
@@ -115,6 +116,9 @@ float shutterTime() { return tShutterTime; }
 void setShutterTime(float u) { tShutterTime = u; }
 
 MotionPath::MotionPath(const std::vector<Transform>& keys) : keys_(keys) {
+    static std::atomic<uint64_t> paths{0};
+    id_ = ++paths;
+    if (!keys_.empty()) firstInverse_ = keys_.front().inverseMatrix();
     for (const Transform& k : keys_) {
         const Mat4 m = k.matrix();
         M3 a = linearPart(m);
@@ -137,13 +141,12 @@ MotionPath::MotionPath(const std::vector<Transform>& keys) : keys_(keys) {
     }
 }
 
-Transform MotionPath::at(float time) const {
-    if (keys_.size() < 2) return keys_.empty() ? Transform() : keys_.front();
+Mat4 MotionPath::matrixAt(float time) const {
     const double u =
         std::clamp(static_cast<double>(time), 0.0, 1.0) * static_cast<double>(keys_.size() - 1);
     const size_t k = std::min(static_cast<size_t>(u), keys_.size() - 2);
     const double s = u - static_cast<double>(k);
-    if (s == 0) return keys_[k];
+    if (s == 0) return keys_[k].matrix();
     const Parts &a = parts_[k], &b = parts_[k + 1];
     const M3 r = rotationOf(slerp(a.rotation, b.rotation, s));
     Mat4 m;
@@ -156,18 +159,36 @@ Transform MotionPath::at(float time) const {
         }
         m.m[i][3] = (1 - s) * a.translation[i] + s * b.translation[i];
     }
+    return m;
+}
+
+Transform MotionPath::at(float time) const {
+    if (keys_.size() < 2) return keys_.empty() ? Transform() : keys_.front();
+    if (std::optional<Transform> t = Transform::fromMatrix(matrixAt(time))) return *t;
     // Between invertible keys the interpolated stretch can only be singular in contrived
     // paths; the nearer key stands in then.
-    if (std::optional<Transform> t = Transform::fromMatrix(m)) return *t;
-    return s < 0.5 ? keys_[k] : keys_[k + 1];
+    const double u =
+        std::clamp(static_cast<double>(time), 0.0, 1.0) * static_cast<double>(keys_.size() - 1);
+    return keys_[std::min(static_cast<size_t>(std::lround(u)), keys_.size() - 1)];
 }
 
 Transform MotionPath::delta(float u) const {
     if (!moves_) return Transform();
-    if (std::optional<Transform> t =
-            Transform::fromMatrix(at(u).matrix() * keys_.front().inverseMatrix()))
-        return *t;
-    return Transform();
+    // Every ray of a camera sample has its time: the rays of one path ask again and again for
+    // the same delta, so each thread keeps the last few (a path's id and time make the key;
+    // the value is what computing it gives, so images do not depend on the cache).
+    struct Cached {
+        uint64_t path = 0;
+        float u = 0;
+        Transform delta;
+    };
+    thread_local std::array<Cached, 8> cache;
+    Cached& c = cache[id_ % cache.size()];
+    if (c.path == id_ && c.u == u) return c.delta;
+    std::optional<Transform> t = Transform::fromMatrix(matrixAt(u) * firstInverse_);
+    if (!t) t = Transform::fromMatrix(at(u).matrix() * firstInverse_);
+    c = {id_, u, t.value_or(Transform())};
+    return c.delta;
 }
 
 Bounds3f MotionPath::sweep(const Bounds3f& box) const {

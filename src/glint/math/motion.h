@@ -9,6 +9,7 @@
 /// shrinking of interpolated matrices; curved paths need more keys.
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "glint/math/bbox.h"
@@ -46,8 +47,13 @@ class MotionPath {
         std::array<double, 4> rotation;  ///< Unit quaternion x, y, z, w.
         double stretch[3][3];
     };
+    /// The interpolated matrix at time u (keys_.size() >= 2).
+    Mat4 matrixAt(float u) const;
+
     std::vector<Transform> keys_;
     std::vector<Parts> parts_;
+    Mat4 firstInverse_;  ///< The first key's inverse: delta() maps from it.
+    uint64_t id_ = 0;    ///< This path's (and its copies') key in delta()'s per-thread cache.
     bool moves_ = false;
 };
 

@@ -54,7 +54,7 @@ class GltfDocument {
   public:
     /// Parses `bytes` as parseGltf does, and checks it; nothing is posed yet.
     GltfDocument(std::string_view bytes, const std::string& fileName,
-              std::vector<Diagnostic>& warnings, const GltfOptions& options = {});
+                 std::vector<Diagnostic>& warnings, const GltfOptions& options = {});
     ~GltfDocument();
     GltfDocument(const GltfDocument&) = delete;
     GltfDocument& operator=(const GltfDocument&) = delete;
@@ -72,7 +72,7 @@ class GltfDocument {
 
 /// Reads the glTF file at `path` and parses it into an asset to pose.
 std::shared_ptr<GltfDocument> openGltf(const std::string& path, std::vector<Diagnostic>& warnings,
-                                    const GltfOptions& options = {});
+                                       const GltfOptions& options = {});
 
 /// Reads and parses the glTF file at `path`, posed at options.time.
 Model loadGltf(const std::string& path, std::vector<Diagnostic>& warnings,
