@@ -40,7 +40,10 @@ import time
 
 import bpy
 from bpy_extras.io_utils import axis_conversion
-from mathutils import Matrix, Vector
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "gltf"))
+from gltf_cycles import add_camera  # noqa: E402 - after the path to it
+from mathutils import Vector
 
 
 def fail(message):
@@ -103,29 +106,15 @@ def check_frame_mapping(path, fps):
 
 
 def orbit_camera(scene, conv, orbit, fovy, width, height):
+    """Glint's --camera orbit:THETA,PHI,RADIUS,TX,TY,TZ as a Blender camera (through
+    gltf_cycles.py's add_camera); returns its eye and target in glTF's axes."""
     theta, phi, radius, tx, ty, tz = orbit
     th, ph = math.radians(theta), math.radians(phi)
     target = Vector((tx, ty, tz))
     eye = target + radius * Vector((math.sin(ph) * math.sin(th), math.cos(ph),
                                     math.sin(ph) * math.cos(th)))
-    up = Vector((0.0, 1.0, 0.0))
-    eye, target, up = (conv @ v for v in (eye, target, up))
-    cam = bpy.data.cameras.new("Camera")
-    cam.type = "PERSP"
-    cam.sensor_fit = "VERTICAL"
-    cam.angle_y = math.radians(fovy)
-    cam.clip_start, cam.clip_end = 1e-3, 1e4
-    obj = bpy.data.objects.new("Camera", cam)
-    scene.collection.objects.link(obj)
-    forward = (target - eye).normalized()
-    right = forward.cross(up).normalized()
-    true_up = right.cross(forward)
-    obj.matrix_world = Matrix.Translation(eye) @ Matrix((right, true_up, -forward)).transposed().to_4x4()
-    scene.camera = obj
-    scene.render.resolution_x, scene.render.resolution_y = width, height
-    scene.render.resolution_percentage = 100
-    scene.render.pixel_aspect_x = scene.render.pixel_aspect_y = 1.0
-    return eye, target
+    add_camera(scene, conv, (eye, target, Vector((0.0, 1.0, 0.0)), fovy), width, height)
+    return conv @ eye, conv @ target
 
 
 def sun(scene, conv, name, towards, value):

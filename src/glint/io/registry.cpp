@@ -13,6 +13,8 @@
 #include "glint/io/obj/obj_loader.h"
 #include "glint/io/ply/ply_loader.h"
 #include "glint/io/stl/stl_loader.h"
+#include "glint/math/motion.h"
+#include "glint/math/motion.h"
 
 namespace glint {
 namespace {
@@ -88,15 +90,11 @@ void addMotion(GltfDocument& asset, const ModelTime& time, Model& model,
     }
     for (size_t i = 0; i < model.placements.size(); ++i) {
         std::vector<Transform> path;
-        bool moves = false;
         for (const Model& m : keys) {
             if (m.placements.size() != model.placements.size()) return;  // cannot happen
             path.push_back(m.placements[i].worldFromObject);
-            const Mat4 a = path.back().matrix(), b = path.front().matrix();
-            for (int r = 0; r < 3; ++r)
-                for (int c = 0; c < 4; ++c) moves = moves || a.m[r][c] != b.m[r][c];
         }
-        if (moves) model.placements[i].motion = std::move(path);
+        if (MotionPath(path).moves()) model.placements[i].motion = std::move(path);
     }
     if (model.camera) {
         bool moves = false;
