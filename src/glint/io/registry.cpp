@@ -14,7 +14,6 @@
 #include "glint/io/ply/ply_loader.h"
 #include "glint/io/stl/stl_loader.h"
 #include "glint/math/motion.h"
-#include "glint/math/motion.h"
 
 namespace glint {
 namespace {
