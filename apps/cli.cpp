@@ -187,8 +187,8 @@ void printStats(const Scene& scene, double parse, double build, const RenderResu
     if (scene.primitives.sharedMeshCount() > 0)
         std::printf(" + shared meshes %.2f MB", static_cast<double>(scene.sharedBvhBytes()) / 1e6);
     std::printf("\n");
-    std::printf("Time        parse %.3f s, build %.3f s, render %.3f s, write %.3f s\n", parse,
-                build, r.seconds, write);
+    std::printf("Time        parse %.3f s, build %.3f s%s, render %.3f s, write %.3f s\n", parse,
+                build, bvh.refitted ? " (refit)" : "", r.seconds, write);
     std::printf("Rays        %llu camera, %llu shadow, %llu reflection, %llu total\n",
                 static_cast<unsigned long long>(r.rays.camera),
                 static_cast<unsigned long long>(r.rays.shadow),

@@ -62,9 +62,10 @@ void installSignalHandlers() {
 
 const char* signalName(int sig) { return sig == SIGTERM ? "SIGTERM" : "SIGINT"; }
 
-/// Renders the one frame `opt` asks for; `assets` keeps model files for the next frame of a
-/// sequence (null: none follows).
-int run(const Options& opt, glint::AssetCache* assets = nullptr) {
+/// Renders the one frame `opt` asks for; `assets` keeps model files, and `accel` the BVHs, for
+/// the next frame of a sequence (null: none follows).
+int run(const Options& opt, glint::AssetCache* assets = nullptr,
+        glint::FrameAccel* accel = nullptr) {
     using Clock = std::chrono::steady_clock;
     // A piece of the frame: its inputs are hashed as they are read, so that glint merge can
     // tell pieces of other scenes (or other versions of its meshes and textures) apart.
@@ -153,7 +154,7 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr) {
     // Build, then render, on one pool of threads (-t 1: the calling thread alone).
     glint::ThreadPool pool(opt.threads);
     auto t1 = Clock::now();
-    scene->prepare({&pool, kernels});
+    scene->prepare({&pool, kernels, accel});
     double buildSeconds = secondsSince(t1);
 
     // Render.
@@ -237,6 +238,7 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr) {
         std::fprintf(stderr, "glint: wrote %s (%dx%d)\n", output.c_str(), scene->width,
                      scene->height);
     if (opt.stats) printStats(*scene, parseSeconds, buildSeconds, result, writeSeconds);
+    if (accel) scene->keepAccel(*accel);
     if (gStop.load()) return 128 + gSignal;  // arrived while writing: the image is complete
     return 0;
 }
@@ -252,6 +254,7 @@ int runFrames(const Options& opt) {
         return usageError(problem);
     // A piece's hash covers the files it read: each frame of pieces reads them again.
     glint::AssetCache assets;
+    glint::FrameAccel accel;  // refitted from frame to frame where the geometry allows
     const bool keep = !wantsPiece(opt);
     for (long long i = 0, n = range.count(); i < n; ++i) {
         Options frame = opt;
@@ -260,7 +263,7 @@ int runFrames(const Options& opt) {
         frame.output = frameFileName(pattern, *frame.frame);
         if (!opt.quiet)
             std::fprintf(stderr, "glint: frame %lld (%lld of %lld)\n", *frame.frame, i + 1, n);
-        if (int code = run(frame, keep ? &assets : nullptr); code != 0) return code;
+        if (int code = run(frame, keep ? &assets : nullptr, &accel); code != 0) return code;
         if (gStop.load()) {
             std::fprintf(stderr, "glint: %s: stopped after frame %lld\n", signalName(gSignal),
                          *frame.frame);

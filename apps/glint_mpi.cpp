@@ -67,17 +67,25 @@ struct MpiOptions {
     std::string timings;
 };
 
-/// Renders the one frame `opt` asks for with every rank; `assets` keeps this rank's model files
-/// for the next frame of a sequence (null: none follows). Returns on rank 0 the exit code, on
-/// the others 0 (rank 0 speaks for the job).
-int run(const Options& opt, const MpiOptions& mpiOpt, Job& job,
-        glint::AssetCache* assets = nullptr) {
+/// Renders the one frame `opt` asks for with every rank; `assets` keeps this rank's model files,
+/// and `accel` its BVHs, for the next frame of a sequence (null: none follows). Returns on rank
+/// 0 the exit code, on the others 0 (rank 0 speaks for the job).
+int run(const Options& opt, const MpiOptions& mpiOpt, Job& job, glint::AssetCache* assets = nullptr,
+        glint::FrameAccel* accel = nullptr) {
     using Clock = std::chrono::steady_clock;
     const bool root = job.rank == 0;
     Prepared prepared;
     if (int code = glint::mpi::loadEverywhere(opt, prepared, job, assets); code != kGoOn)
         return root ? code : 0;  // rank 0 said why and ends the job with its code
     glint::Scene& scene = *prepared.scene;
+    // However the frame ends, its BVHs go to the next (refitted there where they fit).
+    struct KeepAccel {
+        glint::Scene& scene;
+        glint::FrameAccel* accel;
+        ~KeepAccel() {
+            if (accel) scene.keepAccel(*accel);
+        }
+    } keep{scene, accel};
     if (opt.check) {
         if (root)
             std::printf("%s: ok: %dx%d, %s, %s, maxdepth %d, output %s, %d ranks\n",
@@ -96,7 +104,7 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job,
         auto t0 = Clock::now();
         try {
             glint::ThreadPool pool(job.threads);
-            scene.prepare({&pool, prepared.kernels});
+            scene.prepare({&pool, prepared.kernels, accel});
         } catch (const std::exception& e) {
             work.buildError = e.what();
         }
@@ -209,6 +217,7 @@ int runFrames(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
         return kExitUsage;
     }
     glint::AssetCache assets;
+    glint::FrameAccel accel;
     for (long long i = 0, n = range.count(); i < n; ++i) {
         Options frame = opt;
         frame.frames.clear();
@@ -220,7 +229,7 @@ int runFrames(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
             frameMpi.timings = t;
         if (root && !opt.quiet)
             std::fprintf(stderr, "glint-mpi: frame %lld (%lld of %lld)\n", *frame.frame, i + 1, n);
-        int code = run(frame, frameMpi, job, &assets);
+        int code = run(frame, frameMpi, job, &assets, &accel);
         // Every rank has come through the frame's last collective; only rank 0 knows whether
         // its image was written, and whether to go on: it tells the others.
         if (root && code == 0) {

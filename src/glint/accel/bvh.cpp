@@ -86,8 +86,15 @@ bool hitMoving(Isa isa, const bvh::BvhData& d, const bvh::BvhData::Moving& m,
         const float tMax = !anyHit && hit.t < ray.tMax ? std::nextafter(hit.t, ray.tMax) : ray.tMax;
         const TraversalRay inMesh(o, dir, ray.tMin, tMax);
         const bvh::BvhData& mesh = *d.meshes[m.search.mesh()];
-        if (anyHit) return treeOccluded(isa, mesh, inMesh);
         Hit sub;
+        if (const DeformingMesh* deform = d.deforming[m.search.mesh()]) {
+            if (anyHit) return deform->occluded(inMesh, shutterTime());
+            if (!deform->intersect(inMesh, shutterTime(), sub) || !closerHit(sub.t, m.id, hit))
+                return false;
+            hit = {sub.t, m.id, sub.primId};
+            return true;
+        }
+        if (anyHit) return treeOccluded(isa, mesh, inMesh);
         if (!treeIntersect(isa, mesh, inMesh, sub) || !closerHit(sub.t, m.id, hit)) return false;
         hit = {sub.t, m.id, sub.primId};
         return true;
@@ -162,15 +169,63 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
         throw std::invalid_argument("the SIMD128 kernels exist in the WebAssembly build only");
     if (options.sharedMeshes.size() != prims.sharedMeshCount())
         throw std::invalid_argument("a BVH is needed for every shared mesh");
+    for (const Bvh* mesh : options.sharedMeshes)
+        if (mesh->isa_ != isa_)
+            throw std::invalid_argument("a shared mesh's BVH uses other kernels");
     std::optional<ThreadPool> ownPool;
     ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace(options.threads);
     bvh::BuildSummary s = bvh::build(prims, pool, data_);
+    placeBeside(prims, options);
+    builtShape_ = shapeOf(prims);
+    bounds_ = s.bounds;
+    stats_ = {};
+    stats_.nodes = static_cast<uint32_t>(data_.nodes.size());
+    stats_.leaves = s.leaves;
+    stats_.maxDepth = s.maxDepth;
+    stats_.maxLeafSize = s.maxLeafSize;
+    stats_.bytes = data_.bytes();
+    stats_.builtArea = bvh::relativeArea(data_);
+    stats_.buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool Bvh::refit(const Primitives& prims, const BvhBuildOptions& options) {
+    auto start = std::chrono::steady_clock::now();
+    const Isa isa = options.isa == Isa::Auto ? bestIsa() : options.isa;
+    if (isa != isa_ || builtShape_.empty() || shapeOf(prims) != builtShape_ ||
+        options.sharedMeshes.size() != prims.sharedMeshCount())
+        return false;
+    for (const Bvh* mesh : options.sharedMeshes)
+        if (mesh->isa_ != isa_) return false;
+    bounds_ = bvh::refit(prims, data_);
+    placeBeside(prims, options);
+    stats_.refitted = true;
+    stats_.buildSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return true;
+}
+
+double Bvh::relativeArea() const { return bvh::relativeArea(data_); }
+
+std::vector<uint32_t> Bvh::shapeOf(const Primitives& prims) const {
+    std::vector<uint32_t> shape = {prims.triangleCount(), prims.sphereCount(),
+                                   prims.shapeCount(),    prims.instanceCount(),
+                                   prims.planeCount(),    prims.sharedMeshCount()};
+    if (prims.hasMotion())
+        for (uint32_t id = 0; id < prims.boundedCount(); ++id)
+            if (prims.motion(id)) shape.push_back(id);
+    return shape;
+}
+
+void Bvh::placeBeside(const Primitives& prims, const BvhBuildOptions& options) {
     data_.meshes.clear();
-    for (const Bvh* mesh : options.sharedMeshes) {
-        if (mesh->isa_ != isa_)
-            throw std::invalid_argument("a shared mesh's BVH uses other kernels");
-        data_.meshes.push_back(&mesh->data_);
+    data_.deforming.clear();
+    for (uint32_t i = 0; i < options.sharedMeshes.size(); ++i) {
+        data_.meshes.push_back(&options.sharedMeshes[i]->data_);
+        data_.deforming.push_back(prims.sharedMesh(i).deformation());
     }
+    data_.planes.clear();
+    data_.planeIds.clear();
     for (uint32_t id = prims.boundedCount(); id < prims.size(); ++id) {
         data_.planes.push_back(prims.planeSearch(id));
         data_.planeIds.push_back(id);
@@ -181,15 +236,6 @@ void Bvh::build(const Primitives& prims, const BvhBuildOptions& options) {
             if (const MotionPath* m = prims.motion(id))
                 data_.moving.push_back({id, prims.bounds(id), prims.shapeSearch(id), *m});
     route_ = data_.planes.empty() && data_.moving.empty() ? isa_ : Isa::Auto;
-    bounds_ = s.bounds;
-    stats_ = {};
-    stats_.nodes = static_cast<uint32_t>(data_.nodes.size());
-    stats_.leaves = s.leaves;
-    stats_.maxDepth = s.maxDepth;
-    stats_.maxLeafSize = s.maxLeafSize;
-    stats_.bytes = data_.bytes();
-    stats_.buildSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 Bounds3f Bvh::bounds() const { return bounds_; }

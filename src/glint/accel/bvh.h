@@ -45,7 +45,10 @@ struct BvhStats {
     uint32_t maxDepth = 0;     ///< Levels of nodes.
     uint32_t maxLeafSize = 0;  ///< Primitives in the largest leaf.
     size_t bytes = 0;          ///< Everything traversal reads: nodes and leaf data.
-    double buildSeconds = 0;
+    double buildSeconds = 0;   ///< Of the last build, or refit.
+    bool refitted = false;     ///< The last change was a refit (Bvh::refit), not a build.
+    /// The summed areas of the nodes' boxes over the root's, as built (bvh::relativeArea).
+    double builtArea = 0;
 };
 
 class Bvh {
@@ -54,6 +57,16 @@ class Bvh {
     /// only has to live while building. Throws std::invalid_argument for kernels this CPU
     /// cannot run, or without a BVH for each shared mesh.
     void build(const Primitives& prims, const BvhBuildOptions& options = {});
+    /// Fits this BVH to `prims`: the primitives it was built over, moved (the next frame of an
+    /// animation), with the same counts of each kind and the same ones moving over the
+    /// shutter. The tree keeps its shape, and its leaves and boxes take the primitives' new
+    /// places; searches find exactly what a fresh build's would. Returns false, changing
+    /// nothing, for primitives of other counts, or kernels or shared meshes other than
+    /// those it was built with: build then. As things move from where the tree was built, it
+    /// grows slower to search (relativeArea() against stats().builtArea says by how much).
+    bool refit(const Primitives& prims, const BvhBuildOptions& options = {});
+    /// The summed areas of the nodes' boxes over the root's, now (bvh::relativeArea).
+    double relativeArea() const;
 
     /// Closest hit with tMin < t < min(ray.tMax, hit.t); fills `hit` and returns true if any.
     /// Among hits at exactly the same distance the lowest primitive id wins, so the result
@@ -87,8 +100,15 @@ class Bvh {
     [[gnu::noinline]] bool intersectWithPlanes(const TraversalRay& ray, Hit& hit) const;
     [[gnu::noinline]] bool occludedWithPlanes(const TraversalRay& ray) const;
 
+    /// What build and refit both do beside the tree: the shared meshes' trees, the planes
+    /// and the moving primitives, from `prims`.
+    void placeBeside(const Primitives& prims, const BvhBuildOptions& options);
+    /// Counts of each kind of primitive, and the ids of moving ones: what a refit must match.
+    std::vector<uint32_t> shapeOf(const Primitives& prims) const;
+
     bvh::BvhData data_;
     BvhStats stats_;
+    std::vector<uint32_t> builtShape_;  ///< shapeOf() the primitives it was built over.
     Bounds3f bounds_;
     Isa isa_ = Isa::Portable;
     /// The kernels to call, or Auto when the scene has planes: one comparison picks the way.

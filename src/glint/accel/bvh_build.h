@@ -31,4 +31,16 @@ constexpr uint32_t kMaxDepth = 80;
 /// Replaces `out`. Throws std::length_error past the layout's limits (2^26 leaf items).
 BuildSummary build(const Primitives& prims, ThreadPool& pool, BvhData& out);
 
+/// Refits `data`, built by build() over primitives of the same ids, to `prims` (the same
+/// primitives moved: the next frame of an animation): every leaf's items are read again from
+/// `prims`, and every box is recomputed from them, children before parents. The tree keeps its
+/// shape (bvh_refit.cpp). Refitting to the primitives it was built over gives exactly what
+/// the build gave. Returns the bounds of the tree's primitives.
+Bounds3f refit(const Primitives& prims, BvhData& data);
+
+/// The summed surface areas of every box in the tree's nodes over the root's: the quantity a
+/// refit lets grow (a measure of the tree's cost to search, as SAH's); 0 for a tree of no
+/// nodes.
+double relativeArea(const BvhData& data);
+
 }  // namespace glint::bvh

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "glint/core/huge_pages.h"
+#include "glint/geometry/deforming_mesh.h"
 #include "glint/geometry/plane.h"
 #include "glint/geometry/shape_search.h"
 #include "glint/math/bbox.h"
@@ -90,6 +91,9 @@ struct BvhData {
     /// The trees of the shared meshes that instance records name (ShapeSearch::mesh()); owned
     /// by their own Bvh objects, traversed with the same kernels.
     std::vector<const BvhData*> meshes;
+    /// For each of `meshes`: its deformation over the shutter (searched in place of its tree,
+    /// at the calling thread's shutter time), or null when it is still.
+    std::vector<const DeformingMesh*> deforming;
     /// Moving primitives (Primitives::setMotion), tested beside the tree by Bvh at the calling
     /// thread's shutter time: each with the bounds it sweeps, its record where it was added
     /// and its path.

@@ -128,6 +128,9 @@ const Bounds3f& Primitives::addInstance(uint32_t mesh, const Transform& worldFro
     Bounds3f bounds = ob.empty() ? Bounds3f() : paddedSearchBounds(lo, hi);
     instances_.push_back(
         {worldFromObject, bounds, ShapeSearch::instance(worldFromObject.inverseMatrix(), mesh)});
+    // A deforming mesh is searched beside the tree, with the moving primitives.
+    if (sharedMeshes_[mesh]->deformation())
+        setMotion(boundedCount() - 1, MotionPath(std::vector{worldFromObject}));
     return instances_.back().bounds;
 }
 
@@ -194,7 +197,17 @@ uint32_t Primitives::materialOf(uint32_t id) const {
 Bounds3f Primitives::bounds() const {
     Bounds3f b;
     for (uint32_t i = 0; i < boundedCount(); ++i) b.extend(bounds(i));
+    if (deformation_) {
+        b.extend(deformation_->bounds().lo);
+        b.extend(deformation_->bounds().hi);
+    }
     return b;
+}
+
+void Primitives::setDeformation(std::shared_ptr<const DeformingMesh> d) {
+    if (d && d->size() != triangleCount())
+        throw std::invalid_argument("a deformation must key every triangle of the mesh");
+    deformation_ = std::move(d);
 }
 
 void Primitives::setMotion(uint32_t id, MotionPath path) {
@@ -259,7 +272,7 @@ SurfaceInteraction Primitives::interaction(const Ray& ray, const Hit& hit) const
 SurfaceInteraction Primitives::stillInteraction(const Ray& ray, const Hit& hit) const {
     SurfaceInteraction si;
     if (hit.primId < triangleCount()) {
-        const Triangle& tri = triangles_[hit.primId];
+        const Triangle tri = triangleNow(hit.primId);
         TriangleHit th = refineTriangleHit(tri, ray, hit.t);
         si.p = ray.at(th.t);
         si.ng = normalize(tri.normalDirection());
@@ -268,7 +281,14 @@ SurfaceInteraction Primitives::stillInteraction(const Ray& ray, const Hit& hit) 
         if (!triangleNormals_.empty()) {  // some triangle has vertex normals or coordinates
             const double b0 = 1 - th.b1 - th.b2;
             if (uint32_t ni = triangleNormals_[hit.primId]; ni != kFlat && ni != kNoNormals) {
-                const auto& vn = vertexNormals_[ni];
+                const std::array<Vec3, 3>* corners = &vertexNormals_[ni];
+                std::array<Vec3, 3> keyed;
+                if (deformation_ && deformation_->hasNormals()) [[unlikely]] {
+                    const auto now = deformation_->normalsAt(hit.primId, shutterTime());
+                    keyed = {Vec3(now[0]), Vec3(now[1]), Vec3(now[2])};
+                    corners = &keyed;
+                }
+                const auto& vn = *corners;
                 Vec3 n = vn[0] * b0 + vn[1] * th.b1 + vn[2] * th.b2;
                 double len = length(n);
                 // Opposed or zero vertex normals can cancel: keep the geometric normal then.

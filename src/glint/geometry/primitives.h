@@ -15,9 +15,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "glint/core/huge_pages.h"
+#include "glint/geometry/deforming_mesh.h"
 #include "glint/geometry/plane.h"
 #include "glint/geometry/shapes.h"
 #include "glint/geometry/sphere.h"
@@ -165,6 +167,16 @@ class Primitives {
                                                      : nullptr;
     }
 
+    /// Makes this mesh's triangles deform over the shutter: `d` holds every triangle (in the
+    /// order added, triangles only) keyed over the shutter. Searches and shading then take
+    /// them at the calling thread's shutter time; bounds() is the bounds they sweep. For shared
+    /// meshes (the only ones that may deform): call it before addSharedMesh(). Their instances
+    /// count as moving (by a still path unless setMotion gives another), so accelerators
+    /// search them beside their trees, where deformation is searched.
+    void setDeformation(std::shared_ptr<const DeformingMesh> d);
+    /// The deformation of this mesh's triangles; null when they are still.
+    const DeformingMesh* deformation() const { return deformation_.get(); }
+
     /// Bounds of bounded primitive `id` (< boundedCount()); swept over the shutter if it moves.
     Bounds3f bounds(uint32_t id) const {
         if (const MotionPath* m = motion(id)) [[unlikely]]
@@ -194,14 +206,22 @@ class Primitives {
             return intersectMoving(id, *m, ray, hit);
         if (isInstance(id)) return intersectInstance(id, ray, hit);
         float t;
-        bool found = id < triangleCount()  ? intersectTriangle(triangles_[id], ray, t)
+        bool found = id < triangleCount()  ? intersectTriangle(triangleNow(id), ray, t)
                      : id < boundedCount() ? intersectShape(shapeSearch(id), ray, t)
                                            : intersectPlane(planeSearch(id), ray, t);
         if (!found || !closerHit(t, id, hit)) return false;
         hit = {t, id};
         return true;
     }
+    /// Triangle `id` as stored (as it is at the shutter's middle, if the mesh deforms).
     const Triangle& triangle(uint32_t id) const { return triangles_[id]; }
+    /// Triangle `id` as searched and shaded: at the calling thread's shutter time if the mesh
+    /// deforms.
+    Triangle triangleNow(uint32_t id) const {
+        if (deformation_) [[unlikely]]
+            return deformation_->at(id, shutterTime());
+        return triangles_[id];
+    }
     /// Sphere `i` (0 to sphereCount() - 1; its primitive id is triangleCount() + i).
     const Sphere& sphere(uint32_t i) const { return spheres_[i]; }
     /// Box, cylinder, cone or disk `i` (0 to shapeCount() - 1; its primitive id is
@@ -294,6 +314,7 @@ class Primitives {
     /// and shapes are added; those do not), ascending; and their paths, in that order.
     std::vector<uint64_t> motionKeys_;
     std::vector<MotionPath> motions_;
+    std::shared_ptr<const DeformingMesh> deformation_;
     uint64_t motionKey(uint32_t id) const {
         uint64_t kind = 0, index = id - triangleCount();
         if (index >= sphereCount()) index -= sphereCount(), kind = 1;

@@ -74,10 +74,11 @@ Model loadObjModel(const std::string& path, std::vector<Diagnostic>& warnings,
     return singleMeshModel(loadObj(path, warnings, obj));
 }
 
-/// Moves the placements and the camera of `model` (posed at the shutter's middle) as the
+/// Moves the placements, meshes and camera of `model` (posed at the shutter's middle) as the
 /// animation moves them over the shutter of `time`: each placement whose transform changes
-/// gets its transforms at the shutter's keys (ModelPlacement::motion), the camera likewise.
-/// Deforming meshes (skins, morph targets) stay as posed at the middle.
+/// gets its transforms at the shutter's keys (ModelPlacement::motion); each mesh whose vertices
+/// change (skins, morph targets) its vertices at the keys (MeshData::positionKeys); the camera
+/// its specs.
 void addMotion(GltfDocument& asset, const ModelTime& time, Model& model,
                std::vector<Diagnostic>& warnings) {
     std::vector<Model> keys;
@@ -94,6 +95,24 @@ void addMotion(GltfDocument& asset, const ModelTime& time, Model& model,
             path.push_back(m.placements[i].worldFromObject);
         }
         if (MotionPath(path).moves()) model.placements[i].motion = std::move(path);
+    }
+    for (size_t i = 0; i < model.meshes.size(); ++i) {
+        MeshData& mesh = model.meshes[i];
+        bool alike = true, deforms = false;
+        for (const Model& m : keys) {
+            if (m.meshes.size() != model.meshes.size()) return;  // cannot happen
+            const MeshData& at = m.meshes[i];
+            const MeshData& first = keys.front().meshes[i];
+            alike = alike && at.positions.size() == mesh.positions.size() &&
+                    at.normals.size() == mesh.normals.size();
+            deforms = deforms || (alike && !std::equal(at.positions.begin(), at.positions.end(),
+                                                       first.positions.begin()));
+        }
+        if (!alike || !deforms) continue;
+        for (Model& m : keys) {
+            mesh.positionKeys.push_back(std::move(m.meshes[i].positions));
+            mesh.normalKeys.push_back(std::move(m.meshes[i].normals));
+        }
     }
     if (model.camera) {
         bool moves = false;

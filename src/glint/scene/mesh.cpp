@@ -31,7 +31,8 @@ bool mirrors(const Transform& t) {
 /// Adds `mesh`'s triangles to `target` placed by `worldFromObject`, with its materials and
 /// textures added to `scene` (addMesh, and the shared meshes of MeshPlacer).
 MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mesh,
-                           const Transform& worldFromObject, uint32_t defaultMaterial) {
+                           const Transform& worldFromObject, uint32_t defaultMaterial,
+                           std::vector<uint32_t>* kept = nullptr) {
     // Each vertex and normal is placed once, however many triangles share it.
     LargeVector<Vec3> world(mesh.positions.size());
     std::vector<bool> placedInRange(mesh.positions.size());
@@ -101,8 +102,40 @@ MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mes
                                      c0.uv != MeshData::kNone ? uv : nullptr,
                                      anyExtras ? &extras : nullptr, material);
         ++(ok ? placed.added : placed.degenerate);
+        if (ok && kept) kept->push_back(static_cast<uint32_t>(&t - mesh.triangles.data()));
     }
     return placed;
+}
+
+/// The deformation of the triangles `kept` of `mesh` (placed as they are, in mesh space).
+std::shared_ptr<const DeformingMesh> deformation(const MeshData& mesh,
+                                                 const std::vector<uint32_t>& kept) {
+    using Corners = DeformingMesh::Corners;
+    const size_t keys = mesh.positionKeys.size();
+    const bool normals = mesh.normalKeys.size() == keys;
+    std::vector<std::vector<Corners>> vertices(keys), cornerNormals(normals ? keys : 0);
+    for (size_t k = 0; k < keys; ++k) {
+        const LargeVector<Vec3f>& p = mesh.positionKeys[k];
+        if (p.size() != mesh.positions.size())
+            throw SceneError({mesh.name, 0, 0}, "a deforming mesh's keys differ in size");
+        vertices[k].reserve(kept.size());
+        for (uint32_t i : kept) {
+            const auto& c = mesh.triangles[i].corners;
+            vertices[k].push_back({p[c[0].position], p[c[1].position], p[c[2].position]});
+        }
+        if (!normals) continue;
+        const LargeVector<Vec3f>& n = mesh.normalKeys[k];
+        if (n.size() != mesh.normals.size())
+            throw SceneError({mesh.name, 0, 0}, "a deforming mesh's normal keys differ in size");
+        for (uint32_t i : kept) {
+            const auto& c = mesh.triangles[i].corners;
+            cornerNormals[k].push_back(
+                c[0].normal == MeshData::kNone
+                    ? Corners{}
+                    : Corners{n[c[0].normal], n[c[1].normal], n[c[2].normal]});
+        }
+    }
+    return std::make_shared<const DeformingMesh>(std::move(vertices), std::move(cornerNormals));
 }
 
 /// Whether some triangle of `mesh` takes the placing default material.
@@ -149,15 +182,18 @@ std::vector<MeshPlacement> MeshPlacer::place(Scene& scene, std::vector<Diagnosti
     for (size_t i = 0; i < placements_.size(); ++i) {
         const Placement& p = placements_[i];
         try {
-            if (uses[keys[i]] == 1 && !p.motion) {
+            const bool deforms = p.mesh->positionKeys.size() >= 2;
+            if (uses[keys[i]] == 1 && !p.motion && !deforms) {
                 results.push_back(addMesh(scene, *p.mesh, p.worldFromObject, p.defaultMaterial));
                 continue;
             }
             auto it = shared.find(keys[i]);
             if (it == shared.end()) {
                 Primitives prims;
-                MeshPlacement stored =
-                    addTriangles(scene, prims, *p.mesh, Transform(), p.defaultMaterial);
+                std::vector<uint32_t> kept;
+                MeshPlacement stored = addTriangles(scene, prims, *p.mesh, Transform(),
+                                                    p.defaultMaterial, deforms ? &kept : nullptr);
+                if (deforms) prims.setDeformation(deformation(*p.mesh, kept));
                 // A mesh whose every triangle is degenerate has nothing to place.
                 uint32_t index = prims.triangleCount() == 0 ? MeshData::kNone
                                                             : scene.addSharedMesh(std::move(prims));

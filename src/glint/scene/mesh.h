@@ -58,6 +58,11 @@ struct MeshData {
     std::vector<MeshMaterial> materials;
     size_t normalTriangles = 0;  ///< Triangles with vertex normals.
     size_t uvTriangles = 0;      ///< Triangles with texture coordinates.
+    /// A mesh that deforms over the camera's shutter (a skin or morph targets, posed at each
+    /// shutter key): `positions` and `normals` at evenly spaced times from the shutter's
+    /// opening to its closing, each key the size of the array it keys (normalKeys may be empty);
+    /// empty when the mesh is still. Placed, it becomes a DeformingMesh.
+    std::vector<LargeVector<Vec3f>> positionKeys{}, normalKeys{};
 };
 
 /// What addMesh() did.
@@ -90,7 +95,8 @@ class MeshPlacer {
     /// `what` (e.g. "mesh 'bunny.obj'") prefix errors about this placement; `where` may be
     /// empty.
     /// With `motion` (whose first key is `worldFromObject`), the placement moves over the
-    /// shutter: it becomes an instance that moves (Primitives::setMotion), even if alone.
+    /// shutter: it becomes an instance that moves (Primitives::setMotion), even if alone. A
+    /// deforming mesh (MeshData::positionKeys) is likewise always an instance.
     void add(const MeshData& mesh, const Transform& worldFromObject, uint32_t defaultMaterial,
              FileLoc where = {}, std::string what = {},
              std::shared_ptr<const MotionPath> motion = nullptr);

@@ -51,16 +51,37 @@ size_t Scene::sharedBvhBytes() const {
     return n;
 }
 
+namespace {
+
+/// Takes `kept` as `bvh` if it refits to `prims` and stays within `growth` of its built
+/// quality; else builds `bvh`.
+void refitOrBuild(Bvh& bvh, Bvh* kept, const Primitives& prims, const BvhBuildOptions& options,
+                  double growth) {
+    if (kept && kept->refit(prims, options) &&
+        kept->relativeArea() <= kept->stats().builtArea * growth) {
+        bvh = std::move(*kept);
+        return;
+    }
+    bvh.build(prims, options);
+}
+
+}  // namespace
+
 void Scene::prepare(const PrepareOptions& options) {
     std::optional<ThreadPool> ownPool;
     ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace();
     const BvhBuildOptions meshes{.isa = options.kernels, .pool = &pool};
     BvhBuildOptions scene = meshes;
-    for (const auto& m : sharedMeshes_) {
-        m->bvh.build(m->primitives, meshes);
-        scene.sharedMeshes.push_back(&m->bvh);
+    FrameAccel* reuse = options.reuse;
+    if (reuse && (!reuse->kept || reuse->meshes.size() != sharedMeshes_.size())) reuse = nullptr;
+    for (size_t i = 0; i < sharedMeshes_.size(); ++i) {
+        SharedMesh& m = *sharedMeshes_[i];
+        refitOrBuild(m.bvh, reuse ? &reuse->meshes[i] : nullptr, m.primitives, meshes,
+                     options.refitGrowth);
+        scene.sharedMeshes.push_back(&m.bvh);
     }
-    bvh_.build(primitives, scene);
+    refitOrBuild(bvh_, reuse ? &reuse->scene : nullptr, primitives, scene, options.refitGrowth);
+    if (options.reuse) *options.reuse = {};
     Bounds3f b = bvh_.bounds();
     spawnOffset_ =
         sceneSpawnOffset(b.empty() ? 1.0 : static_cast<double>(maxComponent(b.diagonal())));
@@ -70,6 +91,16 @@ void Scene::prepare(const PrepareOptions& options) {
         cullsBackFaces_ = cullsBackFaces_ || !m.doubleSided;
     }
     prepared_ = true;
+}
+
+void Scene::keepAccel(FrameAccel& into) {
+    into = {};
+    if (!prepared_) return;
+    into.scene = std::move(bvh_);
+    for (const auto& m : sharedMeshes_) into.meshes.push_back(std::move(m->bvh));
+    into.kept = true;
+    bvh_ = {};
+    prepared_ = false;
 }
 
 bool Scene::cutOut(const Ray& ray, const Hit& hit, bool cameraRay) const {

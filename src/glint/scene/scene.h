@@ -56,11 +56,25 @@ inline bool withinCoordinateRange(const Vec3& p) {
            std::abs(p.z) <= kMaxCoordinate;
 }
 
+/// The acceleration structures of one frame of a sequence, kept for the next (Scene::keepAccel,
+/// PrepareOptions::reuse): where the next frame's primitives are the same ones moved, as when
+/// an animation plays, Scene::prepare refits them (Bvh::refit) instead of building anew.
+struct FrameAccel {
+    Bvh scene;
+    std::vector<Bvh> meshes;  ///< The shared meshes', in their order.
+    bool kept = false;        ///< Whether a frame's are here.
+};
+
 /// How Scene::prepare builds the acceleration structures.
 struct PrepareOptions {
     /// The threads to build on, the calling thread among them; null: all hardware threads.
     ThreadPool* pool = nullptr;
     Isa kernels = Isa::Auto;  ///< Traversal kernels; Auto: the best this CPU runs.
+    /// The last frame's structures, to refit where they fit; taken (left empty) either way.
+    FrameAccel* reuse = nullptr;
+    /// A refitted tree is kept while its summed box areas (Bvh::relativeArea) stay within this
+    /// factor of those it was built with; past it, it is built anew.
+    double refitGrowth = 1.25;
 };
 
 /// A scene is built in place (geometry is referenced by its BVH), so it is neither copied
@@ -164,6 +178,9 @@ class Scene {
     /// Builds the acceleration structures (the shared meshes', then the scene's over its
     /// primitives and instances) and derived settings. Call once geometry is final.
     void prepare(const PrepareOptions& options = {});
+    /// Hands the acceleration structures to the next frame of a sequence (`into`); the scene
+    /// is no longer prepared.
+    void keepAccel(FrameAccel& into);
     bool prepared() const { return prepared_; }
 
     const Bvh& bvh() const { return bvh_; }

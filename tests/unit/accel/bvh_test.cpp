@@ -649,6 +649,72 @@ TEST_P(BvhKernels, PacketsHitInstancesAsSingleRaysDo) {
     EXPECT_GT(instanceLanes, 200);
 }
 
+TEST_P(BvhKernels, RefittingToTheSamePrimitivesGivesTheBuiltTree) {
+    Primitives prims;
+    Random r(61);
+    addAllKinds(prims, r, 700, 150, 150, 1);
+    const Bvh built = build(prims);
+    Bvh refitted = build(prims);
+    ASSERT_TRUE(refitted.refit(prims, {0, GetParam()}));
+    expectSameTree(built, refitted);
+    EXPECT_TRUE(refitted.stats().refitted);
+    EXPECT_FALSE(built.stats().refitted);
+    EXPECT_EQ(refitted.relativeArea(), built.stats().builtArea);
+    EXPECT_EQ(refitted.bounds().lo, built.bounds().lo);
+    EXPECT_EQ(refitted.bounds().hi, built.bounds().hi);
+}
+
+TEST_P(BvhKernels, ARefittedTreeFindsWhatABuiltOneFindsWhereverThePrimitivesWent) {
+    // The same counts of every kind, anywhere else: the tree built for the first set, fitted
+    // to the second, is slow to search but exact.
+    Primitives before, after;
+    Random r(62), s(63);
+    addAllKinds(before, r, 900, 200, 200, 2);
+    addAllKinds(after, s, 900, 200, 200, 2);
+    Bvh bvh = build(before);
+    ASSERT_TRUE(bvh.refit(after, {0, GetParam()}));
+    expectSaneTree(bvh, after);
+    EXPECT_GT(bvh.relativeArea(), bvh.stats().builtArea);  // fitted to scattered primitives
+    BruteForce oracle;
+    oracle.build(after);
+    Agreement a;
+    for (int i = 0; i < 4000; ++i) compare(after, bvh, oracle, randomRay(after, s, i), a);
+    EXPECT_EQ(a.mismatches, 0) << a.first;
+    EXPECT_GT(a.hits, a.rays / 4);
+    // Packets too.
+    for (int p = 0; p < 200; ++p) {
+        Ray rays[8];
+        RayPacket8 packet = randomPacket(after, s, p, rays);
+        HitPacket8 hits;
+        bvh.intersect8(packet, hits);
+        for (int i = 0; i < 8; ++i) {
+            Hit single;
+            if ((packet.active >> i & 1) && oracle.intersect(rays[i], single)) {
+                EXPECT_EQ(hits.primId[i], single.primId) << "packet " << p << " lane " << i;
+            }
+        }
+    }
+}
+
+TEST_P(BvhKernels, ATreeIsNotRefittedToPrimitivesOfOtherCounts) {
+    Primitives prims, more, moving;
+    Random r(64);
+    addAllKinds(prims, r, 100, 20, 20, 1);
+    Random r2(64);
+    addAllKinds(more, r2, 100, 20, 20, 1);
+    more.addTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, nullptr, 0);
+    Random r3(64);
+    addAllKinds(moving, r3, 100, 20, 20, 1);
+    moving.setMotion(100,
+                     MotionPath({Transform(), *Transform::fromMatrix(Mat4::translate(1, 0, 0))}));
+    Bvh bvh = build(prims);
+    const Bvh built = build(prims);
+    EXPECT_FALSE(bvh.refit(more, {0, GetParam()}));
+    EXPECT_FALSE(bvh.refit(moving, {0, GetParam()}));   // a sphere that moves is not in the tree
+    expectSameTree(bvh, built);                         // unchanged
+    EXPECT_FALSE(Bvh().refit(prims, {0, GetParam()}));  // never built
+}
+
 TEST(Bvh, InstancesNeedTheirMeshesBvhs) {
     Primitives mesh, prims;
     mesh.addTriangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, nullptr, 0);
