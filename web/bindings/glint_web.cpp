@@ -126,6 +126,7 @@ class Session {
             integrator_.reset();  // of the scene replaced
             scene_ = std::move(scene);
             home_ = *scene_->camera;
+            loaded_ = {scene_->width, scene_->height, scene_->maxDepth, scene_->integrator};
             film_ = Film();
         }
         return r;
@@ -158,7 +159,9 @@ class Session {
     /// it refines (the path tracer's progressive display). With `denoise` true, the image is
     /// denoised after each pass (render passes are kept for it): the first pass shows its tiles
     /// as they come, later passes replace the whole image once they are done, so that what is
-    /// shown is always a whole denoised image. Returns {error (or null), width, height}.
+    /// shown is always a whole denoised image. Size, depth and integrator not given are the
+    /// scene's as loaded (not those of the render before: a preview's). Returns {error (or
+    /// null), width, height}.
     val begin(const val& o) {
         val r = val::object();
         r.set("error", val::null());
@@ -167,9 +170,10 @@ class Session {
             return r;
         }
         Scene& s = *scene_;
-        s.width = std::clamp(intOr(o, "width", s.width), 1, 16384);
-        s.height = std::clamp(intOr(o, "height", s.height), 1, 16384);
-        s.maxDepth = std::max(0, intOr(o, "maxDepth", s.maxDepth));
+        s.width = std::clamp(intOr(o, "width", loaded_.width), 1, 16384);
+        s.height = std::clamp(intOr(o, "height", loaded_.height), 1, 16384);
+        s.maxDepth = std::max(0, intOr(o, "maxDepth", loaded_.maxDepth));
+        s.integrator = loaded_.integrator;
         // No light pass (the path tracer's caustics, render/caustics.h): it traces a whole
         // pass's light paths before the pass's first tiles, longer than a step may take (the
         // page must stay responsive and cancel within a step). The camera's paths find
@@ -381,6 +385,10 @@ class Session {
     std::unique_ptr<Integrator> integrator_;  // of the render begun, for its passes
     int integratorSpp_ = 0;
     CameraSpec home_;
+    struct {
+        int width = 0, height = 0, maxDepth = 0;
+        std::string integrator;
+    } loaded_;       // the loaded scene's settings, which begin() falls back on
     Film film_;      // the image so far: the average of the passes' samples (denoised)
     FilmSums sums_;  // every pass's samples summed (and their render passes, to denoise)
     std::vector<uint8_t> rgba_;
