@@ -113,8 +113,8 @@ async function render({ id, path, text, reload, options, camera, preview, time }
         loadedPath = path;
         loadedText = text;
         loadedKey = key;
-        loadedTime = result.animation === null ? null
-                                               : { animation: result.animation, seconds: result.time };
+        loadedTime = result.animation === null
+            ? null : { animation: result.animation, seconds: result.time };
     }
     if (camera) session.setCamera(camera);
     const begun = session.begin(options);
