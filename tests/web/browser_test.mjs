@@ -10,7 +10,9 @@
 // course's rule (and the native CLI's pixels exactly); a typo shows the CLI's error at its line;
 // a dropped OBJ with its MTL and texture renders as `glint model.obj` does; dragging on the
 // canvas changes the view; a dropped GLB renders as `glint model.glb` does; a long render can be cancelled; a timer on the page's main
-// thread keeps firing while the worker renders; and the path tracer's image is denoised.
+// thread keeps firing while the worker renders; the path tracer's image is denoised; and a
+// dropped animated glTF gets a time slider and Play, and renders at each time as `glint model.gltf
+// --time-at T` does.
 import { execFileSync, spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -261,6 +263,70 @@ try {
                               '--size', '160x120', '--spp', '1024', '-o', converged, '-q']);
     const hotRaw = hotPixels(raw, converged, 24), hotDenoised = hotPixels(denoised, converged, 24);
     check(hotDenoised * 4 < hotRaw, `against 1024 spp, pixels off by more than 24 levels: ${hotDenoised} denoised, ${hotRaw} raw`);
+
+    // 9. A dropped animated glTF (animated.gltf: 'Turn', 0 to 4.125 s): its animation listed, a
+    //    time slider and Play; two times give two images, each the CLI's at that time, and the
+    //    same time twice the same image; the view orbited stays when the time changes; playing
+    //    advances the time, and Pause refines the image at the time shown.
+    await page.fill('#spp', '1');
+    let doneBefore9 = (await glintPage()).rendersDone;
+    await page.selectOption('#integrator', 'whitted');
+    await waitFor('done', (p) => p.rendersDone > doneBefore9);
+    check(await page.isHidden('#timeline'), 'a still scene has no time slider');
+    doneBefore9 = (await glintPage()).rendersDone;
+    const animated = path.join(data, 'gltf', 'animated.gltf');
+    await page.evaluate((text) => {
+        const transfer = new DataTransfer();
+        transfer.items.add(new File([text], 'animated.gltf'));
+        document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true }));
+    }, fs.readFileSync(animated, 'utf8'));
+    g = await waitFor('done', (p) => p.rendersDone > doneBefore9);
+    const listed = g.animations.map((a) => `${a.name} ${a.start} to ${a.end} s`).join(', ');
+    check(g.animations.length === 1 && listed === 'Turn 0 to 4.125 s', `its animations are listed: ${listed}`);
+    check(g.time === 0 && g.last.time === 0 && !g.playing, `shown at the start, paused (${g.time} s)`);
+    check(await page.isVisible('#time') && await page.isVisible('#play') &&
+          await page.isHidden('#animation'), 'a time slider and Play (no picker for one animation)');
+    /// Sets the slider to `t` seconds and returns the canvas once the full image is done.
+    const atTime = async (t, name) => {
+        const n = (await glintPage()).rendersDone;
+        await page.fill('#time', String(t));
+        await waitFor('done', (p) => p.rendersDone > n && !p.last.preview && p.last.time === t);
+        return canvasPng(name);
+    };
+    const at1 = await atTime(1, 'anim-1.png'), at25 = await atTime(2.5, 'anim-2.5.png');
+    const at1Again = await atTime(1, 'anim-1-again.png');
+    const clock = await page.textContent('#clock');
+    check(/^1\.00 s .* frame 24\b/.test(clock), `the readout: "${clock}"`);
+    check(!sameImage(at1, at25, 8, 160 * 120 / 50), 'the images at 1 s and 2.5 s differ (more than 2% of the pixels)');
+    check(sameImage(at1, at1Again, 0, 0), '1 s twice: the same image');
+    for (const [t, png] of [[1, at1], [2.5, at25]]) {
+        const native = path.join(tmp, `anim-native-${t}.png`);
+        execFileSync(args.glint, [animated, '--time-at', String(t), '--integrator', 'whitted',
+                                  '--size', '160x120', '--spp', '1', '-o', native, '-q']);
+        check(sameImage(png, native, 0, 0), `at ${t} s it renders as glint animated.gltf --time-at ${t} does`);
+    }
+    const doneBefore9b = (await glintPage()).rendersDone;
+    const box9 = await page.locator('#canvas').boundingBox();
+    await page.mouse.move(box9.x + box9.width / 2, box9.y + box9.height / 2);
+    await page.mouse.down();
+    for (let i = 1; i <= 8; ++i) await page.mouse.move(box9.x + box9.width / 2 - i * 12, box9.y + box9.height / 2);
+    await page.mouse.up();
+    await waitFor('done', (p) => p.rendersDone > doneBefore9b && !p.last.preview);
+    const orbited25 = await atTime(2.5, 'anim-2.5-orbited.png');
+    check(!sameImage(orbited25, at25, 8, 160 * 120 / 50), 'the orbited view stays when the time changes');
+    const previews = (await glintPage()).previewsDone;
+    await page.click('#play');
+    await page.waitForTimeout(1500);
+    g = await glintPage();
+    check(g.playing && (await page.textContent('#play')) === 'Pause', 'Play plays (the button says Pause)');
+    check(g.previewsDone >= previews + 3, `it renders previews as it plays (${g.previewsDone - previews} in 1.5 s)`);
+    const playedTo = g.time;
+    check(playedTo !== 2.5 && playedTo >= 0 && playedTo <= 4.125, `the time moved on (to ${playedTo.toFixed(3)} s)`);
+    const doneBefore9c = g.rendersDone;
+    await page.click('#play');
+    g = await waitFor('done', (p) => p.rendersDone > doneBefore9c && !p.last.preview);
+    check(!g.playing && g.last.time === g.time && g.last.width === 160,
+          `Pause renders the full image at the time shown (${g.time.toFixed(3)} s)`);
 } catch (e) {
     check(false, `the page works through every step: ${e.stack || e}`);
 } finally {

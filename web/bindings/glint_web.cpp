@@ -14,7 +14,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,32 @@ val vecValue(const Vec3& v) {
 
 Vec3 toVec(const val& a) { return {a[0].as<double>(), a[1].as<double>(), a[2].as<double>()}; }
 
+/// The first key of the animation `which` names (an index from 0, or a name; empty: the first),
+/// or 0 when none is named so (the loader then says why).
+double startOf(const std::vector<ModelAnimation>& animations, const std::string& which) {
+    if (which.empty()) return animations.empty() ? 0 : animations[0].start;
+    if (std::all_of(which.begin(), which.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+        const size_t i = which.size() < 10 ? std::stoul(which) : animations.size();
+        return i < animations.size() ? animations[i].start : 0;
+    }
+    for (const ModelAnimation& a : animations)
+        if (a.name == which) return a.start;
+    return 0;
+}
+
+/// Whether two cameras look from the same eye at the same point with the same up (what the
+/// page's orbit moves).
+bool sameView(const CameraSpec& a, const CameraSpec& b) {
+    return a.eye == b.eye && a.center == b.center && a.up == b.up;
+}
+
+/// Moves `to` to look as `from` does (the orbit's part of a camera: eye, center, up).
+void setView(CameraSpec& to, const CameraSpec& from) {
+    to.eye = from.eye;
+    to.center = from.center;
+    to.up = from.up;
+}
+
 int intOr(const val& o, const char* key, int fallback) {
     val v = o[key];
     return v.isNumber() ? v.as<int>() : fallback;
@@ -83,14 +111,26 @@ class Session {
     int threads() const { return pool_.threads(); }
 
     /// Reads the scene or model file at `path` as `glint FILE` does, with options
-    /// {integrator, lenient, width, height, prepare}: prepare (default true) builds its BVH for
-    /// rendering; false only checks it (the editor, as you type). Returns {ok, error, warnings,
-    /// note, width, height, spp, maxDepth, integrator, hasCamera}.
+    /// {integrator, lenient, width, height, prepare, kernels, animation, time, reuse}: prepare
+    /// (default true) builds its BVH for rendering; false only checks it (the editor, as you
+    /// type). A model's animation plays as `glint FILE --animation A --time-at T` plays it:
+    /// `animation` is its index (from 0) or name (default the first), `time` the file's seconds,
+    /// or "start" for the animation's first key (a file without animations stays still);
+    /// without `time` nothing plays. With `reuse` (the files are unchanged since the last load:
+    /// the same file at a new time, or in a new look) model files parsed then are posed again
+    /// instead of read again, and a camera that setCamera() moved stays where it was put.
+    /// Returns {ok, error, warnings, note, width, height, spp, maxDepth, integrator,
+    /// animations: [{name, start, end, channels}], animation (the index played, or null), time
+    /// (the seconds posed, or null)}.
     val load(const std::string& path, const val& options) {
         val r = val::object();
         val warningList = val::array();
         std::vector<Diagnostic> warnings;
         std::unique_ptr<Scene> scene;
+        const bool reuse = options["reuse"].isTrue();
+        if (!reuse) assets_ = std::make_unique<AssetCache>();  // files may have changed since
+        std::optional<CameraSpec> moved;  // the page's view of the scene being posed anew
+        if (reuse && scene_ && !sameView(*scene_->camera, home_)) moved = *scene_->camera;
         try {
             LoadOptions lo;
             lo.lenient = options["lenient"].isTrue();
@@ -98,9 +138,44 @@ class Session {
             lo.height = std::max(0, intOr(options, "height", 0));
             val integrator = options["integrator"];
             if (integrator.isString()) lo.look.studio = integrator.as<std::string>() != "whitted";
+            lo.assets = assets_.get();
+            val animation = options["animation"], time = options["time"];
+            if (animation.isNumber())
+                lo.time.animation = std::to_string(std::max(0, animation.as<int>()));
+            else if (animation.isString())
+                lo.time.animation = animation.as<std::string>();
+            if (time.isNumber()) {
+                lo.time.seconds = time.as<double>();
+                if (!(std::abs(*lo.time.seconds) <= 1e6))  // as --time-at
+                    throw RenderError("the time must be between -1e6 and 1e6 seconds");
+            }
             ModelScene m = loadSceneFile(path, warnings, lo);
+            if (time.isString() && time.as<std::string>() == "start" && !m.animations.empty()) {
+                // Posed at its animation's first key, from the file parsed just now (a scene
+                // file, whose models' animations are not listed, stays as `glint FILE` has it).
+                lo.time.seconds = startOf(m.animations, lo.time.animation);
+                std::vector<Diagnostic> posing;
+                m = loadSceneFile(path, posing, lo);
+                for (Diagnostic& d : posing)
+                    if (std::none_of(warnings.begin(), warnings.end(), [&](const Diagnostic& w) {
+                            return w.format("warning") == d.format("warning");
+                        }))
+                        warnings.push_back(std::move(d));
+            }
             scene = std::move(m.scene);
             r.set("note", m.note);
+            val animations = val::array();
+            for (const ModelAnimation& a : m.animations) {
+                val o = val::object();
+                o.set("name", a.name);
+                o.set("start", a.start);
+                o.set("end", a.end);
+                o.set("channels", static_cast<double>(a.channels));
+                animations.call<void>("push", o);
+            }
+            r.set("animations", animations);
+            r.set("animation", m.animation ? val(static_cast<double>(*m.animation)) : val::null());
+            r.set("time", m.animation ? val(*lo.time.seconds) : val::null());
             if (!scene->camera) throw RenderError("the scene has no camera");
             if (!options["prepare"].isFalse())
                 scene->prepare({&pool_, Bvh::named(options["kernels"].isString()
@@ -126,6 +201,8 @@ class Session {
             integrator_.reset();  // of the scene replaced
             scene_ = std::move(scene);
             home_ = *scene_->camera;
+            loaded_ = {scene_->width, scene_->height, scene_->maxDepth, scene_->integrator};
+            if (moved) setView(*scene_->camera, *moved);
             film_ = Film();
         }
         return r;
@@ -158,7 +235,9 @@ class Session {
     /// it refines (the path tracer's progressive display). With `denoise` true, the image is
     /// denoised after each pass (render passes are kept for it): the first pass shows its tiles
     /// as they come, later passes replace the whole image once they are done, so that what is
-    /// shown is always a whole denoised image. Returns {error (or null), width, height}.
+    /// shown is always a whole denoised image. Size, depth and integrator not given are the
+    /// scene's as loaded (not those of the render before: a preview's). Returns {error (or
+    /// null), width, height}.
     val begin(const val& o) {
         val r = val::object();
         r.set("error", val::null());
@@ -167,9 +246,10 @@ class Session {
             return r;
         }
         Scene& s = *scene_;
-        s.width = std::clamp(intOr(o, "width", s.width), 1, 16384);
-        s.height = std::clamp(intOr(o, "height", s.height), 1, 16384);
-        s.maxDepth = std::max(0, intOr(o, "maxDepth", s.maxDepth));
+        s.width = std::clamp(intOr(o, "width", loaded_.width), 1, 16384);
+        s.height = std::clamp(intOr(o, "height", loaded_.height), 1, 16384);
+        s.maxDepth = std::max(0, intOr(o, "maxDepth", loaded_.maxDepth));
+        s.integrator = loaded_.integrator;
         // No light pass (the path tracer's caustics, render/caustics.h): it traces a whole
         // pass's light paths before the pass's first tiles, longer than a step may take (the
         // page must stay responsive and cancel within a step). The camera's paths find
@@ -377,10 +457,15 @@ class Session {
     }
 
     ThreadPool pool_;
+    std::unique_ptr<AssetCache> assets_ = std::make_unique<AssetCache>();  // parsed model files
     std::unique_ptr<Scene> scene_;
     std::unique_ptr<Integrator> integrator_;  // of the render begun, for its passes
     int integratorSpp_ = 0;
     CameraSpec home_;
+    struct {
+        int width = 0, height = 0, maxDepth = 0;
+        std::string integrator;
+    } loaded_;       // the loaded scene's settings, which begin() falls back on
     Film film_;      // the image so far: the average of the passes' samples (denoised)
     FilmSums sums_;  // every pass's samples summed (and their render passes, to denoise)
     std::vector<uint8_t> rgba_;

@@ -1,6 +1,7 @@
 // Glint's web page: the scene editor, the canvas the worker fills tile by tile, the examples,
-// the controls that mirror the command line's, dropped files, and the camera under the mouse
-// (docs/web.md). The renderer runs in a Web Worker (worker.js): this page never blocks.
+// the controls that mirror the command line's, dropped files, the camera under the mouse, and
+// an animated model's time (docs/web.md). The renderer runs in a Web Worker (worker.js): this
+// page never blocks.
 import { EditorView, keymap, lineNumbers } from '@codemirror/view';
 import { EditorState } from '@codemirror/state';
 import { defaultKeymap, history, historyKeymap } from '@codemirror/commands';
@@ -21,7 +22,8 @@ const kernels = params.get('kernels') || 'auto';
 // What the tests and the benchmarks read (tests/web/browser_test.mjs, bench/web_bench.mjs).
 const page = (window.glintPage = {
     variant, threads: 1, kernels: null, opened: performance.now(), firstPixelMs: null, rendersDone: 0,
-    rendersCancelled: 0, last: null, state: 'starting', checks: 0,
+    previewsDone: 0, rendersCancelled: 0, last: null, state: 'starting', checks: 0,
+    animations: [], animation: null, time: null, playing: false,
 });
 
 // ---- the worker -------------------------------------------------------------------------
@@ -66,6 +68,7 @@ function setText(text) {
 }
 
 function scheduleCheck() {
+    if (model) showAnimations({});  // the scene's text from now on, not the model's time
     model = null;
     clearTimeout(checkTimer);
     checkTimer = setTimeout(check, 200);
@@ -114,7 +117,7 @@ const canvas = $('canvas');
 const context = canvas.getContext('2d');
 const scratch = document.createElement('canvas');  // a preview, before it is scaled up
 const scratchContext = scratch.getContext('2d');
-let job = null;  // the render in progress: {id, width, height, preview, started}
+let job = null;  // the render in progress: {id, width, height, preview, started, time}
 
 function drawTiles(message) {
     const [x0, y0, x1, y1] = message.rect;
@@ -181,6 +184,9 @@ function options(preview) {
                 height: size ? Number(size[2]) : undefined,
                 spp, maxDepth: depth, integrator, passes: path,
                 denoise: path && $('denoise').checked };
+    // A model is framed for the full image, also in a preview.
+    o.frameWidth = o.width;
+    o.frameHeight = o.height;
     if (preview) {  // fast: about 160 pixels across, one sample, short paths
         const width = o.width || canvas.width, height = o.height || canvas.height;
         const scale = Math.max(1, Math.round(Math.max(width, height) / 160));
@@ -193,14 +199,117 @@ function options(preview) {
 
 async function startRender({ camera = null, preview = false, reload = false } = {}) {
     if (job) worker.postMessage({ type: 'cancel', id: job.id });
+    preview = preview || (anim !== null && anim.playing);  // playing: previews only
     const o = options(preview);
     const id = nextId++;
-    job = { id, preview, started: performance.now(), width: 0, height: 0 };
-    setState('rendering', preview ? 'Moving: a fast preview' : 'Rendering');
+    // The time: the animation's, or of a file loaded anew, its first animation's start.
+    const time = anim ? { animation: anim.index, seconds: anim.time }
+                      : reload ? { seconds: 'start' } : null;
+    job = { id, preview, started: performance.now(), width: 0, height: 0,
+            time: anim ? anim.time : null };
+    setState('rendering', anim && anim.playing ? 'Playing: fast previews'
+                          : preview ? 'Moving: a fast preview' : 'Rendering');
     $('progress').value = 0;
     const text = model ? null : editor.state.doc.toString();
     worker.postMessage({ type: 'render', id, path: model || scenePath, text, reload, preview,
-                         options: o, camera: camera || orbit.camera });
+                         options: o, camera: camera || orbit.camera, time });
+}
+
+// ---- time: a model's animations --------------------------------------------------------
+// Frames per second, as the command line's --fps: the readout's frame numbers, and the step of
+// playback when images come slower than that.
+const fps = 24;
+// The loaded model's animations: {list: [{name, start, end}], index, time (seconds), playing,
+// last (performance.now() of the last step)}; null for a still scene.
+let anim = null;
+let playFrame = 0;
+
+/// Shows the time controls for the model just loaded (hidden for a still one); a model posed
+/// anew at another time keeps the page's own time and play state.
+function showAnimations(result) {
+    const list = result.animations || [];
+    const same = anim && JSON.stringify(anim.list) === JSON.stringify(list);
+    if (!list.length) {
+        pause(false);
+        anim = null;
+    } else if (!same) {
+        pause(false);
+        const index = result.animation ?? 0;
+        anim = { list, index, time: result.time ?? list[index].start, playing: false, last: 0 };
+        const select = $('animation');
+        select.replaceChildren(...list.map((a, i) => {
+            const option = document.createElement('option');
+            option.value = String(i);
+            option.textContent = `${i}: ${a.name || 'unnamed'}`;
+            return option;
+        }));
+        select.hidden = list.length < 2;
+    }
+    $('timeline').hidden = !anim;
+    page.animations = list;
+    showTime();
+}
+
+/// The slider, the readout and the Play button as the time and play state are.
+function showTime() {
+    page.animation = anim ? anim.index : null;
+    page.time = anim ? anim.time : null;
+    page.playing = anim !== null && anim.playing;
+    if (!anim) return;
+    const a = anim.list[anim.index];
+    const slider = $('time');
+    slider.min = String(a.start);
+    slider.max = String(a.end);
+    slider.value = String(anim.time);
+    $('animation').value = String(anim.index);
+    $('play').textContent = anim.playing ? 'Pause' : 'Play';
+    $('play').disabled = !(a.end > a.start);
+    $('clock').textContent = `${anim.time.toFixed(2)} s of ${a.start.toFixed(2)} to ` +
+                             `${a.end.toFixed(2)} s, frame ${Math.floor(anim.time * fps + 1e-6)}` +
+                             (anim.list.length === 1 && a.name ? ` ('${a.name}')` : '');
+}
+
+/// The next image while playing: time advances as real time does, but by at most one frame
+/// (1/fps s) per image, so slow images play slowly rather than skip; it loops at the end.
+function step() {
+    playFrame = 0;
+    if (!anim || !anim.playing) return;
+    const now = performance.now();
+    const a = anim.list[anim.index];
+    let t = anim.time + Math.min((now - anim.last) / 1000, 1 / fps);
+    if (t > a.end) t = a.start + ((t - a.start) % (a.end - a.start));
+    anim.last = now;
+    anim.time = t;
+    showTime();
+    startRender({ preview: true });
+}
+
+function play() {
+    const a = anim.list[anim.index];
+    if (anim.playing || !(a.end > a.start)) return;
+    anim.playing = true;
+    anim.last = performance.now();
+    showTime();
+    startRender({ preview: true });  // the time shown, then on from there
+}
+
+/// Stops playing; with `render`, the image refines at the time shown.
+function pause(render = true) {
+    cancelAnimationFrame(playFrame);
+    playFrame = 0;
+    if (!anim || !anim.playing) return;
+    anim.playing = false;
+    showTime();
+    if (render) startRender();
+}
+
+/// Poses the model at `seconds` (the slider): a preview while it moves, then the full image.
+function seek(seconds, preview) {
+    if (!anim) return;
+    anim.time = seconds;
+    anim.last = performance.now();
+    showTime();
+    if (!anim.playing) startRender({ preview });
 }
 
 function onRenderMessage(m) {
@@ -210,11 +319,13 @@ function onRenderMessage(m) {
             if (!model) showDiagnostics(m.result);
             if (m.result.ok) {
                 sceneInfo = m.result;
-                orbit.setHome(m.camera);
+                orbit.setHome(m.camera, m.reposed);  // posed anew: the view stays the user's
                 $('size').placeholder = `${m.result.width}x${m.result.height}`;
                 $('spp').placeholder = m.result.spp || 1;
                 $('maxdepth').placeholder = m.result.maxDepth;
-                if (m.result.note) $('status').textContent = m.result.note;
+                if (m.result.note && !m.reposed) $('status').textContent = m.result.note;
+                showAnimations(m.result);
+                job.time = m.result.time ?? null;  // the time posed (a file's start: its own)
             }
             return;
         case 'tiles':
@@ -224,18 +335,27 @@ function onRenderMessage(m) {
         case 'done':
             showProgress(m.progress, true);
             page.last = { ...m.progress, preview: job.preview, width: job.width, height: job.height,
-                          wallMs: performance.now() - job.started };
+                          wallMs: performance.now() - job.started, time: job.time };
             if (!job.preview) page.rendersDone++;
+            else page.previewsDone++;
             job = null;
+            if (anim && anim.playing) {  // the next image at the display's next frame
+                setState('playing', 'Playing: fast previews');
+                cancelAnimationFrame(playFrame);
+                playFrame = requestAnimationFrame(step);
+                return;
+            }
             setState('done', 'Done');
             return;
         case 'cancelled':
             page.rendersCancelled++;
             job = null;
+            pause(false);
             setState('cancelled', 'Cancelled');
             return;
         case 'failed':
             job = null;
+            pause(false);
             $('errors').textContent = m.error.text;
             $('errors').className = 'bad';
             setState('error', 'Not rendered: see the error below the editor');
@@ -288,6 +408,7 @@ async function openExample(name) {
     await request({ type: 'files', files }, files.map((f) => f.data));
     scenePath = '/examples/' + example.main;
     model = null;
+    showAnimations({});
     const text = await (await fetch('examples/' + example.main)).text();
     setText(text);
     $('integrator').value = example.integrator || '';
@@ -309,6 +430,7 @@ async function dropFiles(fileList) {
     const scene = names.find((n) => n.endsWith('.test'));
     const modelFile = names.find((n) => modelExtensions.some((e) => n.toLowerCase().endsWith(e)));
     $('examples').value = '';
+    showAnimations({});  // a new file: its own animations, from the start of the first
     if (scene) {
         scenePath = scene;
         model = null;
@@ -368,6 +490,13 @@ $('download').onclick = async () => {
     link.click();
     setTimeout(() => URL.revokeObjectURL(link.href), 1000);
 };
+$('play').onclick = () => (anim && anim.playing ? pause() : play());
+$('animation').onchange = () => {
+    anim.index = Number($('animation').value);
+    seek(anim.list[anim.index].start, false);
+};
+$('time').addEventListener('input', () => seek(Number($('time').value), true));
+$('time').addEventListener('change', () => seek(Number($('time').value), false));
 for (const id of ['size', 'spp', 'maxdepth', 'integrator', 'denoise'])
     $(id).addEventListener('change', () => startRender({ reload: id === 'integrator' }));
 document.addEventListener('keydown', (e) => {

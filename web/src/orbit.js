@@ -36,11 +36,12 @@ export class Orbit {
         element.addEventListener('wheel', (e) => this.wheel(e), { passive: false });
     }
 
-    /// The scene's camera as loaded; the view returns to it with reset().
-    setHome(camera) {
+    /// The scene's camera as loaded; the view returns to it with reset(). A new home drops the
+    /// view moved from the old one, unless `keepView` (the same model posed at another time).
+    setHome(camera, keepView = false) {
         const changed = !this.home || JSON.stringify(this.home) !== JSON.stringify(camera);
         this.home = camera;
-        if (changed) this.camera = null;
+        if (changed && !keepView) this.camera = null;
     }
 
     reset() { this.camera = null; }

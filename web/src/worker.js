@@ -4,14 +4,20 @@
 // the page gets the image tile by tile and its Cancel is heard. The page never waits on it.
 //
 // Messages from the page: init {variant, threads}; files {files: [{path, data}]};
-// check {id, path, text}; render {id, path, text, reload, options, camera}; cancel {id};
+// check {id, path, text}; render {id, path, text, reload, options, camera, time}; cancel {id};
 // save {id}. Replies: ready, checked, loaded, tiles, done, cancelled, failed, saved.
+//
+// A render's time is {animation, seconds} (a model's animation by index, posed at that many
+// seconds; seconds "start": at its first key), or null: as loaded. A new time poses the loaded
+// model again from the files parsed before (Session.load's reuse), unless files changed since.
 
 let M = null;
 let session = null;
 let kernels = null;  // the traversal kernels scenes are prepared for (init)
 let current = null;  // the render in progress: {id, cancelled}
 let loadedPath = null, loadedText = null, loadedKey = null;
+let loadedTime = null;  // the time the loaded model was posed at: {animation, seconds}, or null
+let filesChanged = false;  // files written since the last load: model files are read again
 
 const yieldToEvents = (() => {
     const channel = new MessageChannel();
@@ -79,17 +85,26 @@ function crop(image, width, x0, y0, x1, y1) {
     return out;
 }
 
-async function render({ id, path, text, reload, options, camera, preview }) {
+const timeKey = (t) => (t ? `${t.animation ?? ''}@${t.seconds}` : 'still');
+
+async function render({ id, path, text, reload, options, camera, preview, time }) {
     const job = { id, cancelled: false };
     current = job;
-    // What the loaded scene depends on besides its text: a model's look and framing.
-    const key = JSON.stringify([options.integrator, options.width, options.height]);
-    if (reload || path !== loadedPath || text !== loadedText || (key !== loadedKey && !preview)) {
+    // What the loaded scene depends on besides its text: a model's look and framing (the full
+    // image's size, also for a preview).
+    const key = JSON.stringify([options.integrator, options.frameWidth, options.frameHeight]);
+    const same = !filesChanged && path === loadedPath && text === loadedText;
+    const when = time || (same ? loadedTime : null);
+    const reposing = same && timeKey(when) !== timeKey(loadedTime);  // the same model, a new time
+    if (reload || !same || (key !== loadedKey && !preview) || reposing) {
         if (text !== undefined && text !== null) writeFile(path, text);
         const result = session.load(path, { prepare: true, integrator: options.integrator,
-                                            width: options.width, height: options.height,
-                                            kernels });
-        postMessage({ type: 'loaded', id, path, result, camera: result.ok ? session.camera(true) : null });
+                                            width: options.frameWidth, height: options.frameHeight,
+                                            kernels, animation: when ? when.animation : undefined,
+                                            time: when ? when.seconds : undefined, reuse: same });
+        postMessage({ type: 'loaded', id, path, result, reposed: reposing,
+                      camera: result.ok ? session.camera(true) : null });
+        filesChanged = false;
         if (!result.ok) {
             loadedPath = null;
             postMessage({ type: 'failed', id, error: result.error });
@@ -98,6 +113,8 @@ async function render({ id, path, text, reload, options, camera, preview }) {
         loadedPath = path;
         loadedText = text;
         loadedKey = key;
+        loadedTime = result.animation === null
+            ? null : { animation: result.animation, seconds: result.time };
     }
     if (camera) session.setCamera(camera);
     const begun = session.begin(options);
@@ -144,6 +161,7 @@ self.onmessage = async (event) => {
             case 'init': return await init(message);
             case 'files':
                 for (const f of message.files) writeFile(f.path, f.data);
+                filesChanged = true;
                 return postMessage({ type: 'files-written', id: message.id });
             case 'check': return check(message);
             case 'render': return await render(message);

@@ -31,6 +31,8 @@ struct ModelScene {
     std::vector<FormatExtension> extensions;
     /// The model file's animations (Model::animations): `glint --check` lists them.
     std::vector<ModelAnimation> animations;
+    /// The index of the animation played (Model::animation); none when none was.
+    std::optional<size_t> animation;
 };
 
 /// Camera rays per pixel of the studio look: enough for rough metal and soft shadows to come
