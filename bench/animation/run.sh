@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 24's measurements of sequences and motion blur (docs/performance.md, "Animation and
-# motion blur"; bench/animation/README.md). Three parts, each selectable with --part:
+# motion blur"; bench/animation/README.md). Four parts, each selectable with --part:
 #   sequence  frames per minute of a CesiumMan sequence (FRAMES frames at SIZE, SPP samples,
 #             --no-denoise, THREADS threads) rendered by ONE `glint --frames A:B` process against
 #             one `glint --frame N` process per frame; RUNS rounds, the two ways alternating
@@ -8,15 +8,19 @@
 #             every frame between the two ways (they must be byte-identical).
 #   phases    where a sequence frame's time goes: `glint --frames ... --stats` prints parse
 #             (for frame 0 the file's parse; for the others posing the parsed document and
-#             building the scene from it), build (the BVH, rebuilt every frame: there is no
-#             refit), render and write for each frame; medians per frame for CesiumMan and Fox
+#             building the scene from it), build (the BVHs: built for frame 0, refitted for the
+#             others), render and write for each frame; medians per frame for CesiumMan and Fox
 #             ('Survey'). CesiumMan's come from the sequence part's runs when it ran.
 #   blur      the cost of motion blur: render time (--stats) and wall time with --shutter
 #             -0.25:0.25 against none at equal spp, RUNS interleaved pairs, medians and ratios,
 #             on BoxAnimated at frame 40 (a rigid node turning), scenes/spinning.test (spheres,
 #             boxes and cylinders moved by `motion`; also with its picture's shutter 0:1) and
-#             CesiumMan at frame 10 (a skinned mesh: not blurred, so what it costs is
-#             overhead); and whether the images differ.
+#             CesiumMan at frame 10 (a skinned mesh: deforming); and whether the images differ.
+#   refit     refitting a sequence's BVHs against building them anew (glint_refit_bench, built
+#             with the benchmarks): prepare times, the trees' box areas and the render times of
+#             both, medians over the frames, for CesiumMan (every 2nd of FRAMES frames), Fox
+#             ('Survey', every 2nd frame of its 84) and a 1M-triangle knot (glint_gen_mesh)
+#             turning and sliding under a scene file's `motion` (frames 0 to 12), at 320x180.
 #   instructions  (not in `all`; needs valgrind) the blur part's cases counted by callgrind at
 #             320x180, SPP samples, one thread: instructions of the whole run, still and
 #             blurred, and their ratio, which the machine's load does not move.
@@ -24,7 +28,7 @@
 #   BUILD_DIR  holds glint (a Release build)
 #   OUT_DIR    frames, logs and summary.md [a temporary folder, removed at the end]
 # Options (defaults in brackets):
-#   --part sequence|phases|blur|instructions|all [all: the first three]   --runs N [3]
+#   --part sequence|phases|blur|refit|instructions|all [all: the first four]   --runs N [3]
 #   --spp N [16]   --size WxH [640x360]
 #   --threads N [2]   --frames N [100]   --step S [1: every frame; 4: every 4th of the N]
 #   --fps F [50: 100 frames cover CesiumMan's 2-second walk once]
@@ -60,7 +64,7 @@ done
 for n in "$runs" "$spp" "$threads" "$frames" "$step"; do
     [[ $n =~ ^[1-9][0-9]*$ ]] || { echo "run.sh: '$n' is not a positive integer" >&2; exit 2; }
 done
-case $part in sequence | phases | blur | instructions | all) ;; *) usage ;; esac
+case $part in sequence | phases | blur | refit | instructions | all) ;; *) usage ;; esac
 build=$(cd "${positional[0]}" && pwd)
 glint=$build/glint
 [ -x "$glint" ] || { echo "run.sh: $glint not found: build it first" >&2; exit 1; }
@@ -195,13 +199,13 @@ if [ "$part" = phases ] || [ "$part" = all ]; then
     {
         echo "## (b) Where a sequence frame's time goes (medians per frame, ms; frame 0 apart)"
         echo
-        echo "| model | frames (all runs) | parse/pose | BVH rebuild | render | write |" \
+        echo "| model | frames (all runs) | parse/pose | BVH refit | render | write |" \
             "parse/pose + rebuild, of the frame | frame 0: parse | frame 0: BVH |"
         echo "|---|---|---|---|---|---|---|---|---|"
         phases "CesiumMan (4672 triangles, skinned)" "${logs[@]}"
         phases "Fox, Survey (576 triangles, skinned)" "$out/phases/fox.txt"
         echo
-        echo "The BVH is rebuilt for every frame; refitting it is not implemented."
+        echo "Frames after the first refit the last frame's BVHs (part refit compares)."
         echo
     } | tee -a "$summary"
 fi
@@ -246,7 +250,7 @@ same = dict(l.split() for l in open(sys.argv[2]))
 what = {"BoxAnimated": "BoxAnimated, frame 40 (rigid: the inner box turning) | -0.25:0.25",
         "spinning": "scenes/spinning.test (rigid: `motion`) | -0.25:0.25",
         "spinning_long": "scenes/spinning.test, its picture's shutter | 0:1",
-        "CesiumMan": "CesiumMan, frame 10 (skinned: not blurred) | -0.25:0.25"}
+        "CesiumMan": "CesiumMan, frame 10 (skinned: deforming) | -0.25:0.25"}
 print(f"## (c) The cost of motion blur: --shutter against none, {sys.argv[3]} spp")
 print()
 print("| scene | shutter | render (s), still | blurred | ratio | wall (s), still | blurred | "
@@ -261,6 +265,28 @@ for name in ("BoxAnimated", "spinning", "spinning_long", "CesiumMan"):
 print()
 EOF
 fi
+if [ "$part" = refit ] || [ "$part" = all ]; then
+    refit_bench=$build/bench/glint_refit_bench
+    [ -x "$refit_bench" ] || { echo "run.sh: $refit_bench not found: build the benchmarks" >&2; exit 1; }
+    mkdir -p "$out/refit"
+    "$build/bench/glint_gen_mesh" "$out/refit/knot.obj" >/dev/null
+    printf '%s\n' 'size 320 180' 'camera 0 0 9 0 0 0 0 1 0 45' 'directional 0 0 1 0.8 0.8 0.8' \
+        'ambient 0.1 0.1 0.1' 'diffuse 0.7 0.5 0.3' 'motion 0.5 0 0 0 0 1 -90' 'mesh knot.obj' \
+        >"$out/refit/knot.test"
+    {
+        echo "## (d) Refitting a sequence's BVHs against building them ($spp spp, 320x180)"
+        echo
+        for c in "CesiumMan|$man|0 $last 2 --fps $fps" "Fox, Survey|$fox|0 83 2" \
+            "1M-triangle knot under motion|$out/refit/knot.test|0 12"; do
+            IFS='|' read -r name file range <<<"$c"
+            # shellcheck disable=SC2086  # the range is words
+            echo "- $name: $("$refit_bench" "$file" $range --spp "$spp" --threads "$threads" |
+                tail -1)"
+        done
+        echo
+    } | tee -a "$summary"
+fi
+
 if [ "$part" = instructions ]; then
     command -v valgrind >/dev/null || { echo "run.sh: valgrind not found" >&2; exit 1; }
     mkdir -p "$out/instr"

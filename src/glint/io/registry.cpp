@@ -263,6 +263,29 @@ void AssetCache::add(const std::string& key, std::shared_ptr<GltfDocument> asset
     assets_.emplace_back(key, std::move(asset));
 }
 
+std::shared_ptr<const Model> AssetCache::findModel(const std::string& key) const {
+    for (const auto& [k, model] : models_)
+        if (k == key) return model;
+    return nullptr;
+}
+
+void AssetCache::addModel(const std::string& key, std::shared_ptr<const Model> model) {
+    models_.emplace_back(key, std::move(model));
+}
+
+std::shared_ptr<const Model> loadModelFile(const FileFormat& format, const std::string& path,
+                                           std::vector<Diagnostic>& warnings,
+                                           const LoadOptions& options) {
+    // glTF files have time: their parsed documents are cached, and posed for each frame.
+    const bool still = format.loadModel != loadGltfModel;
+    const std::string key = path + '\n' + options.camera.describe();
+    if (still && options.assets)
+        if (std::shared_ptr<const Model> kept = options.assets->findModel(key)) return kept;
+    auto model = std::make_shared<const Model>(loadModelAs(format, path, warnings, options));
+    if (still && options.assets) options.assets->addModel(key, model);
+    return model;
+}
+
 const std::vector<FileFormat>& fileFormats() {
     static const std::vector<FileFormat> formats = {
         {"CSE167x scene", "CSE167x scenes", {".test"}, nullptr, true, loadCourse, nullptr},
@@ -373,7 +396,7 @@ ModelScene loadSceneFile(const std::string& path, std::vector<Diagnostic>& warni
         }
         return out;
     }
-    return frameModelScene(loadModelAs(*choice.format, path, warnings, options), options.width,
+    return frameModelScene(*loadModelFile(*choice.format, path, warnings, options), options.width,
                            options.height, options.look);
 }
 

@@ -30,16 +30,21 @@ enum class FileUse {
 
 class GltfDocument;
 
-/// Model files parsed once for a sequence of frames: a glTF asset is posed at each frame's time
-/// (io/gltf/gltf_loader.h). Keyed by path and the options that change what is parsed.
+/// Model files read once for a sequence of frames: a glTF asset is kept parsed and posed at each
+/// frame's time (io/gltf/gltf_loader.h); a model of a format without time (OBJ, PLY, STL) is
+/// kept as read. Keyed by path and the options that change what is parsed.
 class AssetCache {
   public:
     /// The asset cached for `key`, or null.
     std::shared_ptr<GltfDocument> find(const std::string& key) const;
     void add(const std::string& key, std::shared_ptr<GltfDocument> asset);
+    /// The still model cached for `key`, or null.
+    std::shared_ptr<const Model> findModel(const std::string& key) const;
+    void addModel(const std::string& key, std::shared_ptr<const Model> model);
 
   private:
     std::vector<std::pair<std::string, std::shared_ptr<GltfDocument>>> assets_;
+    std::vector<std::pair<std::string, std::shared_ptr<const Model>>> models_;
 };
 
 /// What every loader may be asked.
@@ -110,6 +115,13 @@ FormatChoice chooseFormat(const std::string& path, FileUse use, std::vector<Diag
 /// or as its loader does.
 Model loadModel(const std::string& path, std::vector<Diagnostic>& warnings,
                 const LoadLimits& limits = {});
+
+/// Reads the model at `path` as `format` (a format that reads models) with `options`; a model of
+/// a format without time is taken from options.assets when a frame before read it (a glTF
+/// file is kept parsed there and posed anew).
+std::shared_ptr<const Model> loadModelFile(const FileFormat& format, const std::string& path,
+                                           std::vector<Diagnostic>& warnings,
+                                           const LoadOptions& options);
 
 /// Reads the model at `path` and frames it for a `width` x `height` image in `look`
 /// (frameModelScene).

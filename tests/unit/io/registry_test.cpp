@@ -167,6 +167,30 @@ TEST_F(RegistryFiles, LoadingAFileGlintCannotReadNamesIt) {
     EXPECT_STREQ(c.format->name, "glTF");
 }
 
+TEST_F(RegistryFiles, ASequenceReadsAStillMeshFileOnce) {
+    // A scene whose `mesh` moves over time, and the mesh as a model file: frames loaded with
+    // one cache read the file once (a change to it after the first frame is not seen); without
+    // the cache, every frame reads it.
+    std::string mesh = path("tri.obj");
+    std::ofstream(mesh) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::string scene = path("s.test");
+    std::ofstream(scene) << "camera 0 0 4 0 0 0 0 1 0 45\nmotion 1 0 0\nmesh tri.obj\n";
+    AssetCache assets;
+    LoadOptions options;
+    options.assets = &assets;
+    std::vector<Diagnostic> warnings;
+    auto lowestX = [&](const std::string& file, double seconds) {
+        options.time.seconds = seconds;
+        return loadSceneFile(file, warnings, options).scene->primitives.bounds().lo.x;
+    };
+    const float scene0 = lowestX(scene, 0), model0 = lowestX(mesh, 0);
+    std::ofstream(mesh) << "v 10 0 0\nv 11 0 0\nv 10 1 0\nf 1 2 3\n";
+    EXPECT_EQ(lowestX(scene, 1), scene0 + 1);  // moved by the motion, as first read
+    EXPECT_EQ(lowestX(mesh, 1), model0);
+    options.assets = nullptr;
+    EXPECT_EQ(lowestX(scene, 1), scene0 + 11);  // read again
+}
+
 }  // namespace
 }  // namespace glint
 

@@ -32,7 +32,7 @@ void Parser::cmdMesh() {
         options.limits = limits_;
         options.time = time_;
         options.assets = assets_;
-        it = models_.emplace(path, format.format->loadModel(path, warnings_, options)).first;
+        it = models_.emplace(path, loadModelFile(*format.format, path, warnings_, options)).first;
     }
     // Placed when the file ends (SceneBuilder::finish), so that a mesh placed several times is
     // stored once. A glTF asset's meshes are placed by its nodes, under the current transform;
@@ -46,7 +46,7 @@ void Parser::cmdMesh() {
             if (!moved) fail(0, "the motion makes the transform singular or too large");
             keys.push_back(*moved);
         }
-        placeModel(builder_, it->second, keys.empty() ? t : keys.front(), material,
+        placeModel(builder_, *it->second, keys.empty() ? t : keys.front(), material,
                    loc(tok_[0].column), what, keys.size() > 1 ? &keys : nullptr);
     } catch (const SceneError& e) {
         fail(0, what + ": " + e.diagnostic().message);

@@ -233,7 +233,8 @@ class Parser {
     bool warnedAttenuation_ = false;
     /// Warnings of problems that recur (warnRepeated), by key: the warning and its count.
     std::map<std::string, std::pair<size_t, int>> repeated_;
-    std::map<std::string, Model> models_;  ///< Read by `mesh`, by path: each read once.
+    /// Read by `mesh`, by path: each read once (and once a sequence, CourseOptions::assets).
+    std::map<std::string, std::shared_ptr<const Model>> models_;
     std::map<std::string, std::shared_ptr<const TextureImage>> images_;  ///< By path.
     std::map<uint32_t, FileLoc> imageTextures_;  ///< Where each image texture was declared.
 };
