@@ -55,27 +55,13 @@ bool treeOccluded(Isa isa, const bvh::BvhData& d, const TraversalRay& ray) {
     return bvh::portable::occluded(d, ray);
 }
 
-/// Whether `ray` meets box `b` within [tMin, tMax].
-bool meetsBox(const Bounds3f& b, const TraversalRay& ray, float tMax) {
-    float t0 = ray.tMin, t1 = tMax;
-    for (int a = 0; a < 3; ++a) {
-        float n = (b.lo[a] - ray.origin[a]) * ray.invDir[a];
-        float f = (b.hi[a] - ray.origin[a]) * ray.invDir[a];
-        if (n > f) std::swap(n, f);
-        t0 = std::max(t0, n);
-        t1 = std::min(t1, f * (1 + 4 * std::numeric_limits<float>::epsilon()));
-        if (t0 > t1) return false;
-    }
-    return true;
-}
-
 /// Moving primitive `m` at the calling thread's shutter time: the ray mapped to where the
 /// primitive was added, and tested there (an instance by its mesh's tree). Closest hit: updates
 /// `hit` by the closerHit rule; any hit (`anyHit`): returns true at the first.
 bool hitMoving(Isa isa, const bvh::BvhData& d, const bvh::BvhData::Moving& m,
                const TraversalRay& ray, Hit& hit, bool anyHit) {
     const float best = anyHit ? ray.tMax : std::min(hit.t, ray.tMax);
-    if (!meetsBox(m.bounds, ray, best)) return false;
+    if (!(boxEntry(m.bounds, ray, best) <= best)) return false;
     const Transform delta = m.path.delta(shutterTime());
     const TraversalRay local(Vec3f(delta.inversePoint(Vec3(ray.origin))),
                              Vec3f(delta.inverseVector(Vec3(ray.dir))), ray.tMin, ray.tMax);

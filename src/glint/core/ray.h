@@ -1,10 +1,13 @@
 #pragma once
 /// Rays p(t) = origin + t * dir, valid for t in (tMin, tMax), and what traversal returns.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
+#include "glint/math/bbox.h"
 #include "glint/math/vec3.h"
 
 namespace glint {
@@ -54,6 +57,22 @@ struct TraversalRay {
         sz = 1 / dir[kz];
     }
 };
+
+/// Where `ray` enters box `b` within [ray.tMin, tMax], or +infinity if it misses it there. The
+/// far planes are moved out by 4 ulps, as the SIMD kernels move them, so that rounding never
+/// loses a box around a surface. Scalar: for the few boxes tested beside the BVH's kernels.
+inline float boxEntry(const Bounds3f& b, const TraversalRay& ray, float tMax) {
+    float t0 = ray.tMin, t1 = tMax;
+    for (int a = 0; a < 3; ++a) {
+        float n = (b.lo[a] - ray.origin[a]) * ray.invDir[a];
+        float f = (b.hi[a] - ray.origin[a]) * ray.invDir[a];
+        if (n > f) std::swap(n, f);
+        t0 = std::max(t0, n);
+        t1 = std::min(t1, f * (1 + 4 * std::numeric_limits<float>::epsilon()));
+        if (t0 > t1) return std::numeric_limits<float>::infinity();
+    }
+    return t0;
+}
 
 /// The closest hit found by traversal, in float. The shading data is recomputed in double for
 /// the winner only (Primitives::interaction).

@@ -12,21 +12,6 @@ namespace {
 constexpr uint32_t kLeafSize = 4;
 constexpr int kMaxDepth = 64;  ///< Median splits halve: 64 levels hold any mesh.
 
-/// The distance at which `ray` enters box `b` within [tMin, tMax], or infinity if it misses
-/// (the far planes padded as the BVH's kernels pad them, so no hit is lost to rounding).
-float entry(const Bounds3f& b, const TraversalRay& ray, float tMax) {
-    float t0 = ray.tMin, t1 = tMax;
-    for (int a = 0; a < 3; ++a) {
-        float n = (b.lo[a] - ray.origin[a]) * ray.invDir[a];
-        float f = (b.hi[a] - ray.origin[a]) * ray.invDir[a];
-        if (n > f) std::swap(n, f);
-        t0 = std::max(t0, n);
-        t1 = std::min(t1, f * (1 + 4 * std::numeric_limits<float>::epsilon()));
-        if (!(t0 <= t1)) return std::numeric_limits<float>::infinity();
-    }
-    return t0;
-}
-
 }  // namespace
 
 DeformingMesh::DeformingMesh(std::vector<std::vector<Corners>> vertices,
@@ -110,7 +95,8 @@ bool DeformingMesh::search(const TraversalRay& ray, float u, Hit& hit) const {
     uint32_t node = 0;
     bool found = false;
     const auto best = [&] { return kAnyHit ? ray.tMax : std::min(ray.tMax, hit.t); };
-    if (entry(nodes_[0].box, ray, best()) == std::numeric_limits<float>::infinity()) return false;
+    if (boxEntry(nodes_[0].box, ray, best()) == std::numeric_limits<float>::infinity())
+        return false;
     for (;;) {
         const Node& n = nodes_[node];
         if (n.count > 0) {
@@ -124,8 +110,8 @@ bool DeformingMesh::search(const TraversalRay& ray, float u, Hit& hit) const {
         } else {
             // Both children: the nearer first, the other kept for later.
             const uint32_t a = node + 1, b = n.first;
-            const float ta = entry(nodes_[a].box, ray, best());
-            const float tb = entry(nodes_[b].box, ray, best());
+            const float ta = boxEntry(nodes_[a].box, ray, best());
+            const float tb = boxEntry(nodes_[b].box, ray, best());
             constexpr float kMiss = std::numeric_limits<float>::infinity();
             if (ta != kMiss && tb != kMiss) {
                 node = ta <= tb ? a : b;
@@ -142,7 +128,7 @@ bool DeformingMesh::search(const TraversalRay& ray, float u, Hit& hit) const {
             if (top == 0) return found;
             node = stack[--top];
         } while (!kAnyHit &&
-                 entry(nodes_[node].box, ray, best()) == std::numeric_limits<float>::infinity());
+                 boxEntry(nodes_[node].box, ray, best()) == std::numeric_limits<float>::infinity());
     }
 }
 
