@@ -28,7 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Back to a frame-sized FilmSums (bounded: the reader's limits), encoded and read again.
     if (static_cast<long long>(piece.info.width) * piece.info.height > (1 << 20)) return 0;
     glint::FilmSums frame(piece.info.width, piece.info.height);
-    // A piece with render passes (format 2, `--aov`) carries their sums too.
+    // A piece with render passes (since format 2, `--aov`) carries their sums too.
     const bool passes = piece.info.aovs.any() && piece.sums.hasPasses();
     if (piece.info.aovs.any() && !passes) std::abort();
     if (passes) frame.keepPasses();
@@ -42,7 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         glint::decodePiece(glint::encodePiece(piece.info, frame), "again.exr");
     for (int y = 0; y < w.y1 - w.y0; ++y)
         for (int x = 0; x < w.x1 - w.x0; ++x)
-            if (std::memcmp(&again.sums.sum(x, y), &piece.sums.sum(x, y), sizeof(glint::Vec3)) != 0)
+            if (std::memcmp(&again.sums.sum(x, y), &piece.sums.sum(x, y),
+                            sizeof(glint::SampleSum)) != 0)
                 std::abort();
     return 0;
 }

@@ -404,7 +404,7 @@ class Session {
     void resolveTile(int x0, int y0, int x1, int y1, bool show) {
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
-                film_.at(x, y) = pixelValue(sums_.sum(x, y), sums_.weight(x, y));
+                film_.at(x, y) = pixelValue(sums_.sum(x, y).value(), sums_.weight(x, y));
         if (show) showTile(film_, x0, y0, x1, y1);
     }
 

@@ -86,7 +86,7 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
                 if (!a) continue;
                 const double n = sums.weight(x, y);
                 a = n > 0 && done < maxSpp &&
-                    !(pixelError(sums.sum(x, y), sums.passes(x, y).squares, n) <
+                    !(pixelError(sums.sum(x, y).value(), sums.passes(x, y).squares, n) <
                       adaptive.threshold);
                 activeCount += a;
             }
@@ -116,8 +116,8 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
             rendered += 1;
             total += n;
             most = std::max(most, static_cast<int>(n));
-            stopped +=
-                pixelError(sums.sum(x, y), sums.passes(x, y).squares, n) < adaptive.threshold;
+            stopped += pixelError(sums.sum(x, y).value(), sums.passes(x, y).squares, n) <
+                       adaptive.threshold;
         }
     if (options.keepSums) {
         if (!options.aovs) sums.dropPasses();  // kept for the error alone

@@ -6,7 +6,7 @@ Image8 toImage8(const Film& film) { return toImage8With(film, toByte); }
 
 void FilmSums::add(const FilmSums& other) {
     for (size_t i = 0; i < sums_.size() && i < other.sums_.size(); ++i) {
-        sums_[i] += other.sums_[i];
+        sums_[i].add(other.sums_[i]);
         weights_[i] += other.weights_[i];
     }
     for (size_t i = 0; i < passes_.size() && i < other.passes_.size(); ++i)
@@ -37,14 +37,16 @@ void resolvePassesAt(const Vec3& sum, double n, const PassSums& p, RenderPasses&
 RenderPasses FilmSums::resolvePasses() const {
     if (passes_.empty()) return {};
     RenderPasses out(width_, height_);
-    for (size_t i = 0; i < size(); ++i) resolvePassesAt(sums_[i], weights_[i], passes_[i], out, i);
+    for (size_t i = 0; i < size(); ++i)
+        resolvePassesAt(sums_[i].value(), weights_[i], passes_[i], out, i);
     return out;
 }
 
 Film FilmSums::resolve() const {
     Film film(width_, height_);
     for (int y = 0; y < height_; ++y)
-        for (int x = 0; x < width_; ++x) film.at(x, y) = pixelValue(sum(x, y), weight(x, y));
+        for (int x = 0; x < width_; ++x)
+            film.at(x, y) = pixelValue(sum(x, y).value(), weight(x, y));
     return film;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// Images: the float film the renderer writes, and 8-bit images for output and comparison.
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -126,6 +127,45 @@ struct PassSums {
     }
 };
 
+/// A pixel's sum of sample values, kept as an unevaluated pair `hi + lo` (a double-double): each
+/// addition puts its rounding error, computed exactly (Knuth's TwoSum), into `lo`. value()
+/// rounds the pair once. So while the pair holds the sum exactly (its samples within about
+/// 2^50 of the sum in magnitude; 106 bits in all), value() is the sum of the samples correctly
+/// rounded, whatever the order or grouping in which they were added: a single render's running
+/// sum and the merge of pieces that each summed a range of the samples give the same double.
+struct SampleSum {
+    Vec3 hi{0}, lo{0};
+
+    SampleSum() = default;
+    explicit SampleSum(const Vec3& v) : hi(v) {}
+
+    /// Adds one value (a sample's radiance, or light from a pass of its own).
+    void add(const Vec3& v) {
+        for (int c = 0; c < 3; ++c) addTo(hi[c], lo[c], v[c]);
+    }
+    /// Adds another pair (a piece's sums): its high part, then its low part.
+    void add(const SampleSum& o) {
+        for (int c = 0; c < 3; ++c) {
+            addTo(hi[c], lo[c], o.hi[c]);
+            lo[c] += o.lo[c];
+        }
+    }
+    /// The sum, rounded once.
+    Vec3 value() const { return hi + lo; }
+
+  private:
+    /// hi + x into hi, its exact rounding error into lo. An infinite or NaN sum keeps the
+    /// error out (it would be NaN): it stays in hi as the plain sum would.
+    static void addTo(double& hi, double& lo, double x) {
+        const double s = hi + x;
+        if (std::isfinite(s)) {
+            const double xPart = s - hi;
+            lo += (hi - (s - xPart)) + (x - xPart);
+        }
+        hi = s;
+    }
+};
+
 /// What a render of part of a frame keeps so that parts add up to the whole image: per pixel
 /// the sum of its samples' values and their weight, the number of samples (each weighs 1: the
 /// reconstruction filter is importance-sampled, render/sampler.h). Pixels a part did not render
@@ -138,8 +178,8 @@ class FilmSums {
 
     int width() const { return width_; }
     int height() const { return height_; }
-    Vec3& sum(int x, int y) { return sums_[index(x, y)]; }
-    const Vec3& sum(int x, int y) const { return sums_[index(x, y)]; }
+    SampleSum& sum(int x, int y) { return sums_[index(x, y)]; }
+    const SampleSum& sum(int x, int y) const { return sums_[index(x, y)]; }
     double& weight(int x, int y) { return weights_[index(x, y)]; }
     double weight(int x, int y) const { return weights_[index(x, y)]; }
 
@@ -153,8 +193,8 @@ class FilmSums {
     const PassSums& passes(int x, int y) const { return passes_[index(x, y)]; }
 
     /// Adds `other` (the same size) pixel by pixel: the sums of pieces that cover disjoint
-    /// pixels are those pieces' own, exactly (x + 0 = x). The passes' sums are added where both
-    /// have them.
+    /// pixels are those pieces' own, exactly (x + 0 = x), and those of sample ranges the sums
+    /// of all their samples (SampleSum). The passes' sums are added where both have them.
     void add(const FilmSums& other);
 
     /// The image: sum / weight per pixel, computed as the renderer computes it (the sum times
@@ -169,7 +209,7 @@ class FilmSums {
     size_t size() const { return static_cast<size_t>(width_) * static_cast<size_t>(height_); }
     size_t index(int x, int y) const { return static_cast<size_t>(y) * width_ + x; }
     int width_ = 0, height_ = 0;
-    std::vector<Vec3> sums_;
+    std::vector<SampleSum> sums_;
     std::vector<double> weights_;
     std::vector<PassSums> passes_;  ///< Empty: none kept.
 };

@@ -153,7 +153,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                     sampleBegin, sampleEnd);
             }
         if (active && samples.empty()) return;
-        Vec3 sum[8];
+        SampleSum sum[8];  // each pixel's samples, summed exactly (film.h)
         PassSums passSums[8];
         for (size_t i = 0; i < samples.size(); i += 8) {
             int n = static_cast<int>(std::min<size_t>(8, samples.size() - i));
@@ -188,19 +188,19 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 ctx.sampleIndex = s.index;
                 ctx.lightPass = lightPass.get();
                 if (!passes) {
-                    sum[s.pixel] += integrator->li(rays[k], found ? &hit : nullptr, ctx);
+                    sum[s.pixel].add(integrator->li(rays[k], found ? &hit : nullptr, ctx));
                     continue;
                 }
                 SamplePasses sp;
                 ctx.passes = &sp;
                 const Vec3 v = integrator->li(rays[k], found ? &hit : nullptr, ctx);
-                sum[s.pixel] += v;
+                sum[s.pixel].add(v);
                 passSums[s.pixel].addSample(v, sp);
             }
         }
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                Vec3 s = sum[y * 4 + x];
+                SampleSum s = sum[y * 4 + x];
                 if (lightPass) {
                     // Its mean per sample joins each sample's value, in the squares too (the
                     // variance is the camera samples' own).
@@ -208,22 +208,23 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                         lightPass->image[static_cast<size_t>(by + y) * scene.width + bx + x];
                     if (passes) {
                         const Vec3 mean = c * (1 / rendered);
-                        passSums[y * 4 + x].squares += (s * 2.0 + c) * mean;
+                        passSums[y * 4 + x].squares += (s.value() * 2.0 + c) * mean;
                     }
-                    s += c;
+                    s.add(c);
                 }
                 const int fx = bx + x - ox, fy = by + y - oy;
                 if (accumulate) {
                     const size_t i = static_cast<size_t>(fy) * filmWidth + fx;
                     if (active && !(*active)[i]) continue;
-                    accumulate->sum(fx, fy) += s;
+                    accumulate->sum(fx, fy).add(s);
                     accumulate->weight(fx, fy) += rendered;
                     if (passes) accumulate->passes(fx, fy) += passSums[y * 4 + x];
                     continue;
                 }
-                film.at(fx, fy) = pixelValue(s, rendered);
+                const Vec3 total = s.value();
+                film.at(fx, fy) = pixelValue(total, rendered);
                 if (passes)
-                    resolvePassesAt(s, rendered, passSums[y * 4 + x], result.aovs,
+                    resolvePassesAt(total, rendered, passSums[y * 4 + x], result.aovs,
                                     result.aovs.index(fx, fy));
                 if (options.keepSums) {
                     result.sums.sum(fx, fy) = s;

@@ -266,11 +266,11 @@ TEST(Renderer, PacketsGiveExactlyTheImageOfOneRayAtATime) {
         RayCounts counts;
         for (int y = 0; y < scene.height; ++y)
             for (int x = 0; x < scene.width; ++x) {
-                Vec3 sum;
+                SampleSum sum;  // the film's exact sum of the samples (film.h)
                 sampler.forEachSample(x, y, [&](double px, double py) {
-                    sum += integrator.radiance(camera.generateRay(px, py), 0, counts);
+                    sum.add(integrator.radiance(camera.generateRay(px, py), 0, counts));
                 });
-                reference.at(x, y) = spp == 1 ? sum : sum * (1.0 / spp);
+                reference.at(x, y) = pixelValue(sum.value(), spp);
             }
         EXPECT_TRUE(sameFilm(packets, reference)) << spp << " spp";
     }

@@ -27,16 +27,18 @@ namespace {
 using exr_detail::MemoryInputFile;
 using exr_detail::StringOStream;
 
-/// The layout of the pixels and attributes; a reader refuses other versions.
-constexpr int kPieceFormat = 2;
+/// The layout of the pixels and attributes; a reader refuses other versions. (3 added the sums'
+/// rounding errors, sumErrR/G/B.)
+constexpr int kPieceFormat = 3;
 
 /// The exact channels, each double's 64 bits in two UINT channels NAME.hi and NAME.lo: the
-/// beauty's sums, then, in a piece with passes, their sums (PassSums).
-constexpr int kSumValues = 3, kPassValues = 11;
+/// beauty's sums as pairs (SampleSum: the sum, then its rounding error), then, in a piece with
+/// passes, their sums (PassSums).
+constexpr int kSumValues = 6, kPassValues = 11;
 const char* const kExactNames[kSumValues + kPassValues] = {
-    "sumR",         "sumG",        "sumB",        "passSquaresR", "passSquaresG",
-    "passSquaresB", "passAlbedoR", "passAlbedoG", "passAlbedoB",  "passNormalX",
-    "passNormalY",  "passNormalZ", "passDepth",   "passHits"};
+    "sumR",         "sumG",         "sumB",         "sumErrR",     "sumErrG",     "sumErrB",
+    "passSquaresR", "passSquaresG", "passSquaresB", "passAlbedoR", "passAlbedoG", "passAlbedoB",
+    "passNormalX",  "passNormalY",  "passNormalZ",  "passDepth",   "passHits"};
 const char* const kWeightChannel = "weight";
 const char* const kPreviewChannels[3] = {"R", "G", "B"};
 
@@ -45,31 +47,38 @@ int exactValues(const PieceInfo& info) { return kSumValues + (info.aovs.any() ? 
 
 /// A pixel's exact values in the order of kExactNames, `n` of them.
 void getExact(const FilmSums& s, int x, int y, int n, double* out) {
-    const Vec3& sum = s.sum(x, y);
-    for (int c = 0; c < 3; ++c) out[c] = sum[c];
+    const SampleSum& sum = s.sum(x, y);
+    for (int c = 0; c < 3; ++c) {
+        out[c] = sum.hi[c];
+        out[3 + c] = sum.lo[c];
+    }
     if (n == kSumValues) return;
     const PassSums& p = s.passes(x, y);
     for (int c = 0; c < 3; ++c) {
-        out[3 + c] = p.squares[c];
-        out[6 + c] = p.albedo[c];
-        out[9 + c] = p.normal[c];
+        out[6 + c] = p.squares[c];
+        out[9 + c] = p.albedo[c];
+        out[12 + c] = p.normal[c];
     }
-    out[12] = p.depth;
-    out[13] = p.hits;
+    out[15] = p.depth;
+    out[16] = p.hits;
 }
 
 /// And back.
 void setExact(FilmSums& s, int x, int y, int n, const double* in) {
-    for (int c = 0; c < 3; ++c) s.sum(x, y)[c] = in[c];
+    SampleSum& sum = s.sum(x, y);
+    for (int c = 0; c < 3; ++c) {
+        sum.hi[c] = in[c];
+        sum.lo[c] = in[3 + c];
+    }
     if (n == kSumValues) return;
     PassSums& p = s.passes(x, y);
     for (int c = 0; c < 3; ++c) {
-        p.squares[c] = in[3 + c];
-        p.albedo[c] = in[6 + c];
-        p.normal[c] = in[9 + c];
+        p.squares[c] = in[6 + c];
+        p.albedo[c] = in[9 + c];
+        p.normal[c] = in[12 + c];
     }
-    p.depth = in[12];
-    p.hits = in[13];
+    p.depth = in[15];
+    p.hits = in[16];
 }
 
 /// The UINT channel names of exact value k: NAME.hi, NAME.lo.
@@ -248,7 +257,7 @@ std::string encodePiece(const PieceInfo& info, const FilmSums& sums) {
                 bits[i * words + 2 * k] = static_cast<uint32_t>(u >> 32);
                 bits[i * words + 2 * k + 1] = static_cast<uint32_t>(u);
             }
-            const Vec3 v = pixelValue(sums.sum(b.x0 + x, b.y0 + y), wt);
+            const Vec3 v = pixelValue(sums.sum(b.x0 + x, b.y0 + y).value(), wt);
             for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = static_cast<float>(scale * v[c]);
         }
 
@@ -328,8 +337,8 @@ PieceData decodePiece(std::string_view bytes, const std::string& name) {
         const size_t n = static_cast<size_t>(w) * static_cast<size_t>(h);
         const int values = exactValues(piece.info), words = 2 * values;
         // The reader's buffers (4 bytes a word and the weight) and the sums.
-        const double need = static_cast<double>(n) *
-                            (4.0 * (words + 1) + 32 + (values > kSumValues ? sizeof(PassSums) : 0));
+        const double need = static_cast<double>(n) * (4.0 * (words + 1) + sizeof(SampleSum) + 8 +
+                                                      (values > kSumValues ? sizeof(PassSums) : 0));
         if (size_t available = availableMemoryBytes();
             available > 0 && need > static_cast<double>(available))
             throw Bad{"reading it needs " + formatBytes(need) + " of memory, more than the " +

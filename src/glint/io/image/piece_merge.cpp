@@ -76,14 +76,14 @@ MergedFrame mergePieceFiles(const std::vector<std::string>& paths) {
         for (int y = b.y0; y < b.y1; ++y) {
             if (!piece.info.covers(b.x0, y)) continue;
             for (int x = b.x0; x < b.x1; ++x) {
-                const Vec3& s = piece.sums.sum(x - b.x0, y - b.y0);
+                const SampleSum& s = piece.sums.sum(x - b.x0, y - b.y0);
                 const double w = piece.sums.weight(x - b.x0, y - b.y0);
                 if (first) {
                     merged.sums.sum(x, y) = s;
                     merged.sums.weight(x, y) = w;
                     if (passes) merged.sums.passes(x, y) = piece.sums.passes(x - b.x0, y - b.y0);
                 } else {
-                    merged.sums.sum(x, y) += s;
+                    merged.sums.sum(x, y).add(s);
                     merged.sums.weight(x, y) += w;
                     if (passes) merged.sums.passes(x, y) += piece.sums.passes(x - b.x0, y - b.y0);
                 }
