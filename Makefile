@@ -2,7 +2,7 @@
 #
 #   make deps    install the Debian packages the build needs (apt-get; root or sudo)
 #   make build   configure and build (Release); the binary is build/glint
-#   make demo    deps + build + render the built-in scene to glint.png
+#   make demo    what the glint program needs, built alone, then render the built-in scene to glint.png
 #   make test    deps + build + run every test (ctest)
 #   make clean   remove the build directory
 #   make web     the library in WebAssembly and the web page, into build-web/site (docs/web.md)
@@ -25,6 +25,14 @@ DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
         libopenvdb-dev libboost-iostreams-dev \
         libgtest-dev libgmock-dev openmpi-bin libopenmpi-dev slurm-wlm munge
+
+# `make demo`: only what the glint program needs, and only it is built (no test libraries, no
+# MPI or Slurm, OpenVDB if it is there already): a first picture in minutes on a fresh machine.
+# Tests, glint-mpi and VDB files are built when their packages are installed (`make test`).
+DEMO_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+             libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev
+installed = $(if $(shell for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
+  grep -q 'ok installed' || echo no; done),OFF,ON)
 
 # `make bench`: what the benchmark build and bench/run.sh need (no test libraries; Embree for
 # the traversal comparison, POV-Ray for the whole renders, bc for bench/course_stats.sh,
@@ -71,12 +79,19 @@ deps:
 $(BUILD_DIR)/CMakeCache.txt:
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DGLINT_WERROR=$(GLINT_WERROR)
 
+# Everything: the tests, glint-mpi and OpenVDB (after `make deps`).
 build: $(BUILD_DIR)/CMakeCache.txt
-	cmake -S . -B $(BUILD_DIR) -DGLINT_WERROR=$(GLINT_WERROR) >/dev/null
+	cmake -S . -B $(BUILD_DIR) -DGLINT_WERROR=$(GLINT_WERROR) -DGLINT_BUILD_TESTS=ON \
+	  -DGLINT_MPI=ON -DGLINT_OPENVDB=ON >/dev/null
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-demo: deps
-	@$(MAKE) --no-print-directory build
+demo:
+	@$(MAKE) --no-print-directory deps DEPS="$(DEMO_DEPS)"
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DGLINT_WERROR=$(GLINT_WERROR) \
+	  -DGLINT_BUILD_TESTS=$(call installed,libgtest-dev libgmock-dev) \
+	  -DGLINT_MPI=$(call installed,libopenmpi-dev) \
+	  -DGLINT_OPENVDB=$(call installed,libopenvdb-dev libboost-iostreams-dev) >/dev/null
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target glint
 	./$(BUILD_DIR)/glint -o glint.png
 	@echo "glint: demo render written to $(CURDIR)/glint.png"
 
