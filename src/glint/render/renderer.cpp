@@ -114,8 +114,18 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     // Light the integrator traces in a pass of its own, for the whole image (the path
     // tracer's caustics): each pixel's sum over this render's samples, added to its own.
     std::shared_ptr<const LightPassResult> lightPass;
+    // The calling thread renders too, and reports progress every 100 ms: between its blocks,
+    // and within a block of many samples.
+    double lastReport = 0;
+    auto report = [&] {
+        lastReport = elapsed();
+        options.onProgress({tilesDone.load(), tilesTotal, lastReport});
+    };
+    // Renders the block of 4 x 2 pixels at (bx, by); `reports`: on the reporting thread. A
+    // block at thousands of samples per pixel takes a second or more: every 64 samples it stops,
+    // writing nothing, if the render is cancelled (the tile is then not done).
     auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
-                           RayCounts& counts) {
+                           RayCounts& counts, bool reports) {
         samples.clear();
         int w = std::min(4, x1 - bx), h = std::min(2, y1 - by);
         static constexpr Rng kUnseeded{};
@@ -156,6 +166,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         SampleSum sum[8];  // each pixel's samples, summed exactly (film.h)
         PassSums passSums[8];
         for (size_t i = 0; i < samples.size(); i += 8) {
+            if (i > 0 && i % 64 == 0) {
+                if (options.cancel && options.cancel->load(std::memory_order_relaxed)) return;
+                if (reports && elapsed() - lastReport >= kReportSeconds) report();
+            }
             int n = static_cast<int>(std::min<size_t>(8, samples.size() - i));
             RayPacket8 packet;
             packet.active = static_cast<uint8_t>((1u << n) - 1);
@@ -234,12 +248,6 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             }
     };
 
-    // The calling thread renders too, and between its blocks reports progress every 100 ms.
-    double lastReport = 0;
-    auto report = [&] {
-        lastReport = elapsed();
-        options.onProgress({tilesDone.load(), tilesTotal, lastReport});
-    };
     // Each thread counts its rays in a local and stores them once at the end: counters of two
     // threads side by side in one cache line, updated for every ray, cost 10% of the render on
     // two cores.
@@ -262,7 +270,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                             break;
                         }
                         if (reports && elapsed() - lastReport >= kReportSeconds) report();
-                        renderBlock(bx, by, x1, y1, samples, counts);
+                        renderBlock(bx, by, x1, y1, samples, counts, reports);
                     }
                 if (stopped) break;
                 tilesDone.fetch_add(1, std::memory_order_relaxed);
