@@ -12,10 +12,13 @@
 
 #include "demo_scene.h"
 #include "glint/core/error.h"
+#include "glint/core/parallel.h"
+#include "glint/denoise/film_denoise.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/environment_io.h"
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
+#include "glint/render/adaptive.h"
 #include "glint/render/integrator.h"
 #include "glint/render/piece.h"
 #include "glint/render/progressive.h"
@@ -74,6 +77,33 @@ SamplingPlan planSampling(const Options& opt, const Prepared& prepared, bool pie
     p.seconds = p.modelDefaults && timeBudgets ? kModelSeconds : opt.timeBudget;
     p.denoise = !piece && (opt.denoise != 0 ? opt.denoise > 0 : p.studio);
     return p;
+}
+
+Rendered renderPlanned(const Options& opt, Prepared& prepared, const SamplingPlan& plan,
+                       RenderOptions ro, bool aovs, FrameAccel* accel) {
+    using Clock = std::chrono::steady_clock;
+    Scene& scene = *prepared.scene;
+    Rendered out;
+    if (!scene.prepared()) {
+        auto t = Clock::now();
+        scene.prepare({ro.pool, prepared.kernels, accel});
+        out.buildSeconds = secondsSince(t);
+    }
+    ro.spp = plan.spp;
+    ro.aovs = aovs || plan.denoise;
+    out.result =
+        plan.threshold > 0
+            ? renderAdaptive(scene, ro, {plan.threshold, opt.minSpp, plan.maxSpp, plan.seconds})
+        : opt.timeBudget > 0 ? renderForTime(scene, ro, {opt.timeBudget, opt.spp})
+                             : render(scene, ro);
+    if (plan.denoise && out.result.complete) {
+        auto t = Clock::now();
+        std::optional<ThreadPool> own;
+        ThreadPool& pool = ro.pool ? *ro.pool : own.emplace(ro.threads);
+        out.result.film = denoiseFilm(out.result.film, out.result.aovs, pool);
+        out.denoiseSeconds = secondsSince(t);
+    }
+    return out;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
@@ -291,25 +321,43 @@ std::string sequencePattern(const Options& opt, std::string& pattern) {
            pattern + "'";
 }
 
-int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
+DisplayTransform displayFor(const Options& opt, const Scene& scene) {
+    DisplayTransform display{opt.exposure, scene.display.srgb, scene.display.toneMap};
+    if (opt.srgb != 0) display.srgb = opt.srgb > 0;
+    if (!opt.toneMap.empty()) display.toneMap = *toneMapNamed(opt.toneMap);
+    return display;
+}
+
+void applyRenderSettings(const Options& opt, Scene& scene) {
+    if (opt.maxDepth >= 0) scene.maxDepth = opt.maxDepth;
+    scene.clampIndirect = opt.clampIndirect;
+    scene.caustics = opt.caustics == "on";
+    if (!opt.integrator.empty()) scene.integrator = opt.integrator;
+}
+
+void prepareScene(const Options& opt, Prepared& out, std::vector<Diagnostic>& warnings,
+                  AssetCache* assets, const SceneText* source) {
     using Clock = std::chrono::steady_clock;
-    const bool demo = opt.scene.empty();
+    const bool demo = opt.scene.empty() && !source;
+    const std::string name = demo ? "demo.test" : source ? source->name : opt.scene;
+    auto optionWarning = [&](std::string message) {
+        out.optionWarnings.push_back(std::move(message));
+    };
     int width = 0, height = 0;
     if (!opt.size.empty()) {
         if (std::string problem = parseSize(opt.size, width, height); !problem.empty())
-            return usageError(problem);
+            throw UsageError(problem);
     }
     Isa kernels = Bvh::named(opt.kernels);
     if (kernels == Isa::Avx2 && Bvh::bestIsa() != Isa::Avx2)
-        return usageError(
+        throw UsageError(
             "--kernels avx2: this CPU (or this build of glint) has no AVX2; use "
             "auto or portable");
-    if (demo && !opt.camera.empty())
-        return usageError(
-            "--camera chooses a model file's camera: name a model or scene to render");
+    if ((demo || source) && !opt.camera.empty())
+        throw UsageError("--camera chooses a model file's camera: name a model or scene to render");
     if (!opt.output.empty() && !imageFormatFor(opt.output))
-        return usageError("cannot write '" + opt.output + "': unknown image format (use " +
-                          kImageExtensions + ")");
+        throw UsageError("cannot write '" + opt.output + "': unknown image format (use " +
+                         kImageExtensions + ")");
     // A model's look: the studio with the path tracer, the classic one with Whitted's.
     ModelLook look;
     look.studio = opt.integrator != "whitted";
@@ -318,7 +366,7 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
                       : opt.ground == "floor" ? ModelGround::Floor
                                               : ModelGround::None;
         if (!look.studio && look.ground == ModelGround::Shadow)
-            return usageError(
+            throw UsageError(
                 "--ground shadow needs the path tracer; with --integrator whitted use --ground "
                 "floor or none");
     }
@@ -327,116 +375,92 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
         try {
             environment = environmentNamed(opt.environment);
         } catch (const RenderError& e) {
-            std::fprintf(stderr, "glint: error: --environment: %s\n", e.what());
-            return kExitSceneError;
+            throw RenderError(std::string("--environment: ") + e.what());
         }
         look.environment = environment;
     }
 
     // Parse.
     auto t0 = Clock::now();
-    std::vector<Diagnostic> warnings;
     std::unique_ptr<Scene> scene;
-    std::string modelNote;  // for a bare model: the camera, lights and floor Glint chose
-    bool framed = false;    // a model framed as a scene
-    std::vector<FormatExtension> extensions;  // a model file's
-    std::vector<ModelAnimation> animations;   // a model file's
-    try {
-        if (demo) {
-            scene = parseCourseScene(kDemoScene, "demo.test", warnings);
-        } else {
-            LoadOptions options;
-            options.width = width;
-            options.height = height;
-            options.lenient = opt.lenient;
-            options.camera = CameraChoice::parse(opt.camera);
-            options.look = look;
-            if (std::optional<double> t = opt.seconds()) {
-                options.time.animation = opt.animation;
-                options.time.seconds = *t;
-            }
-            if (!opt.shutter.empty()) {
-                double open = 0, close = 0;
-                parseShutter(opt.shutter, open, close);  // checked with the options
-                if (close > open) {
-                    options.time.animation = opt.animation;
-                    options.time.seconds = opt.seconds().value_or(0);
-                    options.time.shutterOpen = open / opt.fps;
-                    options.time.shutterClose = close / opt.fps;
-                }
-            }
-            options.assets = assets;
-            ModelScene m = loadSceneFile(opt.scene, warnings, options);
-            scene = std::move(m.scene);
-            modelNote = std::move(m.note);
-            framed = m.framed;
-            extensions = std::move(m.extensions);
-            animations = std::move(m.animations);
+    bool framed = false;  // a model framed as a scene
+    if (demo) {
+        scene = parseCourseScene(kDemoScene, "demo.test", warnings);
+    } else if (source) {
+        CourseOptions course;
+        course.lenient = opt.lenient;
+        course.assets = assets;
+        course.models = source->models;
+        scene = parseCourseScene(source->text, source->name, warnings, course);
+    } else {
+        LoadOptions options;
+        options.width = width;
+        options.height = height;
+        options.lenient = opt.lenient;
+        options.camera = CameraChoice::parse(opt.camera);
+        options.look = look;
+        if (std::optional<double> t = opt.seconds()) {
+            options.time.animation = opt.animation;
+            options.time.seconds = *t;
         }
-    } catch (const SceneError& e) {
-        for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
-        std::fprintf(stderr, "%s\n", e.what());
-        return kExitSceneError;
+        if (!opt.shutter.empty()) {
+            double open = 0, close = 0;
+            parseShutter(opt.shutter, open, close);  // checked with the options
+            if (close > open) {
+                options.time.animation = opt.animation;
+                options.time.seconds = opt.seconds().value_or(0);
+                options.time.shutterOpen = open / opt.fps;
+                options.time.shutterClose = close / opt.fps;
+            }
+        }
+        options.assets = assets;
+        ModelScene m = loadSceneFile(opt.scene, warnings, options);
+        scene = std::move(m.scene);
+        out.note = std::move(m.note);
+        framed = m.framed;
+        out.extensions = std::move(m.extensions);
+        out.animations = std::move(m.animations);
     }
     double parseSeconds = secondsSince(t0);
-    for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
-    if (!modelNote.empty() && !opt.quiet) std::fprintf(stderr, "glint: %s\n", modelNote.c_str());
     if (width > 0) {
         scene->width = width;
         scene->height = height;
     }
-    if (opt.maxDepth >= 0) scene->maxDepth = opt.maxDepth;
     if (opt.fovy > 0 && scene->camera) scene->camera->fovyDegrees = opt.fovy;
     if (opt.fovy > 0)
         for (CameraSpec& c : scene->cameraMotion) c.fovyDegrees = opt.fovy;
-    scene->clampIndirect = opt.clampIndirect;
-    scene->caustics = opt.caustics == "on";
-    if (!opt.integrator.empty()) scene->integrator = opt.integrator;
+    applyRenderSettings(opt, *scene);
     if (opt.clampIndirect > 0 && scene->integrator != "path")
-        std::fprintf(stderr,
-                     "glint: warning: --clamp-indirect applies to the path tracer; integrator "
-                     "'%s' ignores it\n",
-                     scene->integrator.c_str());
+        optionWarning("--clamp-indirect applies to the path tracer; integrator '" +
+                      scene->integrator + "' ignores it");
     if (!framed) {  // a model's environment and ground were chosen when it was framed
         if (environment) scene->environment = *environment;
         if (!opt.ground.empty())
-            std::fprintf(stderr,
-                         "glint: warning: --ground applies to models (.obj, .gltf, .glb) only; "
-                         "'%s' is a scene: ignored\n",
-                         demo ? "demo.test" : opt.scene.c_str());
+            optionWarning("--ground applies to models (.obj, .gltf, .glb) only; '" + name +
+                          "' is a scene: ignored");
     }
     // How the image is shown: the scene's way (PBR Neutral and sRGB for a model), or the
     // command line's.
-    DisplayTransform display{opt.exposure, scene->display.srgb, scene->display.toneMap};
-    if (opt.srgb != 0) display.srgb = opt.srgb > 0;
-    if (!opt.toneMap.empty()) display.toneMap = *toneMapNamed(opt.toneMap);
+    const DisplayTransform display = displayFor(opt, *scene);
 
     // Where the image goes: -o, else the scene's output line, else <scene-stem>.png.
     std::string output = opt.output;
     if (output.empty()) output = scene->output;
-    if (output.empty()) output = std::filesystem::path(opt.scene).stem().string() + ".png";
+    if (output.empty()) output = std::filesystem::path(name).stem().string() + ".png";
     if (demo && opt.output.empty()) output = "glint.png";
 
     std::optional<ImageFormat> format = imageFormatFor(output);
-    if (!format) {
-        std::fprintf(stderr,
-                     "glint: error: cannot write '%s': unknown image format (use %s, or choose a "
-                     "file with -o)\n",
-                     output.c_str(), kImageExtensions);
-        return kExitSceneError;
-    }
+    if (!format)
+        throw RenderError("cannot write '" + output + "': unknown image format (use " +
+                          kImageExtensions + ", or choose a file with -o)");
     // Float files hold linear radiance: the tone mapper and the sRGB curve are for 8-bit files
     // only.
     if (opt.srgb > 0 && isFloatFormat(*format))
-        std::fprintf(stderr,
-                     "glint: warning: --srgb applies to 8-bit outputs (.png, .ppm) only; '%s' is "
-                     "written linear\n",
-                     output.c_str());
+        optionWarning("--srgb applies to 8-bit outputs (.png, .ppm) only; '" + output +
+                      "' is written linear");
     if (!opt.toneMap.empty() && isFloatFormat(*format))
-        std::fprintf(stderr,
-                     "glint: warning: --tonemap applies to 8-bit outputs (.png, .ppm) only; '%s' "
-                     "is written linear\n",
-                     output.c_str());
+        optionWarning("--tonemap applies to 8-bit outputs (.png, .ppm) only; '" + output +
+                      "' is written linear");
     out.scene = std::move(scene);
     out.display = display;
     out.output = output;
@@ -444,8 +468,31 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
     out.parseSeconds = parseSeconds;
     out.demo = demo;
     out.model = framed;
-    out.extensions = std::move(extensions);
-    out.animations = std::move(animations);
+}
+
+int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
+    std::vector<Diagnostic> warnings;
+    auto report = [&] {
+        for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
+        if (!out.note.empty() && !opt.quiet) std::fprintf(stderr, "glint: %s\n", out.note.c_str());
+        for (const std::string& w : out.optionWarnings)
+            std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
+    };
+    try {
+        prepareScene(opt, out, warnings, assets);
+    } catch (const UsageError& e) {
+        report();
+        return usageError(e.what());
+    } catch (const SceneError& e) {
+        report();
+        std::fprintf(stderr, "%s\n", e.what());
+        return kExitSceneError;
+    } catch (const RenderError& e) {
+        report();
+        std::fprintf(stderr, "glint: error: %s\n", e.what());
+        return kExitSceneError;
+    }
+    report();
     return kGoOn;
 }
 

@@ -6,8 +6,10 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,12 @@ namespace glint::cli {
 constexpr int kExitSceneError = 1;
 constexpr int kExitUsage = 2;
 constexpr int kGoOn = -1;  ///< From prepare(): no error, go on.
+
+/// A problem with the options as given (the command line exits 2 for it).
+class UsageError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
 
 /// A model's default sampling (docs/denoising.md): adaptive to this noise threshold, within
 /// this many seconds of rendering; and the most samples per pixel of an adaptive render when
@@ -112,11 +120,38 @@ struct Prepared {
     std::vector<FormatExtension> extensions;
     /// A model file's animations (`--check` lists them).
     std::vector<ModelAnimation> animations;
+    std::string note;  ///< For a bare model: the camera, lights and floor Glint chose.
+    /// Options that do not apply to this scene or output, said plainly ("--srgb applies to
+    /// 8-bit outputs ...").
+    std::vector<std::string> optionWarnings;
 };
 
-/// Loads the scene `opt` names (or the demo) and applies the options to it; the BVH is not
-/// built yet. Prints warnings and errors; returns kGoOn, or the exit code to end with.
-/// `assets`: where model files are kept between the frames of a sequence (null: nowhere).
+/// A scene given as the text of a scene file rather than a file (the Python module's Scene
+/// builder, docs/python.md), with the models its `mesh` lines name (CourseOptions::models).
+struct SceneText {
+    std::string text;
+    std::string name;  ///< For messages, as a file name.
+    std::map<std::string, std::shared_ptr<const Model>> models;
+};
+
+/// Loads the scene `opt` names (or `source`, or the demo) and applies the options to it; the
+/// BVH is not built yet. The loaders' warnings go to `warnings`. Throws UsageError for options that
+/// do not fit, SceneError for a bad scene (with its file position) and RenderError for anything
+/// else that cannot be read (glint.load in Python reports each as its own exception). `assets`:
+/// where model files are kept between the frames of a sequence (null: nowhere).
+void prepareScene(const Options& opt, Prepared& out, std::vector<Diagnostic>& warnings,
+                  AssetCache* assets = nullptr, const SceneText* source = nullptr);
+
+/// How the image of `scene` is shown: the scene's way (PBR Neutral and sRGB for a model), with
+/// what --exposure, --srgb, --no-srgb and --tonemap change.
+DisplayTransform displayFor(const Options& opt, const Scene& scene);
+
+/// Applies what `opt` says of how the scene renders and does not change what it holds: the
+/// integrator, --max-depth, --clamp-indirect and --caustics.
+void applyRenderSettings(const Options& opt, Scene& scene);
+
+/// prepareScene for a program: prints the warnings, the model's note (unless --quiet) and any
+/// error; returns kGoOn, or the exit code to end with.
 int prepare(const Options& opt, Prepared& out, AssetCache* assets = nullptr);
 
 /// How a render samples and cleans its image, from the options and the scene (docs/denoising.md).
@@ -136,6 +171,21 @@ struct SamplingPlan {
 /// unless asked. Frame pieces (`piece`) take exactly what they are told, and are never denoised.
 SamplingPlan planSampling(const Options& opt, const Prepared& prepared, bool piece,
                           bool timeBudgets);
+
+/// A render as a SamplingPlan asks, and what it cost.
+struct Rendered {
+    RenderResult result;
+    double buildSeconds = 0;    ///< Building the BVHs (0 for a scene prepared before).
+    double denoiseSeconds = 0;  ///< 0: not denoised.
+};
+
+/// Renders the prepared scene as `plan` says: builds its BVHs unless it is prepared already
+/// (refitting `accel`'s where they fit), then samples adaptively, to a time budget or a fixed
+/// count, with `ro`'s pool, seed, cancel flag, progress and piece settings (spp and passes are
+/// set here: the passes when `aovs` or the plan denoises), and denoises a complete image when
+/// the plan asks. Shared by glint and the Python module, so that both render the same pixels.
+Rendered renderPlanned(const Options& opt, Prepared& prepared, const SamplingPlan& plan,
+                       RenderOptions ro, bool aovs, FrameAccel* accel = nullptr);
 
 /// How glint merge and glint denoise show their image, as their options change it.
 struct DisplayOptions {

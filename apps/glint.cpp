@@ -22,12 +22,9 @@
 #include "glint/core/input_log.h"
 #include "glint/core/parallel.h"
 #include "glint/core/system.h"
-#include "glint/denoise/film_denoise.h"
 #include "glint/io/image/exr_piece.h"
 #include "glint/io/image/image_io.h"
-#include "glint/render/adaptive.h"
 #include "glint/render/progress.h"
-#include "glint/render/progressive.h"
 #include "glint/render/renderer.h"
 #include "merge.h"
 #include "piece.h"
@@ -94,7 +91,6 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
     const std::string& output = prepared.output;
     const bool demo = prepared.demo;
     const double parseSeconds = prepared.parseSeconds;
-    const glint::Isa kernels = prepared.kernels;
     const glint::DisplayTransform& display = prepared.display;
     if (opt.check) {
         const auto& prims = scene->primitives;
@@ -149,28 +145,20 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
         return usageError("--aov writes the passes as layers of an OpenEXR file: '" + output +
                           "' is not an .exr file");
     const double threshold = plan.threshold, budget = plan.seconds;
-    const bool denoise = plan.denoise, studio = plan.studio, modelDefaults = plan.modelDefaults;
+    const bool studio = plan.studio, modelDefaults = plan.modelDefaults;
 
     // Build, then render, on one pool of threads (-t 1: the calling thread alone).
     glint::ThreadPool pool(opt.threads);
-    auto t1 = Clock::now();
-    scene->prepare({&pool, kernels, accel});
-    double buildSeconds = secondsSince(t1);
-
-    // Render.
     glint::ProgressReporter progress(stderr, ::isatty(STDERR_FILENO) == 1);
     glint::RenderOptions ro;
     ro.pool = &pool;
-    ro.spp = spp;
     ro.seed = opt.seed;
     ro.cancel = &gStop;
     if (piece) renderPieceWith(pieceInfo, ro);
     if (!opt.quiet) ro.onProgress = [&](const glint::RenderProgress& p) { progress.update(p); };
-    ro.aovs = aovs.any() || denoise;
-    glint::RenderResult result =
-        threshold > 0 ? glint::renderAdaptive(*scene, ro, {threshold, opt.minSpp, maxSpp, budget})
-        : opt.timeBudget > 0 ? glint::renderForTime(*scene, ro, {opt.timeBudget, opt.spp})
-                             : glint::render(*scene, ro);
+    Rendered rendered = renderPlanned(opt, prepared, plan, ro, aovs.any(), accel);
+    glint::RenderResult& result = rendered.result;
+    const double buildSeconds = rendered.buildSeconds;
     if (!opt.quiet)
         progress.finish(
             {0, 0, result.seconds}, result.complete,
@@ -190,17 +178,11 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
         return 128 + gSignal;
     }
 
-    double denoiseSeconds = 0;
-    if (denoise && result.complete) {
-        auto t = Clock::now();
-        result.film = glint::denoiseFilm(result.film, result.aovs, pool);
-        denoiseSeconds = secondsSince(t);
-        if (!opt.quiet)
-            std::fprintf(stderr, "glint: denoised in %.2f s%s\n", denoiseSeconds,
-                         studio && opt.denoise == 0
-                             ? " (a model's default; --no-denoise for the raw image)"
-                             : "");
-    }
+    if (rendered.denoiseSeconds > 0 && !opt.quiet)
+        std::fprintf(stderr, "glint: denoised in %.2f s%s\n", rendered.denoiseSeconds,
+                     studio && opt.denoise == 0
+                         ? " (a model's default; --no-denoise for the raw image)"
+                         : "");
 
     // Write.
     auto t2 = Clock::now();

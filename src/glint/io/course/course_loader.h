@@ -2,6 +2,7 @@
 /// Loader for the CSE167x homework 3 scene format and Glint's extensions to it
 /// (docs/scene-format.md has every command, its defaults and the errors it reports).
 
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -25,6 +26,9 @@ struct CourseOptions {
     /// are kept for the next frame (null: nowhere).
     ModelTime time{};
     class AssetCache* assets = nullptr;
+    /// Models the caller holds, by the name a `mesh` line gives them in place of a file (the
+    /// Python module's meshes made of arrays, docs/python.md): placed as a mesh file's would be.
+    std::map<std::string, std::shared_ptr<const Model>> models{};
 };
 
 /// Parses `text`, naming `fileName` in diagnostics. Throws SceneError at the first error, or if

@@ -19,8 +19,11 @@ std::string Parser::scenePath(std::string_view name) const {
 void Parser::cmdMesh() {
     const Transform& t = transform();  // a singular transform is reported first
     uint32_t material = builder_.materialId();
-    if (!limits_.readFiles) fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
-    std::string path = scenePath(tok_[1].text);
+    // A model the caller holds goes by its name; a file by its path from the scene's folder.
+    const bool held = models_.count(std::string(tok_[1].text)) > 0;
+    if (!held && !limits_.readFiles)
+        fail(1, "mesh " + quoted(1) + " is not read: reading files is off");
+    std::string path = held ? std::string(tok_[1].text) : scenePath(tok_[1].text);
     auto it = models_.find(path);
     if (it == models_.end()) {
         if (std::string problem = inputFileProblem(path); !problem.empty())

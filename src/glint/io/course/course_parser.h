@@ -58,7 +58,8 @@ class Parser {
           limits_(options.limits),
           lenient_(options.lenient),
           time_(options.time),
-          assets_(options.assets) {}
+          assets_(options.assets),
+          models_(options.models) {}
 
     std::unique_ptr<Scene> run();
     static const std::vector<Command>& commands();
