@@ -18,13 +18,14 @@ JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 # Debian packages: compiler and build tools, then libraries (see docs/dependencies in README;
 # libboost-iostreams-dev because Debian's FindOpenVDB.cmake requires it and libopenvdb-dev does
 # not pull it in: cmake/dependencies.cmake),
-# then what the tests run: Open MPI (openmpi-bin, libopenmpi-dev) for glint-mpi and its tests,
-# slurm-wlm and munge for a private single-node Slurm on localhost that runs contrib/slurm's
-# scripts (tests/slurm/cluster_test.sh, about 9 s; docs/scale-out.md).
+# then the Python module (pybind11-dev, python3-dev, python3-numpy; docs/python.md) and its
+# tests (python3-pytest), then what the other tests run: Open MPI (openmpi-bin, libopenmpi-dev)
+# for glint-mpi and its tests, slurm-wlm and munge for a private single-node Slurm on localhost
+# that runs contrib/slurm's scripts (tests/slurm/cluster_test.sh, about 9 s; docs/scale-out.md).
 DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
-        libopenvdb-dev libboost-iostreams-dev \
-        libgtest-dev libgmock-dev openmpi-bin libopenmpi-dev slurm-wlm munge
+        libopenvdb-dev libboost-iostreams-dev pybind11-dev python3-dev python3-numpy \
+        libgtest-dev libgmock-dev python3-pytest openmpi-bin libopenmpi-dev slurm-wlm munge
 
 # `make demo`: only what the glint program needs, and only it is built (no test libraries, no
 # MPI or Slurm, OpenVDB if it is there already): a first picture in minutes on a fresh machine.

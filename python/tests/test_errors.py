@@ -1,0 +1,117 @@
+"""Bad input is a Python exception that says where, never a crash."""
+
+import numpy as np
+import pytest
+
+import glint
+from conftest import data
+
+
+def test_a_bad_scene_line_raises_scene_error_with_its_place(tmp_path):
+    bad = tmp_path / "bad.test"
+    bad.write_text("size 64 48\ncamera 0 0 4 0 0 0 0 1 0 45\nsphere 0 0 zero 1\n")
+    with pytest.raises(glint.SceneError) as e:
+        glint.load(bad)
+    assert e.value.file == str(bad)
+    assert (e.value.line, e.value.column) == (3, 12)
+    assert "zero" in e.value.message
+    assert str(e.value).startswith(f"{bad}:3:12: error: ")
+    assert isinstance(e.value, ValueError)
+
+
+def test_a_missing_file_and_a_bad_model_raise_scene_error(tmp_path):
+    with pytest.raises(glint.SceneError, match="nothing.test"):
+        glint.load(tmp_path / "nothing.test")
+    with pytest.raises(glint.SceneError):
+        glint.load(data("gltf", "bad-accessor.gltf"))
+
+
+def test_warnings_are_python_warnings(tmp_path):
+    odd = tmp_path / "odd.test"
+    odd.write_text("size 32 24\ncamera 0 0 4 0 0 0 0 1 0 45\nsphere 0 0 0 0\n")
+    with pytest.warns(glint.SceneWarning, match="odd.test:3"):
+        glint.load(odd)
+
+
+def test_options_are_checked_as_the_command_line_checks_them(tmp_path):
+    scene6 = data("cse167x", "scene6.test")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'sppp'"):
+        glint.load(scene6, sppp=4)
+    with pytest.raises(TypeError, match="output"):
+        glint.load(scene6, output="x.png")
+    with pytest.raises(ValueError, match="--spp"):
+        glint.load(scene6, spp=0)
+    with pytest.raises(ValueError, match="size"):
+        glint.load(scene6, size="big")
+    scene = glint.load(scene6, size=(16, 12))
+    with pytest.raises(ValueError, match="--integrator"):
+        scene.render(integrator="magic")
+    with pytest.raises(TypeError, match="glint.load"):
+        scene.render(size=(8, 8))
+
+
+GOOD_POSITIONS = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float32)
+GOOD_INDICES = np.array([[0, 1, 2]], dtype=np.int32)
+
+
+@pytest.mark.parametrize(
+    "positions, indices, error, match",
+    [
+        (GOOD_POSITIONS.astype(np.int32), GOOD_INDICES, TypeError, "float32 or float64"),
+        (GOOD_POSITIONS[:, :2].copy(), GOOD_INDICES, ValueError, "shape"),
+        (np.asfortranarray(np.tile(GOOD_POSITIONS, (2, 1))), GOOD_INDICES, ValueError,
+         "C-contiguous"),
+        (GOOD_POSITIONS.T, GOOD_INDICES, ValueError, "C-contiguous|shape"),
+        (np.array([[0, 0, 0], [np.nan, 0, 0], [0, 1, 0]], np.float32), GOOD_INDICES, ValueError,
+         "row 1 is not finite"),
+        (np.array([[0, 0, 0], [np.inf, 0, 0], [0, 1, 0]]), GOOD_INDICES, ValueError,
+         "not finite"),
+        (np.array([[0, 0, 0], [1e300, 0, 0], [0, 1, 0]]), GOOD_INDICES, ValueError,
+         "not finite"),
+        (GOOD_POSITIONS, np.array([[0, 1, 3]]), ValueError, "names vertex 3"),
+        (GOOD_POSITIONS, np.array([[0, -1, 2]]), ValueError, "names vertex -1"),
+        (GOOD_POSITIONS, np.array([[0, 1, 2]], np.float32), TypeError, "integers"),
+        (GOOD_POSITIONS, np.array([0, 1]), ValueError, "shape"),
+        (np.zeros((0, 3), np.float32), GOOD_INDICES, ValueError, "no vertices"),
+        ("not an array", GOOD_INDICES, TypeError, ""),
+    ],
+)
+def test_mesh_arrays_are_checked(positions, indices, error, match):
+    with pytest.raises(error, match=match):
+        glint.Mesh(positions, indices)
+
+
+def test_mesh_attribute_arrays_are_checked():
+    with pytest.raises(ValueError, match="one per vertex"):
+        glint.Mesh(GOOD_POSITIONS, GOOD_INDICES, normals=np.zeros((2, 3), np.float32))
+    with pytest.raises(ValueError, match="uvs"):
+        glint.Mesh(GOOD_POSITIONS, GOOD_INDICES, uvs=np.zeros((3, 3), np.float32))
+    with pytest.raises(ValueError, match="not finite"):
+        glint.Mesh(GOOD_POSITIONS, GOOD_INDICES,
+                   normals=np.array([[0, 0, 1], [0, 0, np.nan], [0, 0, 1]], np.float32))
+    mesh = glint.Mesh(GOOD_POSITIONS, GOOD_INDICES.ravel(), uvs=np.zeros((3, 2)))
+    assert (mesh.vertices, mesh.triangles) == (3, 1)
+
+
+def test_a_bad_builder_call_is_reported_at_the_python_line():
+    scene = glint.Scene(size=(16, 12))
+    scene.camera = dict(eye=(0, 0, 4), target=(0, 0, 0))
+    scene.sphere((0, 0, 0), -1); line = __import__("inspect").currentframe().f_lineno  # noqa: E702
+    with pytest.raises(glint.SceneError) as e:
+        scene.render()
+    assert e.value.file == __file__ and e.value.line == line
+    assert "radius" in e.value.message and "sphere" in str(e.value)
+    with pytest.raises(ValueError, match="cannot be written"):
+        scene.command("texture", "a file.png")
+
+
+def test_bad_images_and_environments_are_refused(tmp_path):
+    with pytest.raises(ValueError, match="shape"):
+        glint.write(tmp_path / "x.png", np.zeros((4, 4)))
+    with pytest.raises(ValueError, match="unknown image format"):
+        glint.write(tmp_path / "x.jpg", np.zeros((4, 4, 3)))
+    scene = glint.Scene(size=(8, 8))
+    scene.camera = dict(eye=(0, 0, 4), target=(0, 0, 0))
+    scene.environment(np.full((4, 8, 3), -1.0))
+    with pytest.raises(ValueError, match="negative"):
+        scene.render()
