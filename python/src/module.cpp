@@ -49,10 +49,10 @@ cli::Options parseOptions(const std::vector<std::string>& args, cli::Options bas
 
 void warn(const std::vector<Diagnostic>& warnings, const std::vector<std::string>& optionWarnings) {
     for (const Diagnostic& w : warnings)
-        if (PyErr_WarnEx(gSceneWarning, w.format("warning").c_str(), 1) != 0)
+        if (PyErr_WarnEx(gSceneWarning, w.format("warning").c_str(), 2) != 0)
             throw py::error_already_set();
     for (const std::string& w : optionWarnings)
-        if (PyErr_WarnEx(gSceneWarning, w.c_str(), 1) != 0) throw py::error_already_set();
+        if (PyErr_WarnEx(gSceneWarning, w.c_str(), 2) != 0) throw py::error_already_set();
 }
 
 }  // namespace glint::python
