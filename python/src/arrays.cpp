@@ -79,24 +79,21 @@ ArrayMesh makeMesh(const py::array& positions, const py::array& indices, const p
     readFloats(positions, "positions", 3, n, [&](size_t i, const float* v) {
         mesh.positions[i] = {v[0], v[1], v[2]};
     });
-    if (!normals.is_none()) {
-        const auto a = normals.cast<py::array>();
-        if (checkRows(a, "normals", 3) != n)
-            throw py::value_error("normals: one per vertex expected (" + std::to_string(n) +
-                                  "), got " + std::to_string(a.shape(0)));
-        mesh.normals.resize(n);
-        readFloats(a, "normals", 3, n, [&](size_t i, const float* v) {
-            mesh.normals[i] = {v[0], v[1], v[2]};
-        });
-    }
-    if (!uvs.is_none()) {
-        const auto a = uvs.cast<py::array>();
-        if (checkRows(a, "uvs", 2) != n)
-            throw py::value_error("uvs: one per vertex expected (" + std::to_string(n) + "), got " +
-                                  std::to_string(a.shape(0)));
-        mesh.uvs.resize(n);
-        readFloats(a, "uvs", 2, n, [&](size_t i, const float* v) { mesh.uvs[i] = {v[0], v[1]}; });
-    }
+    // Optional attributes, one row of `columns` per vertex, into `out` by `put`.
+    auto attribute = [n](const py::object& o, const char* what, py::ssize_t columns, auto& out,
+                         auto put) {
+        if (o.is_none()) return;
+        const auto a = o.cast<py::array>();
+        if (checkRows(a, what, columns) != n)
+            throw py::value_error(std::string(what) + ": one per vertex expected (" +
+                                  std::to_string(n) + "), got " + std::to_string(a.shape(0)));
+        out.resize(n);
+        readFloats(a, what, columns, n, [&](size_t i, const float* v) { out[i] = put(v); });
+    };
+    attribute(normals, "normals", 3, mesh.normals, [](const float* v) {
+        return Vec3f{v[0], v[1], v[2]};
+    });
+    attribute(uvs, "uvs", 2, mesh.uvs, [](const float* v) { return TexCoord{v[0], v[1]}; });
     const size_t t = checkRows(indices, "indices", 3, true);
     const py::dtype dt = indices.dtype();
     if (dt.kind() != 'i' && dt.kind() != 'u')
