@@ -35,6 +35,6 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built, target)
 
 
-# setuptools' own folders beside CMake's build/ rather than in it: build-pip/, *.egg-info.
+# setuptools' own build folder beside CMake's build/ rather than in it.
 setup(ext_modules=[Extension("glint._glint", sources=[])], cmdclass={"build_ext": CMakeBuild},
-      options={"build": {"build_base": "build-pip"}, "egg_info": {"egg_base": "build-pip"}})
+      options={"build": {"build_base": "build-pip"}})
