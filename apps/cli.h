@@ -1,9 +1,8 @@
 #pragma once
-// What the glint command line shares with its other entry points (the MPI mode): the options,
-// loading and setting up a scene as they ask, and the reports. Usage errors exit 2, scene and
-// render errors exit 1.
+// What the glint command line shares with its other entry points (the MPI mode): the options
+// (parsed in options.cpp), loading and setting up a scene as they ask, and the reports. Usage
+// errors exit 2, scene and render errors exit 1.
 
-#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -38,6 +37,9 @@ class UsageError : public std::runtime_error {
 constexpr double kModelNoiseThreshold = 0.02;
 constexpr double kModelSeconds = 2.5;
 constexpr int kAdaptiveMaxSpp = 1024;
+
+/// Frames --frame and --frames may name: ten million, 115 hours at 24 fps.
+constexpr long long kMaxFrame = 10'000'000;
 
 /// The command line, as parsed.
 struct Options {
@@ -103,9 +105,6 @@ std::string frameFileName(const std::string& pattern, long long frame);
 /// The file name pattern of the sequence --frames asks for: -o, else <scene-stem>_%04d.png (or
 /// glint_%04d.png for the demo). Returns what is wrong with it (no frame number), or nothing.
 std::string sequencePattern(const Options& opt, std::string& pattern);
-
-/// Registers every option and flag of `glint` on `app`, storing into `opt`.
-void addOptions(CLI::App& app, Options& opt);
 
 /// A scene loaded and set up as the options ask, and where and how its image goes.
 struct Prepared {
@@ -187,7 +186,8 @@ struct Rendered {
 Rendered renderPlanned(const Options& opt, Prepared& prepared, const SamplingPlan& plan,
                        RenderOptions ro, bool aovs, FrameAccel* accel = nullptr);
 
-/// How glint merge and glint denoise show their image, as their options change it.
+/// How glint merge and glint denoise show their image, as their options change it
+/// (options.cpp registers them).
 struct DisplayOptions {
     std::optional<double> exposure;  ///< --exposure EV
     int srgb = 0;                    ///< --srgb 1, --no-srgb -1, 0 not given
@@ -197,14 +197,7 @@ struct DisplayOptions {
     DisplayTransform over(DisplayTransform base) const;
 };
 
-/// Registers --exposure, --srgb, --no-srgb and --tonemap on `app`; `unchanged` says what an
-/// option not given leaves ("the pieces'").
-void addDisplayOptions(CLI::App& app, DisplayOptions& d, const std::string& unchanged);
-
 int usageError(const std::string& message);
-/// Option validators with plain messages: an integer, or a finite number, within [lo, hi].
-CLI::Validator integerIn(long long lo, long long hi);
-CLI::Validator numberIn(double lo, double hi);
 double secondsSince(std::chrono::steady_clock::time_point t);
 /// "1 light", "2 lights".
 std::string count(unsigned long long n, const char* one, const char* many);

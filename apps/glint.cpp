@@ -3,7 +3,6 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -27,6 +26,7 @@
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
 #include "merge.h"
+#include "options.h"
 #include "piece.h"
 
 namespace {
@@ -261,36 +261,8 @@ int main(int argc, char** argv) {
     // `glint merge ...`: the one subcommand (a scene file named merge is ./merge).
     if (argc > 1 && std::string_view(argv[1]) == "merge") return mergeMain(argc - 1, argv + 1);
     if (argc > 1 && std::string_view(argv[1]) == "denoise") return denoiseMain(argc - 1, argv + 1);
-    CLI::App app{
-        "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
-        "\nWithout SCENE it renders a built-in demo scene to glint.png; given a model (.obj,"
-        "\n.gltf, .glb, .ply, .stl) it shows it as a glTF viewer does: path traced in a studio"
-        "\nenvironment, on a ground shadow, through the Khronos PBR Neutral tone mapper.",
-        "glint"};
-    app.get_formatter()->column_width(30);
-    // One style for every usage error, whether CLI11 or Glint finds it.
-    app.failure_message([](const CLI::App*, const CLI::Error& e) {
-        return std::string("glint: error: ") + e.what() + "\nRun 'glint --help' for usage.\n";
-    });
-    app.footer(
-        "Frame pieces rendered with --part, --crop or --samples are merged with\n"
-        "  glint merge -o OUT PIECE.exr...   (glint merge --help; docs/scale-out.md)");
     Options opt;
-    addOptions(app, opt);
-
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        for (int i = 2; i < argc && code != 0; ++i)
-            if (std::string_view(argv[i]) == "merge") {
-                std::fprintf(stderr,
-                             "(to merge pieces, 'merge' comes first: glint merge -o OUT "
-                             "PIECE.exr...)\n");
-                break;
-            }
-        return code == 0 ? 0 : kExitUsage;
-    }
+    if (int code = parseOptions(argc, argv, opt); code != kGoOn) return code;
     installSignalHandlers();
     try {
         return runFrames(opt);

@@ -32,6 +32,7 @@
 #include "mpi_protocol.h"
 #include "mpi_render.h"
 #include "mpi_report.h"
+#include "options.h"
 
 namespace {
 

@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "glint/io/image/exr_piece.h"
 #include "glint/io/image/image_io.h"
+#include "options.h"
 
 namespace glint::cli {
 
@@ -29,45 +30,16 @@ int mergeUsageError(const std::string& message) {
 }  // namespace
 
 int mergeMain(int argc, char** argv) {
-    CLI::App app{
-        "Merges frame pieces that glint rendered with --part, --crop or --samples into one "
-        "image,\nexactly the image a single glint run writes (docs/scale-out.md). Checks that "
-        "the pieces\nare of one frame (scene, size, samples, seed, settings, version) and cover "
-        "each pixel's\nsamples exactly once; they are added in a fixed order whatever the order "
-        "named.",
-        "glint merge"};
-    app.get_formatter()->column_width(30);
-    app.failure_message([](const CLI::App*, const CLI::Error& e) {
-        return std::string("glint merge: error: ") + e.what() +
-               "\nRun 'glint merge --help' for usage.\n";
-    });
-    std::vector<std::string> pieces;
-    std::string output;
-    DisplayOptions shown;
-    bool quiet = false;
-    app.add_option("PIECE", pieces, "Piece files (.exr) that glint wrote")
-        ->required()
-        ->type_name("FILE");
-    app.add_option("-o,--output", output, "Image file to write; .png, .ppm, .pfm or .exr")
-        ->required()
-        ->type_name("FILE");
-    addDisplayOptions(app, shown, "as the pieces were rendered");
-    app.add_flag("-q,--quiet", quiet, "No messages; warnings and errors only");
-    app.set_help_flag("-h,--help", "Print this help and exit");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        return code == 0 ? 0 : kExitUsage;
-    }
-    const std::optional<ImageFormat> format = imageFormatFor(output);
+    MergeOptions opt;
+    if (int code = parseMergeOptions(argc, argv, opt); code != kGoOn) return code;
+    const std::optional<ImageFormat> format = imageFormatFor(opt.output);
     if (!format)
-        return mergeUsageError("cannot write '" + output + "': unknown image format (use " +
+        return mergeUsageError("cannot write '" + opt.output + "': unknown image format (use " +
                                kImageExtensions + ")");
 
     MergedFrame merged;
     try {
-        merged = mergePieceFiles(pieces);
+        merged = mergePieceFiles(opt.pieces);
     } catch (const PieceError& e) {
         for (const PieceProblem& p : e.problems()) print(p, "error");
         return kExitSceneError;
@@ -76,31 +48,31 @@ int mergeMain(int argc, char** argv) {
 
     // As the pieces were meant to be shown (the scene's display and their command line), unless
     // told otherwise here.
-    const DisplayTransform display = shown.over(merged.info.display);
-    if (isFloatFormat(*format) && (shown.srgb > 0 || !shown.toneMap.empty()))
+    const DisplayTransform display = opt.shown.over(merged.info.display);
+    if (isFloatFormat(*format) && (opt.shown.srgb > 0 || !opt.shown.toneMap.empty()))
         std::fprintf(stderr,
                      "glint merge: warning: --srgb and --tonemap apply to 8-bit outputs (.png, "
                      ".ppm) only; '%s' is written linear\n",
-                     output.c_str());
+                     opt.output.c_str());
     // The passes the pieces carry go beside the image, as the single render writes them.
     AovSelection aovs = merged.info.aovs;
     if (aovs.any() && *format != ImageFormat::Exr)
         std::fprintf(stderr,
                      "glint merge: warning: the pieces carry render passes (%s), which only an "
                      ".exr output holds; '%s' gets the image alone\n",
-                     aovListText(aovs).c_str(), output.c_str());
+                     aovListText(aovs).c_str(), opt.output.c_str());
     if (*format != ImageFormat::Exr) aovs = {};
     try {
         const RenderPasses passes = merged.sums.resolvePasses();
-        writeImage(output, merged.sums.resolve(), display, &passes, aovs);
+        writeImage(opt.output, merged.sums.resolve(), display, &passes, aovs);
     } catch (const RenderError& e) {
         std::fprintf(stderr, "glint merge: error: %s\n", e.what());
         return kExitSceneError;
     }
-    if (!quiet)
+    if (!opt.quiet)
         std::fprintf(stderr, "glint merge: wrote %s (%dx%d, %zu piece%s, %d samples per pixel)\n",
-                     output.c_str(), merged.info.width, merged.info.height, pieces.size(),
-                     pieces.size() == 1 ? "" : "s", merged.info.spp);
+                     opt.output.c_str(), merged.info.width, merged.info.height, opt.pieces.size(),
+                     opt.pieces.size() == 1 ? "" : "s", merged.info.spp);
     return 0;
 }
 

@@ -6,6 +6,7 @@
 #include "glint/core/error.h"
 #include "glint/scene/scene_builder.h"
 #include "glint_python.h"
+#include "options.h"
 
 namespace glint::python {
 namespace {

@@ -1,0 +1,457 @@
+// The command lines of glint, glint merge and glint denoise (options.h): every option, with its
+// help text and validator, and the parsing. The only file of glint's that includes CLI11.
+
+#include "options.h"
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "glint/accel/bvh.h"
+#include "glint/render/film.h"
+#include "glint/render/integrator.h"
+#include "glint/render/piece.h"
+#include "glint/scene/model.h"
+#include "glint/scene/scene.h"
+
+namespace glint::cli {
+namespace {
+
+/// An integer option within [lo, hi], with plain messages for anything else.
+CLI::Validator integerIn(long long lo, long long hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            long long v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size())
+                return "expected an integer, got '" + text + "'";
+            if (v < lo || v > hi)
+                return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+                       text;
+            return {};
+        },
+        "", "");
+}
+
+/// A finite real number within [lo, hi], with plain messages for anything else.
+CLI::Validator numberIn(double lo, double hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& text) -> std::string {
+            double v = 0;
+            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+            if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
+                return "expected a number, got '" + text + "'";
+            auto str = [](double d) {
+                char buf[32];
+                return std::string(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
+            };
+            if (v < lo || v > hi) return "must be " + str(lo) + " to " + str(hi) + ", got " + text;
+            return {};
+        },
+        "", "");
+}
+
+/// Registers --exposure, --srgb, --no-srgb and --tonemap on `app`; `unchanged` says what an
+/// option not given leaves ("the pieces'").
+void addDisplayOptions(CLI::App& app, DisplayOptions& d, const std::string& unchanged) {
+    app.add_option_function<double>(
+           "--exposure", [&d](double ev) { d.exposure = ev; },
+           "Multiply radiance by 2^EV before writing, -64 to 64 (default: " + unchanged + ")")
+        ->check(numberIn(-64, 64))
+        ->type_name("EV");
+    app.add_flag_callback(
+        "--srgb", [&d] { d.srgb = 1; },
+        "Encode 8-bit outputs with the sRGB curve (default: " + unchanged + ")");
+    app.add_flag_callback(
+        "--no-srgb", [&d] { d.srgb = -1; }, "Encode 8-bit outputs with the course's floor(255 c)");
+    app.add_option("--tonemap", d.toneMap,
+                   "neutral, aces or clamp, for 8-bit outputs (default: " + unchanged + ")")
+        ->check(CLI::IsMember({"neutral", "aces", "clamp"}))
+        ->type_name("NAME");
+}
+
+}  // namespace
+
+void addOptions(CLI::App& app, Options& opt) {
+    app.add_option("SCENE", opt.scene,
+                   "Scene file to render (CSE167x .test format), or an .obj, .gltf, .glb, .ply "
+                   "or .stl model to frame");
+
+    const char* input = "Input";
+    app.add_flag("--lenient", opt.lenient,
+                 "Skip unknown commands and ignore unmatched popTransforms in scene files, with "
+                 "a warning, as the course's own parser did (default: they are errors)")
+        ->group(input);
+    app.add_option("--camera", opt.camera,
+                   "Which camera to render a model file through: its number N (from 0, in the "
+                   "order of the file's node tree), the name of the camera or of its node, none "
+                   "to ignore the file's cameras and frame the model, or "
+                   "orbit:THETA,PHI,RADIUS[,TX,TY,TZ] for a camera on a sphere around a target "
+                   "(degrees; the Khronos Render Fidelity and model-viewer orbit, 45 degrees "
+                   "vertical field of view; also for scene files) (default: its first "
+                   "perspective camera)")
+        ->group(input)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                if (text.empty()) return "expected a camera number, a name, none or orbit:...";
+                try {
+                    CameraChoice::parse(text);
+                } catch (const std::invalid_argument& e) {
+                    return e.what();
+                }
+                return {};
+            },
+            "", ""))
+        ->type_name("N|NAME|none|orbit:...");
+    app.add_option("--fov", opt.fovy,
+                   "Vertical field of view in degrees, overriding the camera's, 0.01 to 179")
+        ->group(input)
+        ->check(numberIn(0.01, 179))
+        ->type_name("DEG");
+
+    const char* time = "Time (docs/animation.md)";
+    app.add_option("--animation", opt.animation,
+                   "Which of a model's animations to play: its number (from 0) or name "
+                   "(default: the first); also for the glTF files a scene's mesh lines name")
+        ->group(time)
+        ->type_name("N|NAME");
+    auto* frameOption = app.add_option_function<long long>(
+                               "--frame", [&opt](long long f) { opt.frame = f; },
+                               "Render frame N: the animation at N / --fps seconds (frame 0 is "
+                               "its time 0)")
+                            ->group(time)
+                            ->check(integerIn(-kMaxFrame, kMaxFrame))
+                            ->type_name("N");
+    auto* timeOption = app.add_option_function<double>(
+                              "--time-at", [&opt](double t) { opt.timeAt = t; },
+                              "Render the animation at SECONDS (the file's own time), -1e6 to 1e6")
+                           ->group(time)
+                           ->check(numberIn(-1e6, 1e6))
+                           ->type_name("SECONDS");
+    auto* framesOption =
+        app.add_option("--frames", opt.frames,
+                       "Render frames A to B (every STEP-th) into files named by -o's pattern "
+                       "(out_%04d.png or out_####.png), loading the file once")
+            ->group(time)
+            ->check(CLI::Validator(
+                [](std::string& text) -> std::string {
+                    FrameRange r;
+                    return parseFrameRange(text, r);
+                },
+                "", ""))
+            ->type_name("A:B[:STEP]");
+    frameOption->excludes(timeOption)->excludes(framesOption);
+    timeOption->excludes(framesOption);
+    app.add_option("--shutter", opt.shutter,
+                   "Motion blur: the shutter is open from OPEN to CLOSE frames from the frame "
+                   "rendered (-0.25:0.25 is Cycles' shutter 0.5 centred on it; 0:1 blurs to the "
+                   "next frame)")
+        ->group(time)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                double a = 0, b = 0;
+                return parseShutter(text, a, b);
+            },
+            "", ""))
+        ->type_name("OPEN:CLOSE");
+    app.add_option("--fps", opt.fps, "Frames per second of --frame and --frames, 0.001 to 1000")
+        ->group(time)
+        ->check(numberIn(0.001, 1000))
+        ->type_name("FPS");
+
+    const char* out = "Output";
+    app.add_option("-o,--output", opt.output,
+                   "Image file to write; .png, .ppm, .pfm or .exr (float). Default: the "
+                   "scene's 'output' line, else <scene-stem>.png")
+        ->group(out)
+        ->type_name("FILE");
+    app.add_option("--exposure", opt.exposure,
+                   "Multiply radiance by 2^EV before writing, -64 to 64, every format "
+                   "(default 0: unchanged)")
+        ->group(out)
+        ->check(numberIn(-64, 64))
+        ->type_name("EV");
+    app.add_flag_callback(
+           "--srgb", [&opt] { opt.srgb = 1; },
+           "Encode 8-bit outputs (.png, .ppm) with the sRGB curve, rounded (default for models; "
+           "scenes: the course's clamp and floor(255 c)); float outputs stay linear")
+        ->group(out);
+    app.add_flag_callback(
+           "--no-srgb", [&opt] { opt.srgb = -1; },
+           "Encode 8-bit outputs with the course's floor(255 c), also for models")
+        ->group(out);
+    app.add_option("--tonemap", opt.toneMap,
+                   "How radiance is brought into [0, 1] for 8-bit outputs: neutral (Khronos PBR "
+                   "Neutral), aces (three.js's ACES filmic, as Khronos' Render Fidelity images), "
+                   "clamp (the course's); default: neutral for models, clamp for scenes")
+        ->group(out)
+        ->check(CLI::IsMember({"neutral", "aces", "clamp"}))
+        ->type_name("NAME");
+
+    const char* render = "Rendering";
+    app.add_option("-t,--threads", opt.threads,
+                   "Threads for the BVH build and the render, 1 to 4096 (default: all hardware "
+                   "threads); 1 runs everything on one thread")
+        ->group(render)
+        ->check(integerIn(1, 4096))
+        ->type_name("N");
+    app.add_option("--kernels", opt.kernels,
+                   std::string("Traversal kernels: auto (the best this CPU runs: ") + Bvh::isa() +
+                       " here), avx2, portable (plain C++); every choice gives the same image")
+        ->group(render)
+        ->check(CLI::IsMember({"auto", "avx2", "portable"}))
+        ->type_name("NAME");
+    app.add_option("--size", opt.size, "Image size, overriding the scene's 'size'")
+        ->group(render)
+        ->type_name("WxH");
+    app.add_option("--maxdepth", opt.maxDepth,
+                   "Maximum reflection depth, 0 to 64, overriding the scene's (models: 8)")
+        ->group(render)
+        ->check(integerIn(0, kMaxDepthLimit))
+        ->type_name("N");
+    app.add_option("--clamp-indirect", opt.clampIndirect,
+                   "Path tracer: scale each sample's light after two or more bounces down to at "
+                   "most X in its largest channel (Cycles' Clamp Indirect): fewer fireflies, "
+                   "darker caustics and glossy interreflections (biased); default off")
+        ->group(render)
+        ->check(numberIn(0, 1e30))
+        ->type_name("X");
+
+    app.add_option("--caustics", opt.caustics,
+                   "Path tracer: trace the light that glass and mirrors focus onto what the "
+                   "camera sees from the lights (a light pass beside the camera's paths; "
+                   "unbiased either way); default on")
+        ->group(render)
+        ->check(CLI::IsMember({"on", "off"}))
+        ->type_name("on|off");
+
+    app.add_option(
+           "--integrator", opt.integrator,
+           "How light is computed, overriding the scene's 'integrator': " + integratorNameList() +
+               " (default: whitted, the course's; path for models, whitted giving "
+               "them the classic look)")
+        ->group(render)
+        ->check(CLI::Validator(
+            [](std::string& name) -> std::string {
+                if (findIntegrator(name)) return {};
+                return "unknown integrator '" + name + "' (Glint has " + integratorNameList() + ")";
+            },
+            "", ""))
+        ->type_name("NAME");
+    app.add_option("--spp", opt.spp,
+                   "Camera rays per pixel, 1 to 65536: stratified, jittered, filtered "
+                   "(default: the scene's spp, else 1, the pixel centre; 64 for models); with "
+                   "--time, the most")
+        ->group(render)
+        ->check(integerIn(1, 65536))
+        ->type_name("N");
+    app.add_option("--time", opt.timeBudget,
+                   "Render in passes until SECONDS are spent, 0.01 to 1e6, then average them "
+                   "(default: a fixed --spp)")
+        ->group(render)
+        ->check(numberIn(0.01, 1e6))
+        ->type_name("SECONDS");
+    app.add_option("--environment", opt.environment,
+                   "Surroundings and light: an .hdr or .exr map, 'studio' (Glint's), or 'none' "
+                   "(default: the scene's; studio for models)")
+        ->group(render)
+        ->type_name("FILE");
+    app.add_option("--ground", opt.ground,
+                   "What a model stands on: shadow (a shadow catcher), floor (grey matte), none "
+                   "(default: shadow; floor with --integrator whitted)")
+        ->group(render)
+        ->check(CLI::IsMember({"shadow", "floor", "none"}))
+        ->type_name("NAME");
+    app.add_option("--seed", opt.seed,
+                   "Seed of every random choice: sub-pixel jitter, lens, area lights, "
+                   "glossy rays (default 0)")
+        ->group(render)
+        ->type_name("N");
+
+    const char* clean = "Clean images (docs/denoising.md)";
+    app.add_option("--aov", opt.aov,
+                   "Render passes to write as layers of the .exr output: albedo, normal, depth, "
+                   "variance, comma-separated, or all")
+        ->group(clean)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                AovSelection sel;
+                return parseAovList(text, sel);
+            },
+            "", ""))
+        ->type_name("LIST");
+    app.add_flag_callback(
+           "--denoise", [&opt] { opt.denoise = 1; },
+           "Denoise the image with Glint's feature-guided denoiser (default for models)")
+        ->group(clean);
+    app.add_flag_callback(
+           "--no-denoise", [&opt] { opt.denoise = -1; },
+           "Write the image as rendered, with its noise (default for scenes)")
+        ->group(clean);
+    app.add_option("--noise-threshold", opt.noiseThreshold,
+                   "Adaptive sampling: stop sampling a pixel once its relative error is below "
+                   "T, 0.0001 to 1 (Cycles' meaning), with --spp as the most and --time as the "
+                   "budget (default for models: 0.02, at most 1024 spp and 2.5 s)")
+        ->group(clean)
+        ->check(numberIn(1e-4, 1))
+        ->type_name("T");
+    app.add_option("--min-spp", opt.minSpp,
+                   "With --noise-threshold: samples every pixel takes first, 2 to 65536 "
+                   "(default 16, at most --spp)")
+        ->group(clean)
+        ->check(integerIn(2, 65536))
+        ->type_name("N");
+
+    const char* piece =
+        "Frame pieces: any of these writes an OpenEXR piece (-o FILE.exr) for glint merge; they "
+        "combine (docs/scale-out.md)";
+    auto form = [](std::string (*parse)(std::string_view, int&, int&)) {
+        return CLI::Validator(
+            [parse](std::string& text) -> std::string {
+                int a = 0, b = 0;
+                return parse(text, a, b);
+            },
+            "", "");
+    };
+    app.add_option("--crop", opt.crop,
+                   "Render only pixels x0 to x1-1 across and y0 to y1-1 down, from the top-left "
+                   "corner: the upper bounds excluded, as pbrt's --pixelbounds")
+        ->group(piece)
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                PixelBounds b;
+                return parseCrop(text, b);
+            },
+            "", ""))
+        ->type_name("x0,x1,y0,y1");
+    app.add_option("--samples", opt.samples,
+                   "Render only samples A to B-1 of each pixel's spp, exactly those the whole "
+                   "render takes there (0 <= A < B <= spp)")
+        ->group(piece)
+        ->check(form(parseSampleRange))
+        ->type_name("A:B");
+    app.add_option("--part", opt.part,
+                   "Render piece K of N (0 <= K < N <= 65536): the rows of 16-pixel tiles whose "
+                   "index % N is K, so every piece gets rows from the whole height")
+        ->group(piece)
+        ->check(form(parsePart))
+        ->type_name("K/N");
+
+    const char* info = "Information";
+    app.add_flag("--check", opt.check,
+                 "Parse and validate the scene, print a summary, render nothing")
+        ->group(info);
+    app.add_flag("--stats", opt.stats, "Print times per phase, rays traced and Mrays/s")
+        ->group(info);
+    app.add_flag("-q,--quiet", opt.quiet, "No progress or messages; warnings and errors only")
+        ->group(info);
+    app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION +
+                                          " (traversal kernels: " + Bvh::isa() + ")")
+        ->group(info);
+    app.set_help_flag("-h,--help", "Print this help and exit")->group(info);
+}
+
+int parseOptions(int argc, char** argv, Options& opt) {
+    CLI::App app{
+        "Glint renders scenes in the CSE167x ray tracer format (and Glint's extensions)."
+        "\nWithout SCENE it renders a built-in demo scene to glint.png; given a model (.obj,"
+        "\n.gltf, .glb, .ply, .stl) it shows it as a glTF viewer does: path traced in a studio"
+        "\nenvironment, on a ground shadow, through the Khronos PBR Neutral tone mapper.",
+        "glint"};
+    app.get_formatter()->column_width(30);
+    // One style for every usage error, whether CLI11 or Glint finds it.
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("glint: error: ") + e.what() + "\nRun 'glint --help' for usage.\n";
+    });
+    app.footer(
+        "Frame pieces rendered with --part, --crop or --samples are merged with\n"
+        "  glint merge -o OUT PIECE.exr...   (glint merge --help; docs/scale-out.md)");
+    addOptions(app, opt);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        for (int i = 2; i < argc && code != 0; ++i)
+            if (std::string_view(argv[i]) == "merge") {
+                std::fprintf(stderr,
+                             "(to merge pieces, 'merge' comes first: glint merge -o OUT "
+                             "PIECE.exr...)\n");
+                break;
+            }
+        return code == 0 ? 0 : kExitUsage;
+    }
+    return kGoOn;
+}
+
+int parseMergeOptions(int argc, char** argv, MergeOptions& opt) {
+    CLI::App app{
+        "Merges frame pieces that glint rendered with --part, --crop or --samples into one "
+        "image,\nexactly the image a single glint run writes (docs/scale-out.md). Checks that "
+        "the pieces\nare of one frame (scene, size, samples, seed, settings, version) and cover "
+        "each pixel's\nsamples exactly once; they are added in a fixed order whatever the order "
+        "named.",
+        "glint merge"};
+    app.get_formatter()->column_width(30);
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("glint merge: error: ") + e.what() +
+               "\nRun 'glint merge --help' for usage.\n";
+    });
+    app.add_option("PIECE", opt.pieces, "Piece files (.exr) that glint wrote")
+        ->required()
+        ->type_name("FILE");
+    app.add_option("-o,--output", opt.output, "Image file to write; .png, .ppm, .pfm or .exr")
+        ->required()
+        ->type_name("FILE");
+    addDisplayOptions(app, opt.shown, "as the pieces were rendered");
+    app.add_flag("-q,--quiet", opt.quiet, "No messages; warnings and errors only");
+    app.set_help_flag("-h,--help", "Print this help and exit");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : kExitUsage;
+    }
+    return kGoOn;
+}
+
+int parseDenoiseOptions(int argc, char** argv, DenoiseOptions& opt) {
+    CLI::App app{
+        "Denoises a render saved as OpenEXR, guided by the render passes the file holds "
+        "(albedo,\nnormal, depth, variance: glint --aov all, or glint merge of such pieces). "
+        "Without passes it\nestimates the noise from the image alone, which blurs texture.",
+        "glint denoise"};
+    app.get_formatter()->column_width(30);
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return std::string("glint denoise: error: ") + e.what() +
+               "\nRun 'glint denoise --help' for usage.\n";
+    });
+    app.add_option("INPUT", opt.input, "The render (.exr), with its passes as layers")
+        ->required()
+        ->type_name("FILE");
+    app.add_option("-o,--output", opt.output,
+                   "Image file to write; .png, .ppm, .pfm or .exr (an .exr keeps the passes)")
+        ->required()
+        ->type_name("FILE");
+    app.add_option("-t,--threads", opt.threads,
+                   "Threads, 1 to 4096 (default: all hardware threads)")
+        ->check(integerIn(1, 4096))
+        ->type_name("N");
+    addDisplayOptions(app, opt.shown, "off");
+    app.add_flag("-q,--quiet", opt.quiet, "No messages; errors only");
+    app.set_help_flag("-h,--help", "Print this help and exit");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        int code = app.exit(e);
+        return code == 0 ? 0 : kExitUsage;
+    }
+    return kGoOn;
+}
+
+}  // namespace glint::cli
