@@ -11,17 +11,19 @@
 #       clang-format, clang-tidy, cppcheck, clangd, bear, gdb, valgrind, heaptrack, python3,
 #       Node.js, sudo, man-db; apt's package lists kept, its downloaded packages removed. About
 #       3 minutes and 1.3 GB.
-#   tools/fresh_demo_time.sh run ROOT [RUNS] [BRANCH]
+#   tools/fresh_demo_time.sh run ROOT [RUNS] [REV]
 #       RUNS times (default 1): a copy of ROOT (an overlay on it, else cp -a) with /proc, /sys
-#       and /dev mounted; `git clone --branch BRANCH` of this repository (default: the branch
-#       checked out here; its committed state, not the working tree) into /root/glint there;
-#       then `make demo` in it, timed. Prints each run's phases from the timestamps of the
-#       lines make prints, and the medians:
+#       and /dev mounted; a `git clone` of this repository into /root/glint there, checked out
+#       at REV (a branch, tag or commit; default: the commit checked out here, not the working
+#       tree); then `make demo` in it, timed. Prints each run's phases from the timestamps of
+#       the lines make prints, and the medians:
 #         apt        `make deps` for DEMO_DEPS: apt-get install (download, unpack, configure)
 #         configure  cmake -S . -B build
 #         build      cmake --build build --target glint
 #         render     ./build/glint -o glint.png
-#       and the load average before and after (the machine's other work slows the build).
+#       and what else ran on the machine meanwhile (the build is timed by the wall clock: another
+#       program using the cores slows it): the CPU seconds make demo used, and those the whole
+#       machine used beyond them (from /proc/stat), with the load average before and after.
 #       Each run's full output is kept in $FRESH_DEMO_LOGS (default /tmp/fresh-demo-logs).
 #       Nothing is kept of the copy; ROOT is never changed.
 set -euo pipefail
@@ -31,7 +33,7 @@ die() {
     exit 2
 }
 [ "$(id -u)" = 0 ] || die "needs root (debootstrap, chroot, mount)"
-[ $# -ge 2 ] || die "usage: $0 base ROOT | run ROOT [RUNS] [BRANCH]"
+[ $# -ge 2 ] || die "usage: $0 base ROOT | run ROOT [RUNS] [REV]"
 mode=$1
 root=$(realpath -m "$2")
 
@@ -90,11 +92,14 @@ fi
 [ -x "$root/usr/bin/g++" ] || die "$root is not a chroot made by '$0 base'"
 runs=${3:-1}
 repo=$(git rev-parse --show-toplevel)
-branch=${4:-$(git -C "$repo" rev-parse --abbrev-ref HEAD)}
+rev=$(git -C "$repo" rev-parse --verify "${4:-HEAD}^{commit}")
 logs=${FRESH_DEMO_LOGS:-/tmp/fresh-demo-logs}
 mkdir -p "$logs"
 work=$(mktemp -d "$(dirname "$root")/fresh-demo.XXXXXX")
 trap 'unmount_all; rm -rf "$work"' EXIT
+
+# The CPU seconds the whole machine has been busy (every core; /proc/stat, in clock ticks).
+busy() { awk -v hz="$(getconf CLK_TCK)" '/^cpu / {print ($2 + $3 + $4 + $7 + $8) / hz}' /proc/stat; }
 
 # The seconds since $2 (from $EPOCHREALTIME) at which the first line matching $3 was printed,
 # from a log whose lines begin with their time.
@@ -112,21 +117,27 @@ for ((run = 1; run <= runs; run++)); do
     fi
     mount_system "$copy"
     t=$(date +%s.%N)
-    git clone -q --branch "$branch" --single-branch "file://$repo" "$copy/root/glint"
+    git clone -q --no-checkout "file://$repo" "$copy/root/glint"
+    git -C "$copy/root/glint" checkout -q "$rev"
     commit=$(git -C "$copy/root/glint" rev-parse --short HEAD)
     clone=$(echo "$(date +%s.%N) - $t" | bc)
     log=$logs/run$run.log
     load0=$(cut -d' ' -f1-3 /proc/loadavg)
+    busy0=$(busy)
     start=$EPOCHREALTIME
     set +e
-    in_root "$copy" /bin/bash -c 'cd /root/glint && make demo' 2>&1 |
+    # `times` reports the CPU time of make and everything it ran (the last line of the log).
+    in_root "$copy" /bin/bash -c 'cd /root/glint && make demo; s=$?; times; exit $s' 2>&1 |
         while IFS= read -r line; do
             printf '%8.2f %s\n' "$(echo "$EPOCHREALTIME - $start" | bc)" "$line"
         done >"$log"
     status=${PIPESTATUS[0]}
     set -e
     total=$(echo "$EPOCHREALTIME - $start" | bc)
+    busy1=$(busy)
     load1=$(cut -d' ' -f1-3 /proc/loadavg)
+    own=$(tail -1 "$log" | awk '{n = 0; for (i = 2; i <= 3; i++) {split($i, t, /[ms]/); n += t[1] * 60 + t[2]}; print n}')
+    others=$(echo "$busy1 - $busy0 - $own" | bc)
     [ "$status" = 0 ] && [ -f "$copy/root/glint/glint.png" ] ||
         die "run $run: make demo failed (exit $status); see $log"
     t_cfg=$(at "$log" '^ *[0-9.]+ cmake -S ')
@@ -137,9 +148,11 @@ for ((run = 1; run <= runs; run++)); do
     configure=$(echo "$t_build - $t_cfg" | bc)
     build=$(echo "$t_render - $t_build" | bc)
     render=$(echo "$total - $t_render" | bc)
-    printf 'run %d (%s): make demo %.1f s = apt %.1f (%s packages named) + configure %.1f + build %.1f + render %.1f; clone %.1f s; load %s -> %s\n' \
-        "$run" "$commit" "$total" "$apt" "${packages:-0}" "$configure" "$build" "$render" \
-        "$clone" "$load0" "$load1"
+    printf 'run %d (%s): make demo %.1f s = apt %.1f (%s packages named) + configure %.1f + build %.1f + render %.1f; clone %.1f s\n' \
+        "$run" "$commit" "$total" "$apt" "${packages:-0}" "$configure" "$build" "$render" "$clone"
+    printf '  CPU: make demo %.1f s, other programs %.1f s (%.0f%% of %d cores); load %s -> %s\n' \
+        "$own" "$others" "$(echo "100 * $others / ($total * $(nproc))" | bc -l)" "$(nproc)" \
+        "$load0" "$load1"
     results+=("$total $apt $configure $build $render")
     unmount_all
     rm -rf "$work/upper" "$work/work" "$copy"
