@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "glint/accel/bvh.h"
@@ -22,38 +23,50 @@
 namespace glint::cli {
 namespace {
 
+/// A validator from `problem(text)`: what is wrong with an option's text, empty if nothing.
+template <class Problem>
+CLI::Validator checkedBy(Problem problem) {
+    return CLI::Validator([problem](std::string& text) -> std::string { return problem(text); }, "",
+                          "");
+}
+
+/// A validator from a parser `parse(text, Out&...)` that returns what is wrong with the text;
+/// the values it reads are dropped (the option's callback or variable takes the text).
+template <class... Out, class Parse>
+CLI::Validator parsedBy(Parse parse) {
+    return checkedBy([parse](const std::string& text) {
+        std::tuple<Out...> values{};
+        return std::apply([&](Out&... out) { return std::string(parse(text, out...)); }, values);
+    });
+}
+
 /// An integer option within [lo, hi], with plain messages for anything else.
 CLI::Validator integerIn(long long lo, long long hi) {
-    return CLI::Validator(
-        [lo, hi](std::string& text) -> std::string {
-            long long v = 0;
-            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-            if (ec != std::errc() || p != text.data() + text.size())
-                return "expected an integer, got '" + text + "'";
-            if (v < lo || v > hi)
-                return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
-                       text;
-            return {};
-        },
-        "", "");
+    return checkedBy([lo, hi](const std::string& text) -> std::string {
+        long long v = 0;
+        auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || p != text.data() + text.size())
+            return "expected an integer, got '" + text + "'";
+        if (v < lo || v > hi)
+            return "must be " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " + text;
+        return {};
+    });
 }
 
 /// A finite real number within [lo, hi], with plain messages for anything else.
 CLI::Validator numberIn(double lo, double hi) {
-    return CLI::Validator(
-        [lo, hi](std::string& text) -> std::string {
-            double v = 0;
-            auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-            if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
-                return "expected a number, got '" + text + "'";
-            auto str = [](double d) {
-                char buf[32];
-                return std::string(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
-            };
-            if (v < lo || v > hi) return "must be " + str(lo) + " to " + str(hi) + ", got " + text;
-            return {};
-        },
-        "", "");
+    return checkedBy([lo, hi](const std::string& text) -> std::string {
+        double v = 0;
+        auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (ec != std::errc() || p != text.data() + text.size() || !std::isfinite(v))
+            return "expected a number, got '" + text + "'";
+        auto str = [](double d) {
+            char buf[32];
+            return std::string(buf, std::to_chars(buf, buf + sizeof buf, d).ptr);
+        };
+        if (v < lo || v > hi) return "must be " + str(lo) + " to " + str(hi) + ", got " + text;
+        return {};
+    });
 }
 
 /// Registers --exposure, --srgb, --no-srgb and --tonemap on `app`; `unchanged` says what an
@@ -96,17 +109,15 @@ void addOptions(CLI::App& app, Options& opt) {
                    "vertical field of view; also for scene files) (default: its first "
                    "perspective camera)")
         ->group(input)
-        ->check(CLI::Validator(
-            [](std::string& text) -> std::string {
-                if (text.empty()) return "expected a camera number, a name, none or orbit:...";
-                try {
-                    CameraChoice::parse(text);
-                } catch (const std::invalid_argument& e) {
-                    return e.what();
-                }
-                return {};
-            },
-            "", ""))
+        ->check(checkedBy([](const std::string& text) -> std::string {
+            if (text.empty()) return "expected a camera number, a name, none or orbit:...";
+            try {
+                CameraChoice::parse(text);
+            } catch (const std::invalid_argument& e) {
+                return e.what();
+            }
+            return {};
+        }))
         ->type_name("N|NAME|none|orbit:...");
     app.add_option("--fov", opt.fovy,
                    "Vertical field of view in degrees, overriding the camera's, 0.01 to 179")
@@ -138,12 +149,7 @@ void addOptions(CLI::App& app, Options& opt) {
                        "Render frames A to B (every STEP-th) into files named by -o's pattern "
                        "(out_%04d.png or out_####.png), loading the file once")
             ->group(time)
-            ->check(CLI::Validator(
-                [](std::string& text) -> std::string {
-                    FrameRange r;
-                    return parseFrameRange(text, r);
-                },
-                "", ""))
+            ->check(parsedBy<FrameRange>(parseFrameRange))
             ->type_name("A:B[:STEP]");
     frameOption->excludes(timeOption)->excludes(framesOption);
     timeOption->excludes(framesOption);
@@ -152,12 +158,7 @@ void addOptions(CLI::App& app, Options& opt) {
                    "rendered (-0.25:0.25 is Cycles' shutter 0.5 centred on it; 0:1 blurs to the "
                    "next frame)")
         ->group(time)
-        ->check(CLI::Validator(
-            [](std::string& text) -> std::string {
-                double a = 0, b = 0;
-                return parseShutter(text, a, b);
-            },
-            "", ""))
+        ->check(parsedBy<double, double>(parseShutter))
         ->type_name("OPEN:CLOSE");
     app.add_option("--fps", opt.fps, "Frames per second of --frame and --frames, 0.001 to 1000")
         ->group(time)
@@ -236,12 +237,10 @@ void addOptions(CLI::App& app, Options& opt) {
                " (default: whitted, the course's; path for models, whitted giving "
                "them the classic look)")
         ->group(render)
-        ->check(CLI::Validator(
-            [](std::string& name) -> std::string {
-                if (findIntegrator(name)) return {};
-                return "unknown integrator '" + name + "' (Glint has " + integratorNameList() + ")";
-            },
-            "", ""))
+        ->check(checkedBy([](const std::string& name) -> std::string {
+            if (findIntegrator(name)) return {};
+            return "unknown integrator '" + name + "' (Glint has " + integratorNameList() + ")";
+        }))
         ->type_name("NAME");
     app.add_option("--spp", opt.spp,
                    "Camera rays per pixel, 1 to 65536: stratified, jittered, filtered "
@@ -278,12 +277,7 @@ void addOptions(CLI::App& app, Options& opt) {
                    "Render passes to write as layers of the .exr output: albedo, normal, depth, "
                    "variance, comma-separated, or all")
         ->group(clean)
-        ->check(CLI::Validator(
-            [](std::string& text) -> std::string {
-                AovSelection sel;
-                return parseAovList(text, sel);
-            },
-            "", ""))
+        ->check(parsedBy<AovSelection>(parseAovList))
         ->type_name("LIST");
     app.add_flag_callback(
            "--denoise", [&opt] { opt.denoise = 1; },
@@ -310,36 +304,23 @@ void addOptions(CLI::App& app, Options& opt) {
     const char* piece =
         "Frame pieces: any of these writes an OpenEXR piece (-o FILE.exr) for glint merge; they "
         "combine (docs/scale-out.md)";
-    auto form = [](std::string (*parse)(std::string_view, int&, int&)) {
-        return CLI::Validator(
-            [parse](std::string& text) -> std::string {
-                int a = 0, b = 0;
-                return parse(text, a, b);
-            },
-            "", "");
-    };
     app.add_option("--crop", opt.crop,
                    "Render only pixels x0 to x1-1 across and y0 to y1-1 down, from the top-left "
                    "corner: the upper bounds excluded, as pbrt's --pixelbounds")
         ->group(piece)
-        ->check(CLI::Validator(
-            [](std::string& text) -> std::string {
-                PixelBounds b;
-                return parseCrop(text, b);
-            },
-            "", ""))
+        ->check(parsedBy<PixelBounds>(parseCrop))
         ->type_name("x0,x1,y0,y1");
     app.add_option("--samples", opt.samples,
                    "Render only samples A to B-1 of each pixel's spp, exactly those the whole "
                    "render takes there (0 <= A < B <= spp)")
         ->group(piece)
-        ->check(form(parseSampleRange))
+        ->check(parsedBy<int, int>(parseSampleRange))
         ->type_name("A:B");
     app.add_option("--part", opt.part,
                    "Render piece K of N (0 <= K < N <= 65536): the rows of 16-pixel tiles whose "
                    "index % N is K, so every piece gets rows from the whole height")
         ->group(piece)
-        ->check(form(parsePart))
+        ->check(parsedBy<int, int>(parsePart))
         ->type_name("K/N");
 
     const char* info = "Information";
