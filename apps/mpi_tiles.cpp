@@ -94,7 +94,8 @@ std::vector<double> tilePixels(const RenderResult& r, bool passes) {
             p.insert(p.end(), {c.x, c.y, c.z});
             if (!passes) continue;
             const size_t i = r.aovs.index(x, y);
-            for (const Vec3& v : {r.aovs.albedo[i], r.aovs.normal[i], r.aovs.variance[i]})
+            for (const Vec3& v :
+                 {r.aovs.albedo[i], r.aovs.normal[i], r.aovs.variance[i], r.aovs.albedoVariance[i]})
                 p.insert(p.end(), {v.x, v.y, v.z});
             p.push_back(r.aovs.depth[i]);
         }
@@ -111,8 +112,9 @@ void placeTile(const double* p, const PixelBounds& b, Film& film, RenderPasses* 
             aovs->albedo[i] = Vec3(p[0], p[1], p[2]);
             aovs->normal[i] = Vec3(p[3], p[4], p[5]);
             aovs->variance[i] = Vec3(p[6], p[7], p[8]);
-            aovs->depth[i] = p[9];
-            p += 10;
+            aovs->albedoVariance[i] = Vec3(p[9], p[10], p[11]);
+            aovs->depth[i] = p[12];
+            p += 13;
         }
 }
 

@@ -33,7 +33,7 @@ struct Mailbox {
 
 /// The doubles per pixel of a tile's message: its colour, then with `passes` its render passes
 /// (albedo, normal, depth, variance).
-inline size_t tileValues(bool passes) { return passes ? 13 : 3; }
+inline size_t tileValues(bool passes) { return passes ? 16 : 3; }
 
 /// The pixels of a tile's render `r` (the tile's own size, cropFilm) as doubles, tileValues()
 /// per pixel, rows from the top.

@@ -58,6 +58,12 @@ int main(int argc, char** argv) {
                 for (int c = 0; c < 3; ++c) shown[i][c] = std::sqrt(p.variance[i][c]) * 4;
             both("variance", filmOf(w, h, p.variance), filmOf(w, h, shown));
         }
+        if (!p.albedoVariance.empty()) {
+            std::vector<glint::Vec3> shown(p.albedoVariance.size());
+            for (size_t i = 0; i < shown.size(); ++i)
+                for (int c = 0; c < 3; ++c) shown[i][c] = std::sqrt(p.albedoVariance[i][c]) * 4;
+            both("albedoVariance", filmOf(w, h, p.albedoVariance), filmOf(w, h, shown));
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint_aov_split: error: %s\n", e.what());
         return 1;

@@ -2,8 +2,8 @@
 // prints the relative MSE against a reference before and after, and the time of denoise().
 //
 //   denoise_eval DIR NAME SPP [key=value ...]
-//       reads DIR/NAME_SPP.pfm (colour), NAME_SPP.{albedo,normal,depth,variance}.pfm (those
-//       present) and DIR/NAME_ref.pfm; writes DIR/NAME_SPP.denoised.pfm unless out=none.
+//       reads DIR/NAME_SPP.pfm (colour), NAME_SPP.{albedo,normal,depth,variance,albedoVariance}.pfm
+//       (those present) and DIR/NAME_ref.pfm; writes DIR/NAME_SPP.denoised.pfm unless out=none.
 //   denoise_eval synth WIDTH HEIGHT SPP [key=value ...]
 //       the same on a synthetic scene (a textured floor, spheres, a hard shadow, a sky) with
 //       heavy-tailed per-sample noise; also prints the raw error at 32x the samples.
@@ -13,9 +13,11 @@
 // fo1 ridge1 (first pass: radius, patch, k, alpha, normal, albedo, depth weights, first order
 // 0/1, its ridge), r2 ... ridge2 (second; r2=0: one pass), gvs (second guide's variance scale),
 // sov (second guide's outlier variance), vr (variance smoothing radius), ov (outlier variance
-// ratio), evs (estimated variance scale), af (albedo floor), fire=P (synthetic:
-// the probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1 to
-// leave a buffer out. relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
+// ratio), evs (estimated variance scale), af (albedo floor), ra ... ridgea (the albedo's filter;
+// ra=0: none), avr (its variance's smoothing radius), demf=1 (divide by the filtered albedo),
+// fire=P (synthetic: the probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1
+// nodepth=1 novariance=1 noalbedovariance=1 to leave a buffer out. relMSE = mean over pixels and
+// channels of (x - ref)^2 / (ref^2 + 0.01).
 
 #include <algorithm>
 #include <chrono>
@@ -40,7 +42,7 @@ namespace {
 
 struct Buffers {
     int width = 0, height = 0;
-    std::vector<Vec3> color, albedo, normal, variance, reference, reference32;
+    std::vector<Vec3> color, albedo, normal, variance, albedoVariance, reference, reference32;
     std::vector<double> depth;
 };
 
@@ -179,6 +181,7 @@ Buffers load(const std::string& dir, const std::string& name, const std::string&
     b.albedo = optional("albedo");
     b.normal = optional("normal");
     b.variance = optional("variance");
+    b.albedoVariance = optional("albedoVariance");
     for (const Vec3& d : optional("depth")) b.depth.push_back(d.x);
     b.reference = readPfm(reference.empty() ? dir + "/" + name + "_ref.pfm" : reference).pixels();
     return b;
@@ -223,6 +226,9 @@ int main(int argc, char** argv) {
     };
     pass(t.first, "1");
     pass(t.second, "2");
+    pass(t.albedo, "a");  // the albedo's filter: ra=0 turns it off
+    t.albedoVarianceRadius = static_cast<int>(num("avr", t.albedoVarianceRadius));
+    t.demodulateFiltered = num("demf", t.demodulateFiltered) != 0;
     t.secondGuideVarianceScale = static_cast<float>(num("gvs", t.secondGuideVarianceScale));
     t.varianceRadius = static_cast<int>(num("vr", t.varianceRadius));
     t.estimatedVarianceScale = static_cast<float>(num("evs", t.estimatedVarianceScale));
@@ -253,6 +259,8 @@ int main(int argc, char** argv) {
     if (!b.normal.empty() && !num("nonormal", 0)) in.normal = b.normal.data();
     if (!b.depth.empty() && !num("nodepth", 0)) in.depth = b.depth.data();
     if (!b.variance.empty() && !num("novariance", 0)) in.variance = b.variance.data();
+    if (!b.albedoVariance.empty() && !num("noalbedovariance", 0))
+        in.albedoVariance = b.albedoVariance.data();
     ThreadPool pool(static_cast<int>(num("threads", 2)));
     DenoiseOptions options;
     options.pool = &pool;

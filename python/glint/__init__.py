@@ -100,7 +100,8 @@ class Image(np.ndarray):
 
     An ndarray like any other, with what the render knows beside it:
       passes   the render passes asked for (``aovs=``), by name: albedo, normal and variance
-               (rows x columns x 3) and depth (rows x columns)
+               (rows x columns x 3) and depth (rows x columns); with albedo and variance also
+               albedoVariance, the albedo's (what the denoiser reads)
       info     spp, mean_spp, seconds, build_seconds, denoised, denoise_seconds, rays, ...
       display  how an 8-bit file shows it: exposure, srgb, tonemap (the scene's way, as the
                glint command writes it)

@@ -198,16 +198,21 @@ RenderPasses passesOf(const py::dict& passes, int w, int h, AovSelection& which)
             which.depth = true;
             continue;
         }
-        std::vector<Vec3>* target = name == "albedo"     ? &out.albedo
-                                    : name == "normal"   ? &out.normal
-                                    : name == "variance" ? &out.variance
-                                                         : nullptr;
+        std::vector<Vec3>* target = name == "albedo"           ? &out.albedo
+                                    : name == "normal"         ? &out.normal
+                                    : name == "variance"       ? &out.variance
+                                    : name == "albedoVariance" ? &out.albedoVariance
+                                                               : nullptr;
         if (!target)
             throw py::value_error("passes: unknown pass '" + name +
-                                  "' (albedo, normal, depth, variance)");
+                                  "' (albedo, normal, depth, variance, albedoVariance)");
         target->resize(n);
         for (size_t i = 0; i < n; ++i) (*target)[i] = {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
-        (name == "albedo" ? which.albedo : name == "normal" ? which.normal : which.variance) = true;
+        // The albedo's variance is written with the variance and the albedo (exr.h).
+        if (name != "albedoVariance")
+            (name == "albedo"   ? which.albedo
+             : name == "normal" ? which.normal
+                                : which.variance) = true;
     }
     return out;
 }

@@ -168,6 +168,9 @@ py::tuple LoadedScene::render(const std::vector<std::string>& args, const py::ob
     if (aovs.normal) passes["normal"] = imageArray(res.aovs.normal, w, h);
     if (aovs.depth) passes["depth"] = depthArray(res.aovs.depth, w, h);
     if (aovs.variance) passes["variance"] = imageArray(res.aovs.variance, w, h);
+    // Written beside the variance when the albedo is there too (exr.h), so here too.
+    if (aovs.variance && aovs.albedo)
+        passes["albedoVariance"] = imageArray(res.aovs.albedoVariance, w, h);
     py::dict info;
     info["spp"] = res.samplesPerPixel;
     info["mean_spp"] = res.meanSamplesPerPixel > 0 ? res.meanSamplesPerPixel

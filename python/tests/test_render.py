@@ -62,7 +62,7 @@ def test_passes_come_back_by_name_and_round_trip_through_exr(cli, tmp_path):
     image = glint.load(box, size=(32, 32), integrator="path", spp=2).render(
         aovs=["albedo", "normal", "depth", "variance"]
     )
-    assert set(image.passes) == {"albedo", "normal", "depth", "variance"}
+    assert set(image.passes) == {"albedo", "normal", "depth", "variance", "albedoVariance"}
     assert image.passes["albedo"].shape == (32, 32, 3)
     assert image.passes["depth"].shape == (32, 32)
     assert image.passes["albedo"].dtype == np.float32

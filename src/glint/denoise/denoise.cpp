@@ -85,8 +85,67 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
     ThreadPool& pool = options.pool ? *options.pool : *ownPool;
 
     const bool twoPasses = tuning.second.radius > 0;
-    const int pad = std::max(
-        {tuning.first.patch, twoPasses ? tuning.second.patch : 0, tuning.varianceRadius, 1});
+    const bool filterAlbedo = in.albedo && in.albedoVariance && tuning.albedo.radius > 0;
+    const int pad = std::max({tuning.first.patch, twoPasses ? tuning.second.patch : 0,
+                              filterAlbedo ? tuning.albedo.patch : 0, tuning.varianceRadius,
+                              tuning.albedoVarianceRadius, 1});
+
+    // Features.
+    NlMeansGuide guide;
+    Planes normal, albedo;
+    Plane depth, depthDx, depthDy;
+    if (in.normal) {
+        normal = planesOf(in.normal, width, height);
+        guide.normal = pointers(std::as_const(normal));
+    }
+    if (in.depth) {
+        depth = Plane(width, height, 1);
+        depthDx = Plane(width, height, 0);
+        depthDy = Plane(width, height, 0);
+        for (size_t i = 0; i < count; ++i)
+            depth.at(static_cast<int>(i % width), static_cast<int>(i / width)) =
+                std::max(finite(in.depth[i]), 0.0f);
+        depth.replicateBorder();
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) {
+                const float d = depth.at(x, y);
+                depthDx.at(x, y) = minmod(depth.at(x + 1, y) - d, d - depth.at(x - 1, y));
+                depthDy.at(x, y) = minmod(depth.at(x, y + 1) - d, d - depth.at(x, y - 1));
+            }
+        guide.depth = &depth;
+        guide.depthDx = &depthDx;
+        guide.depthDy = &depthDy;
+    }
+    // The albedo, filtered where it is noisy (tuning.albedo): by itself and its variance, with
+    // the normal and depth; `ownAlbedo` keeps the pixels' own for the demodulation.
+    Planes ownAlbedo;
+    if (in.albedo) {
+        albedo = planesOf(in.albedo, width, height);
+        if (filterAlbedo) {
+            Planes noisy = makePlanes(width, height, pad), noise = makePlanes(width, height, pad);
+            Planes smooth = makePlanes(width, height, pad);
+            for (int y = 0; y < height; ++y)
+                for (int x = 0; x < width; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        const size_t i = static_cast<size_t>(y) * width + x;
+                        noisy[c].at(x, y) = albedo[c].at(x, y);
+                        noise[c].at(x, y) = std::max(finite(in.albedoVariance[i][c]), 0.0f);
+                    }
+            for (int c = 0; c < 3; ++c) {
+                noisy[c].replicateBorder();
+                noise[c].replicateBorder();
+                boxFilter(noise[c], tuning.albedoVarianceRadius, smooth[c], pool);
+                smooth[c].replicateBorder();
+            }
+            NlMeansGuide g = guide;
+            g.color = pointers(std::as_const(noisy));
+            g.variance = pointers(std::as_const(smooth));
+            nlMeans(g, pointers(std::as_const(noisy)), tuning.albedo,
+                    NlMeansOutputs{.value = pointers(albedo)}, nullptr, pool);
+            if (!tuning.demodulateFiltered) ownAlbedo = planesOf(in.albedo, width, height);
+        }
+        guide.albedo = pointers(std::as_const(albedo));
+    }
 
     // Demodulation: colour divided by albedo where the albedo is large enough; `modulation`
     // keeps the divisor (1 where none) to multiply the result by at the end.
@@ -100,12 +159,17 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
                 // Divided by the albedo, but never by less than the floor: continuous in the
                 // albedo (a cut-off that divides 0.011 by itself and 0.009 by 1 puts neighbours
                 // 100 times apart, and the filter then carries the large ones over).
-                float m = 1.0f;
-                if (in.albedo) m = std::max(finite(in.albedo[i][c]), tuning.albedoFloor);
+                float m = 1.0f, own = 1.0f;
+                if (in.albedo) {
+                    m = std::max(albedo[c].at(x, y), tuning.albedoFloor);
+                    own = ownAlbedo[c].width() == 0
+                              ? m
+                              : std::max(ownAlbedo[c].at(x, y), tuning.albedoFloor);
+                }
                 modulation[c].at(x, y) = m;
-                irradiance[c].at(x, y) = finite(in.color[i][c]) / m;
+                irradiance[c].at(x, y) = finite(in.color[i][c]) / own;
                 if (in.variance)
-                    variance[c].at(x, y) = std::max(finite(in.variance[i][c]), 0.0f) / (m * m);
+                    variance[c].at(x, y) = std::max(finite(in.variance[i][c]), 0.0f) / (own * own);
             }
         }
     for (Plane& p : irradiance) p.replicateBorder();
@@ -148,37 +212,6 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
             smooth[c].replicateBorder();
         }
         variance = std::move(smooth);
-    }
-
-    // Features.
-    NlMeansGuide guide;
-    Planes normal, albedo;
-    Plane depth, depthDx, depthDy;
-    if (in.normal) {
-        normal = planesOf(in.normal, width, height);
-        guide.normal = pointers(std::as_const(normal));
-    }
-    if (in.albedo) {
-        albedo = planesOf(in.albedo, width, height);
-        guide.albedo = pointers(std::as_const(albedo));
-    }
-    if (in.depth) {
-        depth = Plane(width, height, 1);
-        depthDx = Plane(width, height, 0);
-        depthDy = Plane(width, height, 0);
-        for (size_t i = 0; i < count; ++i)
-            depth.at(static_cast<int>(i % width), static_cast<int>(i / width)) =
-                std::max(finite(in.depth[i]), 0.0f);
-        depth.replicateBorder();
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x) {
-                const float d = depth.at(x, y);
-                depthDx.at(x, y) = minmod(depth.at(x + 1, y) - d, d - depth.at(x - 1, y));
-                depthDy.at(x, y) = minmod(depth.at(x, y + 1) - d, d - depth.at(x, y - 1));
-            }
-        guide.depth = &depth;
-        guide.depthDx = &depthDx;
-        guide.depthDy = &depthDy;
     }
 
     // One pass of the filter over the noisy irradiance, weighted as `guide` says, into `out`

@@ -31,6 +31,10 @@ struct DenoiseInput {
     /// Per channel, the variance of each pixel's mean (the sample variance over the sample
     /// count). Null: estimated from the image itself, from differences between neighbours.
     const Vec3* variance = nullptr;
+    /// Per channel, the variance of each pixel's albedo (the same estimate). Where it is large
+    /// (an alpha-blended or glass surface, whose samples see different surfaces at random) the
+    /// albedo is filtered before it multiplies the result. Null: the albedo is taken as it is.
+    const Vec3* albedoVariance = nullptr;
 };
 
 /// How to run the denoiser (its result never depends on these).

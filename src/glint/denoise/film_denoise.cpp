@@ -26,6 +26,7 @@ Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool) {
     in.normal = pass(aovs.normal);
     in.depth = pass(aovs.depth);
     in.variance = pass(aovs.variance);
+    in.albedoVariance = pass(aovs.albedoVariance);
     return Film(w, h, denoise(in, {&pool, 0}));
 }
 
@@ -54,6 +55,7 @@ Film denoiseFilmRows(const Film& film, const RenderPasses& aovs, int y0, int y1,
         bandPasses.albedo = rows(aovs.albedo);
         bandPasses.normal = rows(aovs.normal);
         bandPasses.variance = rows(aovs.variance);
+        bandPasses.albedoVariance = rows(aovs.albedoVariance);
         bandPasses.depth = rows(aovs.depth);
     }
     const Film denoised = denoiseFilm(band, bandPasses, pool);

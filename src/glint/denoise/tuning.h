@@ -64,6 +64,25 @@ struct DenoiseTuning {
     /// scene (fireflies of 100 times the mean) lost 0.75% of its mean and room measured 65.9x at
     /// 16 spp; with 0.03 0.62% and 68.5x, the rest the same (0.1: helmet 3.8x -> 3.7x).
     float secondOutlierVariance = 0.03f;
+    /// The albedo's own filter (with an albedo variance; radius 0: none): non-local means over
+    /// the albedo guided by itself and its variance, so that only the albedo's noise is averaged
+    /// (a pixel whose samples all saw the same texel has no variance, and any difference to it
+    /// rejects a neighbour). The filtered albedo multiplies the result back and guides the
+    /// colour's weights; the colour is still divided by the pixel's own albedo, whose noise its
+    /// samples share.
+    NlMeansParams albedo{.radius = 3,
+                         .patch = 1,
+                         .k = 1.0f,
+                         .alpha = 1.0f,
+                         .normalWeight = 20.0f,
+                         .albedoWeight = 0.0f,
+                         .depthWeight = 100.0f,
+                         .firstOrder = false,
+                         .ridge = 0.01f};
+    /// Radius of the box that smooths the albedo variance (it is noisy itself).
+    int albedoVarianceRadius = 1;
+    /// Whether the colour is divided by the filtered albedo instead of the pixel's own.
+    bool demodulateFiltered = false;
 };
 
 /// denoise() with explicit parameters.

@@ -15,7 +15,7 @@ void FilmSums::add(const FilmSums& other) {
 
 void resolvePassesAt(const Vec3& sum, double n, const PassSums& p, RenderPasses& out, size_t i) {
     if (!(n > 0)) {
-        out.albedo[i] = out.normal[i] = out.variance[i] = Vec3(0);
+        out.albedo[i] = out.normal[i] = out.variance[i] = out.albedoVariance[i] = Vec3(0);
         out.depth[i] = 0;
         return;
     }
@@ -24,14 +24,17 @@ void resolvePassesAt(const Vec3& sum, double n, const PassSums& p, RenderPasses&
     out.normal[i] = p.normal * inv;
     out.depth[i] = p.hits > 0 ? p.depth / p.hits : 0;
     if (n < 2) {
-        out.variance[i] = Vec3(0);
+        out.variance[i] = out.albedoVariance[i] = Vec3(0);
         return;
     }
     // The sample variance (n / (n - 1)) (E[x^2] - E[x]^2), over n for the mean's.
-    const Vec3 mean = sum * inv;
-    Vec3 v = (p.squares * inv - mean * mean) * (1.0 / (n - 1));
-    for (int c = 0; c < 3; ++c) v[c] = v[c] > 0 ? v[c] : 0;
-    out.variance[i] = v;
+    auto varianceOfMean = [&](const Vec3& mean, const Vec3& squares) {
+        Vec3 v = (squares * inv - mean * mean) * (1.0 / (n - 1));
+        for (int c = 0; c < 3; ++c) v[c] = v[c] > 0 ? v[c] : 0;
+        return v;
+    };
+    out.variance[i] = varianceOfMean(sum * inv, p.squares);
+    out.albedoVariance[i] = varianceOfMean(out.albedo[i], p.albedoSquares);
 }
 
 RenderPasses FilmSums::resolvePasses() const {

@@ -54,10 +54,13 @@ struct PixelBounds {
 ///  - depth: the distance from the camera to the first surface hit, averaged over the samples
 ///    that hit one; 0 where none did;
 ///  - variance: per channel, the variance of the pixel's value as an estimate (the sample
-///    variance over the samples, divided by their number); 0 with fewer than two samples.
+///    variance over the samples, divided by their number); 0 with fewer than two samples;
+///  - albedoVariance: the same for the albedo pass: where the samples of a pixel see different
+///    surfaces at random (an alpha-blended surface, the reflection or the refraction of glass)
+///    the albedo is noisy, and the denoiser filters it (written with the variance pass).
 struct RenderPasses {
     int width = 0, height = 0;
-    std::vector<Vec3> albedo, normal, variance;
+    std::vector<Vec3> albedo, normal, variance, albedoVariance;
     std::vector<double> depth;
 
     RenderPasses() = default;
@@ -68,11 +71,13 @@ struct RenderPasses {
           albedo(size(w, h)),
           normal(size(w, h)),
           variance(size(w, h)),
+          albedoVariance(size(w, h)),
           depth(size(w, h)) {}
 
     /// No pass at all (a file may hold some passes and not others: those are empty).
     bool empty() const {
-        return albedo.empty() && normal.empty() && variance.empty() && depth.empty();
+        return albedo.empty() && normal.empty() && variance.empty() && albedoVariance.empty() &&
+               depth.empty();
     }
     size_t index(int x, int y) const { return static_cast<size_t>(y) * width + x; }
 
@@ -106,11 +111,13 @@ struct SamplePasses {
 struct PassSums {
     Vec3 squares{0};  ///< Of the samples' radiance, per channel (for the variance).
     Vec3 albedo{0}, normal{0};
+    Vec3 albedoSquares{0};       ///< Of the samples' albedo (for its variance).
     double depth = 0, hits = 0;  ///< Depths of the samples that hit something, and their number.
 
     void addSample(const Vec3& radiance, const SamplePasses& s) {
         squares += radiance * radiance;
         albedo += s.albedo;
+        albedoSquares += s.albedo * s.albedo;
         normal += s.normal;
         if (s.depth > 0) {
             depth += s.depth;
@@ -121,6 +128,7 @@ struct PassSums {
         squares += o.squares;
         albedo += o.albedo;
         normal += o.normal;
+        albedoSquares += o.albedoSquares;
         depth += o.depth;
         hits += o.hits;
         return *this;

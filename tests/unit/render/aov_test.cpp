@@ -83,23 +83,26 @@ TEST(Aovs, PassesFollowPerfectMirrorsToWhatTheyShow) {
 }
 
 TEST(Aovs, VarianceIsTheSampleVarianceOfThePixelsMean) {
-    // Two samples 1 and 3: mean 2, sample variance 2, the mean's 1.
+    // Two samples 1 and 3: mean 2, sample variance 2, the mean's 1. Their albedos 0.2 and 0.6
+    // (one sample saw one surface, the other another): mean 0.4, the mean's variance 0.04.
     PassSums p;
     SamplePasses s;
+    s.albedo = Vec3(0.2, 0.5, 0.5);
     p.addSample(Vec3(1), s);
+    s.albedo = Vec3(0.6, 0.5, 0.5);
     p.addSample(Vec3(3), s);
-    RenderPasses out;
-    out.albedo.resize(1);
-    out.normal.resize(1);
-    out.variance.resize(1);
-    out.depth.resize(1);
+    RenderPasses out(1, 1);
     resolvePassesAt(Vec3(4), 2, p, out, 0);
     EXPECT_NEAR(out.variance[0].x, 1, 1e-12);
+    EXPECT_NEAR(out.albedo[0].x, 0.4, 1e-12);
+    EXPECT_NEAR(out.albedoVariance[0].x, 0.04, 1e-12);
+    EXPECT_EQ(out.albedoVariance[0].y, 0);  // the same albedo: none (never negative)
     // One sample: unknown, 0.
     PassSums one;
     one.addSample(Vec3(5), s);
     resolvePassesAt(Vec3(5), 1, one, out, 0);
     EXPECT_EQ(out.variance[0], Vec3(0));
+    EXPECT_EQ(out.albedoVariance[0], Vec3(0));
 }
 
 TEST(Aovs, PassesDoNotChangeTheImageAndDoNotDependOnThreads) {
@@ -157,6 +160,7 @@ TEST(Aovs, PassesRoundTripThroughOpenExrLayers) {
     const ExrLayers back =
         decodeExrLayers(encodeExr(r.film, 2, &r.aovs, AovSelection::all()), "mem.exr");
     ASSERT_TRUE(back.found.albedo && back.found.normal && back.found.depth && back.found.variance);
+    ASSERT_EQ(back.aovs.albedoVariance.size(), r.aovs.albedoVariance.size());
     for (size_t i = 0; i < r.aovs.albedo.size(); ++i) {
         const int x = static_cast<int>(i % 16), y = static_cast<int>(i / 16);
         // Each value as the float it was written as.
@@ -167,6 +171,8 @@ TEST(Aovs, PassesRoundTripThroughOpenExrLayers) {
         EXPECT_EQ(back.aovs.depth[i], asFloat(r.aovs.depth[i]));
         // The variance of the colour times 2: times 4.
         EXPECT_EQ(back.aovs.variance[i].y, asFloat(4 * r.aovs.variance[i].y));
+        // The albedo's variance, with the albedo and the variance: not scaled.
+        EXPECT_EQ(back.aovs.albedoVariance[i].x, asFloat(r.aovs.albedoVariance[i].x));
     }
     // Only the passes asked for are written.
     AovSelection some;
@@ -174,6 +180,12 @@ TEST(Aovs, PassesRoundTripThroughOpenExrLayers) {
     const ExrLayers depthOnly = decodeExrLayers(encodeExr(r.film, 1, &r.aovs, some), "d.exr");
     EXPECT_TRUE(depthOnly.found.depth);
     EXPECT_FALSE(depthOnly.found.albedo || depthOnly.found.normal || depthOnly.found.variance);
+    EXPECT_TRUE(depthOnly.aovs.albedoVariance.empty());
+    // The variance alone: the albedo's is written only beside the albedo.
+    AovSelection variance;
+    variance.variance = true;
+    EXPECT_TRUE(decodeExrLayers(encodeExr(r.film, 1, &r.aovs, variance), "v.exr")
+                    .aovs.albedoVariance.empty());
     // A file without passes has none.
     EXPECT_FALSE(decodeExrLayers(encodeExr(r.film), "plain.exr").found.any());
 }

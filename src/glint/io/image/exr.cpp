@@ -114,6 +114,9 @@ constexpr PassLayer kAlbedo{{"albedo.R", "albedo.G", "albedo.B"}, 3};
 constexpr PassLayer kNormal{{"normal.X", "normal.Y", "normal.Z"}, 3};
 constexpr PassLayer kDepth{{"depth.Z", nullptr, nullptr}, 1};
 constexpr PassLayer kVariance{{"variance.R", "variance.G", "variance.B"}, 3};
+// Written with the variance when the albedo is written too: for the denoiser.
+constexpr PassLayer kAlbedoVariance{{"albedoVariance.R", "albedoVariance.G", "albedoVariance.B"},
+                                    3};
 
 }  // namespace
 
@@ -143,6 +146,8 @@ std::string encodeExr(const Film& film, double scale, const RenderPasses* aovs,
     if (which.normal) layer(kNormal, aovs->normal, 1);
     if (which.depth) plane(kDepth.channels[0], [&](size_t i) { return aovs->depth[i]; });
     if (which.variance) layer(kVariance, aovs->variance, scale * scale);
+    if (which.variance && which.albedo && aovs->albedoVariance.size() == n)
+        layer(kAlbedoVariance, aovs->albedoVariance, 1);
 
     std::string out;
     try {
@@ -273,14 +278,15 @@ Film decodeExr(std::string_view bytes, const std::string& name) {
 ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name) {
     return decoding(name, [&] {
         std::vector<const char*> names = colourChannels(bytes, name);
-        for (const PassLayer* l : {&kAlbedo, &kNormal, &kDepth, &kVariance})
+        for (const PassLayer* l : {&kAlbedo, &kNormal, &kDepth, &kVariance, &kAlbedoVariance})
             for (int c = 0; c < 3; ++c) names.push_back(c < l->count ? l->channels[c] : nullptr);
         ExrLayers out;
         RenderPasses& p = out.aovs;
         int width = 0;
-        // A layer counts when all its channels are there: albedo, normal, depth, variance.
+        // A layer counts when all its channels are there: albedo, normal, depth, variance,
+        // albedoVariance.
         auto layerOf = [](size_t channel) { return (static_cast<int>(channel) - 3) / 3; };
-        bool has[4] = {true, true, true, true};
+        bool has[5] = {true, true, true, true, true};
         auto start = [&](int w, int h, const std::vector<bool>& present) {
             width = w;
             out.color = Film(w, h);
@@ -294,6 +300,7 @@ ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name) {
             if (has[1]) p.normal.resize(n);
             if (has[2]) p.depth.resize(n);
             if (has[3]) p.variance.resize(n);
+            if (has[4]) p.albedoVariance.resize(n);
         };
         auto batch = [&](int y0, int rows, const std::vector<std::vector<float>>& planes) {
             const bool grey = planes[1].empty();
@@ -314,11 +321,12 @@ ExrLayers decodeExrLayers(std::string_view bytes, const std::string& name) {
             fill(0, p.albedo);
             fill(1, p.normal);
             fill(3, p.variance);
+            fill(4, p.albedoVariance);
             if (has[2])
                 for (size_t k = 0; k < count; ++k) p.depth[first + k] = planes[9][k];
         };
-        // The film, and the passes' 80 bytes a pixel where the file has them.
-        readChannels(bytes, name, names, sizeof(Vec3), 80, start, batch);
+        // The film, and the passes' 104 bytes a pixel where the file has them.
+        readChannels(bytes, name, names, sizeof(Vec3), 104, start, batch);
         return out;
     });
 }

@@ -28,17 +28,33 @@ using exr_detail::MemoryInputFile;
 using exr_detail::StringOStream;
 
 /// The layout of the pixels and attributes; a reader refuses other versions. (3 added the sums'
-/// rounding errors, sumErrR/G/B.)
-constexpr int kPieceFormat = 3;
+/// rounding errors, sumErrR/G/B; 4 the squares of the albedo, passAlbedoSquaresR/G/B.)
+constexpr int kPieceFormat = 4;
 
 /// The exact channels, each double's 64 bits in two UINT channels NAME.hi and NAME.lo: the
 /// beauty's sums as pairs (SampleSum: the sum, then its rounding error), then, in a piece with
 /// passes, their sums (PassSums).
-constexpr int kSumValues = 6, kPassValues = 11;
-const char* const kExactNames[kSumValues + kPassValues] = {
-    "sumR",         "sumG",         "sumB",         "sumErrR",     "sumErrG",     "sumErrB",
-    "passSquaresR", "passSquaresG", "passSquaresB", "passAlbedoR", "passAlbedoG", "passAlbedoB",
-    "passNormalX",  "passNormalY",  "passNormalZ",  "passDepth",   "passHits"};
+constexpr int kSumValues = 6, kPassValues = 14;
+const char* const kExactNames[kSumValues + kPassValues] = {"sumR",
+                                                           "sumG",
+                                                           "sumB",
+                                                           "sumErrR",
+                                                           "sumErrG",
+                                                           "sumErrB",
+                                                           "passSquaresR",
+                                                           "passSquaresG",
+                                                           "passSquaresB",
+                                                           "passAlbedoR",
+                                                           "passAlbedoG",
+                                                           "passAlbedoB",
+                                                           "passNormalX",
+                                                           "passNormalY",
+                                                           "passNormalZ",
+                                                           "passDepth",
+                                                           "passHits",
+                                                           "passAlbedoSquaresR",
+                                                           "passAlbedoSquaresG",
+                                                           "passAlbedoSquaresB"};
 const char* const kWeightChannel = "weight";
 const char* const kPreviewChannels[3] = {"R", "G", "B"};
 
@@ -61,6 +77,7 @@ void getExact(const FilmSums& s, int x, int y, int n, double* out) {
     }
     out[15] = p.depth;
     out[16] = p.hits;
+    for (int c = 0; c < 3; ++c) out[17 + c] = p.albedoSquares[c];
 }
 
 /// And back.
@@ -79,6 +96,7 @@ void setExact(FilmSums& s, int x, int y, int n, const double* in) {
     }
     p.depth = in[15];
     p.hits = in[16];
+    for (int c = 0; c < 3; ++c) p.albedoSquares[c] = in[17 + c];
 }
 
 /// The UINT channel names of exact value k: NAME.hi, NAME.lo.
