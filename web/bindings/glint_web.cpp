@@ -416,7 +416,10 @@ class Session {
         auto start = Clock::now();
         toDenoise_ = sums_.resolve();
         toDenoisePasses_ = sums_.resolvePasses();
-        if (samples_ < 2) toDenoisePasses_.variance.clear();
+        if (samples_ < 2) {
+            toDenoisePasses_.variance.clear();
+            toDenoisePasses_.albedoVariance.clear();
+        }
         denoised_ = Film(toDenoise_.width(), toDenoise_.height());
         denoiseRow_ = 0;
         denoiseSeconds_ += std::chrono::duration<double>(Clock::now() - start).count();
