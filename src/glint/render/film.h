@@ -47,8 +47,9 @@ struct PixelBounds {
 /// Render passes (AOVs) of an image, resolved, row 0 at the top, width x height each (all empty
 /// when the render kept none). Of each pixel's camera samples, averaged over them:
 ///  - albedo: the reflectance of the first surface the path meets that is not a perfect mirror
-///    or smooth glass (chains of those are followed, as denoisers expect), times the chain's
-///    tint; 0 where the path leaves the scene;
+///    or smooth glass (chains of those are followed, as denoisers expect: glass along its more
+///    likely branch, whichever the path took), times the chain's tint; 0 where the path leaves
+///    the scene;
 ///  - normal: that surface's shading normal in world space, turned to face the ray (averaged,
 ///    so of length 1 or less; 0 where there is no surface);
 ///  - depth: the distance from the camera to the first surface hit, averaged over the samples

@@ -109,6 +109,48 @@ double PathIntegrator::bsdfWeight(double bsdfPdf, double lightPdf) const {
     }
 }
 
+void PathIntegrator::passesAlone(const SurfaceInteraction& si, const Frame& frame, BsdfSample s,
+                                 Vec3 tint, const Point2& u, int bounces,
+                                 SamplePasses& passes) const {
+    const double offset = scene_.spawnOffset();
+    Vec3 p = si.p, ng = si.ng, dir = normalize(frame.toWorld(s.wi));
+    int crossings = 0;
+    for (; bounces > 0; --bounces) {
+        tint = tint * min(s.weight(), Vec3(1));
+        const Ray ray = spawnRayOffSurface(p, ng, dir, offset);
+        Hit hit;
+        const bool found = scene_.intersect(ray, hit);
+        if (catcher_) {
+            std::optional<double> t = catcher_->intersect(ray);
+            if (t && (!found || *t < hit.t)) {  // as the path sees it (li)
+                passes.albedo = tint;
+                passes.normal = Vec3(0, 1, 0);
+                return;
+            }
+        }
+        if (!found) return;  // the sky: no albedo, no normal
+        const SurfaceInteraction next = scene_.primitives.interaction(ray, hit);
+        p = next.p;
+        ng = next.ng;
+        if (scene_.materials[next.material].interface) {  // crossed unchanged
+            if (++crossings > kMaxCrossings) return;
+            ++bounces;
+            continue;
+        }
+        const SurfaceShading shading = shadeSurface(scene_, next, -ray.dir, bsdfs_);
+        if (std::optional<Vec3> albedo = passAlbedo(shading.bsdf)) {
+            passes.albedo = tint * *albedo;
+            passes.normal = dot(shading.normal, ray.dir) > 0 ? -shading.normal : shading.normal;
+            return;
+        }
+        std::optional<BsdfSample> more =
+            shading.bsdf.sample(shading.frame.toLocal(-ray.dir), 0.5, u);
+        if (!more || !(more->pdf > 0)) return;
+        s = *more;
+        dir = normalize(shading.frame.toWorld(s.wi));
+    }
+}
+
 Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext& ctx) const {
     SobolSampler sampler(ctx.pixelSeed, ctx.sampleIndex);
     const double offset = scene_.spawnOffset();
@@ -330,7 +372,19 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const Vec3 next = normalize(frame.toWorld(bs->wi));
         if (!consistent(next, bs->wi)) break;
         beta = beta * bs->weight();
-        if (passes) passTint = passTint * min(bs->weight(), Vec3(1));
+        if (passes) [[unlikely]] {
+            // A smooth surface: the passes go on along its more likely branch (the refraction of
+            // glass at most angles), whichever the path took, so that the albedo does not take
+            // the noise of the path's choice. Where the path went the other way they go on
+            // alone (one ray and shading per surface, no light).
+            const std::optional<BsdfSample> likely = bsdf.sample(wo, 0.5, uDir);
+            if (likely && likely->pdf > 0 && !(likely->wi == bs->wi)) {
+                passesAlone(si, frame, *likely, passTint, uDir, scene_.maxDepth - depth, *passes);
+                passes = nullptr;
+            } else {
+                passTint = passTint * min(bs->weight(), Vec3(1));
+            }
+        }
         if (beta == Vec3(0)) break;
         specularBounce = bs->isSpecular();
         if (seenHere && !specularBounce) castersSinceSeen = 0;

@@ -48,6 +48,13 @@ class PathIntegrator final : public Integrator {
     /// with density `lightPdf` (0: it does not).
     double bsdfWeight(double bsdfPdf, double lightPdf) const;
 
+    /// The render passes' own way on from a smooth surface at `si` (shading frame `frame`), in
+    /// the direction of `s` with tint `tint`, where the path went another way: each smooth
+    /// surface they meet sends them on along its more likely branch, until a surface that
+    /// fills them (film.h), the sky, or `bounces` run out.
+    void passesAlone(const SurfaceInteraction& si, const Frame& frame, BsdfSample s, Vec3 tint,
+                     const Point2& u, int bounces, SamplePasses& passes) const;
+
     // Participating media (path_media.cpp).
     /// At point p of medium `med` (id `medium`), which scattered a path arriving from unit
     /// direction wo (towards where it came from) with throughput `beta` after `depth`

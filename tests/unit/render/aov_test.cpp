@@ -82,6 +82,29 @@ TEST(Aovs, PassesFollowPerfectMirrorsToWhatTheyShow) {
     EXPECT_LT(r.aovs.depth[i], 4.3);
 }
 
+TEST(Aovs, PassesFollowGlassAlongItsMoreLikelyBranchWhateverThePathChose) {
+    // A pane of glass (a thin box, index 1.5) in front of a diffuse wall: at normal incidence
+    // 4% of the light reflects (to the sky behind the camera) and 96% passes. The path picks
+    // one at random per sample; the passes always go through, to the wall, so the albedo is
+    // the wall's at every sample: no variance (before, 4% of the samples gave the sky's 0).
+    auto scene = test::preparedScene(
+        "size 8 8\nintegrator path\ncamera 0 0 0  0 0 -1  0 1 0  30\nbackground 1 1 1\n"
+        "ambient 0 0 0\ntransmission 1 1 1\nior 1.5\nbox -10 -10 -2.1  10 10 -2\n"
+        "transmission 0 0 0\ndiffuse 0.2 0.6 0.4\n"
+        "vertex -100 -100 -4\nvertex 100 -100 -4\nvertex 100 100 -4\nvertex -100 100 -4\n"
+        "tri 0 1 2\ntri 0 2 3\n");
+    const RenderResult r = render(*scene, passesAt(256));
+    for (const size_t i : {r.aovs.index(4, 4), r.aovs.index(1, 6)}) {
+        // Through both faces: (1/1.5)^2 in, capped at 1 out (the passes' tint is at most 1).
+        EXPECT_NEAR(r.aovs.albedo[i].y, 0.6 / (1.5 * 1.5), 1e-9);
+        // (Zero but for rounding; the path's own choice would give about 1e-5.)
+        EXPECT_LT(maxComponent(r.aovs.albedoVariance[i]), 1e-15);
+        EXPECT_NEAR(r.aovs.normal[i].z, 1, 1e-9);
+    }
+    // The image itself is the path's: some of its samples saw the reflection.
+    EXPECT_GT(r.aovs.variance[r.aovs.index(4, 4)].y, 0);
+}
+
 TEST(Aovs, VarianceIsTheSampleVarianceOfThePixelsMean) {
     // Two samples 1 and 3: mean 2, sample variance 2, the mean's 1. Their albedos 0.2 and 0.6
     // (one sample saw one surface, the other another): mean 0.4, the mean's variance 0.04.
