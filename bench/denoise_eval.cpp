@@ -223,8 +223,6 @@ int main(int argc, char** argv) {
         p.depthWeight = static_cast<float>(num(("d" + s).c_str(), p.depthWeight));
         p.firstOrder = num(("fo" + s).c_str(), p.firstOrder) != 0;
         p.ridge = static_cast<float>(num(("ridge" + s).c_str(), p.ridge));
-        p.normalRegression = num(("nr" + s).c_str(), p.normalRegression) != 0;
-        p.normalRidge = static_cast<float>(num(("nridge" + s).c_str(), p.normalRidge));
     };
     pass(t.first, "1");
     pass(t.second, "2");

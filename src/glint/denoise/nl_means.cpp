@@ -1,8 +1,6 @@
 #include "glint/denoise/nl_means.h"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -27,7 +25,7 @@ struct TileScratch {
     std::vector<float> distance;  // per-pixel colour distance, the tile grown by the patch
     std::vector<float> rowSum;    // its sums along rows over the patch
     std::vector<float> total;     // one row's total distances, then weights
-    std::vector<float> acc[54];   // the sums of Sum below
+    std::vector<float> acc[27];   // the sums of Sum below
 };
 
 // The sums per pixel: the weight, the weighted values, the squared weights times the values'
@@ -51,15 +49,7 @@ enum Sum {
     kRowXX,
     kRowV,  // 3 channels
     kRowXV = kRowV + 3,
-    // A fit linear in the normal too: u = n_q - n_p. Its row sums (weight times u), the
-    // window's sums of u, x u, y u, the products u_k u_l (k <= l) and u times the values.
-    kRowU = kRowXV + 3,
-    kU = kRowU + 3,
-    kXU = kU + 3,
-    kYU = kXU + 3,
-    kUU = kYU + 3,  // 6: 00 01 02 11 12 22
-    kUV = kUU + 6,  // 9: u_k times channel c at kUV + 3 k + c
-    kSumCount = kUV + 9
+    kSumCount = kRowXV + 3
 };
 
 // The row loops, each over n pixels, with every pointer restrict so that they vectorise.
@@ -230,133 +220,7 @@ void addRowSums(size_t n, float oy, TileScratch& s) {
             syv[i] += oy * v[i];
         }
     }
-    for (int a = kRowW; a < kRowU; ++a) std::fill(s.acc[a].begin(), s.acc[a].end(), 0.0f);
-    if (s.acc[kRowU].empty()) return;
-    for (int k = 0; k < 3; ++k) {
-        float* __restrict r = s.acc[kRowU + k].data();
-        float* __restrict su = s.acc[kU + k].data();
-        float* __restrict syu = s.acc[kYU + k].data();
-        for (size_t i = 0; i < n; ++i) {
-            su[i] += r[i];
-            syu[i] += oy * r[i];
-        }
-        std::fill(s.acc[kRowU + k].begin(), s.acc[kRowU + k].end(), 0.0f);
-    }
-}
-
-// The sums of a fit linear in the normal for one offset (ox over the radius): u = n_q - n_p.
-void accumulateNormalMoments(int n, const float* __restrict w, float ox,
-                             const std::array<const float*, 3>& np,
-                             const std::array<const float*, 3>& nq,
-                             const std::array<const float*, 3>& v, TileScratch& s, size_t o) {
-    float* __restrict ru0 = s.acc[kRowU].data() + o;
-    float* __restrict ru1 = s.acc[kRowU + 1].data() + o;
-    float* __restrict ru2 = s.acc[kRowU + 2].data() + o;
-    float* __restrict xu0 = s.acc[kXU].data() + o;
-    float* __restrict xu1 = s.acc[kXU + 1].data() + o;
-    float* __restrict xu2 = s.acc[kXU + 2].data() + o;
-    const float* __restrict p0 = np[0];
-    const float* __restrict p1 = np[1];
-    const float* __restrict p2 = np[2];
-    const float* __restrict q0 = nq[0];
-    const float* __restrict q1 = nq[1];
-    const float* __restrict q2 = nq[2];
-    for (int x = 0; x < n; ++x) {
-        const float u0 = q0[x] - p0[x], u1 = q1[x] - p1[x], u2 = q2[x] - p2[x];
-        const float wu0 = w[x] * u0, wu1 = w[x] * u1, wu2 = w[x] * u2;
-        ru0[x] += wu0;
-        ru1[x] += wu1;
-        ru2[x] += wu2;
-        xu0[x] += wu0 * ox;
-        xu1[x] += wu1 * ox;
-        xu2[x] += wu2 * ox;
-    }
-    float* __restrict uu00 = s.acc[kUU].data() + o;
-    float* __restrict uu01 = s.acc[kUU + 1].data() + o;
-    float* __restrict uu02 = s.acc[kUU + 2].data() + o;
-    float* __restrict uu11 = s.acc[kUU + 3].data() + o;
-    float* __restrict uu12 = s.acc[kUU + 4].data() + o;
-    float* __restrict uu22 = s.acc[kUU + 5].data() + o;
-    for (int x = 0; x < n; ++x) {
-        const float u0 = q0[x] - p0[x], u1 = q1[x] - p1[x], u2 = q2[x] - p2[x];
-        const float wu0 = w[x] * u0, wu1 = w[x] * u1;
-        uu00[x] += wu0 * u0;
-        uu01[x] += wu0 * u1;
-        uu02[x] += wu0 * u2;
-        uu11[x] += wu1 * u1;
-        uu12[x] += wu1 * u2;
-        uu22[x] += w[x] * u2 * u2;
-    }
-    for (int c = 0; c < 3; ++c) {
-        float* __restrict a0 = s.acc[kUV + c].data() + o;
-        float* __restrict a1 = s.acc[kUV + 3 + c].data() + o;
-        float* __restrict a2 = s.acc[kUV + 6 + c].data() + o;
-        const float* __restrict vc = v[c];
-        for (int x = 0; x < n; ++x) {
-            const float wv = w[x] * vc[x];
-            a0[x] += wv * (q0[x] - p0[x]);
-            a1[x] += wv * (q1[x] - p1[x]);
-            a2[x] += wv * (q2[x] - p2[x]);
-        }
-    }
-}
-
-// The value at the window's centre of the weighted least-squares fit a + b x + c y + d.u per
-// channel (u the normal's difference to the centre's), from pixel i's sums, by Cholesky in
-// double; false if the system is not positive definite (the caller fits a plane instead).
-bool solveWithNormal(const TileScratch& s, size_t i, float ridge, float normalRidge, float out[3],
-                     float& leverage) {
-    constexpr int N = 6;
-    double a[N][N];
-    auto at = [&](int k) { return static_cast<double>(s.acc[k][i]); };
-    const double w = at(kW);
-    a[0][0] = w;
-    a[0][1] = at(kX);
-    a[0][2] = at(kY);
-    a[1][1] = at(kXX) + ridge * w;
-    a[1][2] = at(kXY);
-    a[2][2] = at(kYY) + ridge * w;
-    for (int k = 0; k < 3; ++k) {
-        a[0][3 + k] = at(kU + k);
-        a[1][3 + k] = at(kXU + k);
-        a[2][3 + k] = at(kYU + k);
-    }
-    const int uu[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-    for (int k = 0; k < 3; ++k)
-        for (int l = k; l < 3; ++l)
-            a[3 + k][3 + l] = at(kUU + uu[k][l]) + (k == l ? normalRidge * w : 0.0);
-    // Cholesky: a = L L^T, L in the lower triangle (read from the upper one).
-    double L[N][N] = {};
-    for (int j = 0; j < N; ++j) {
-        double d = a[j][j];
-        for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
-        if (!(d > 1e-9 * w * w)) return false;
-        L[j][j] = std::sqrt(d);
-        for (int r = j + 1; r < N; ++r) {
-            double e = a[j][r];
-            for (int k = 0; k < j; ++k) e -= L[r][k] * L[j][k];
-            L[r][j] = e / L[j][j];
-        }
-    }
-    auto solve = [&](double b[N]) {
-        for (int r = 0; r < N; ++r) {
-            for (int k = 0; k < r; ++k) b[r] -= L[r][k] * b[k];
-            b[r] /= L[r][r];
-        }
-        for (int r = N - 1; r >= 0; --r) {
-            for (int k = r + 1; k < N; ++k) b[r] -= L[k][r] * b[k];
-            b[r] /= L[r][r];
-        }
-        return b[0];
-    };
-    for (int c = 0; c < 3; ++c) {
-        double b[N] = {at(kV + c),  at(kXV + c),     at(kYV + c),
-                       at(kUV + c), at(kUV + 3 + c), at(kUV + 6 + c)};
-        out[c] = static_cast<float>(solve(b));
-    }
-    double e0[N] = {1, 0, 0, 0, 0, 0};
-    leverage = static_cast<float>(solve(e0));  // the centre's weight is 1, its u is 0
-    return true;
+    for (int a = kRowW; a < kSumCount; ++a) std::fill(s.acc[a].begin(), s.acc[a].end(), 0.0f);
 }
 
 // The value at the window's centre of the weighted least-squares plane through the values, per
@@ -391,11 +255,8 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
     s.distance.assign(static_cast<size_t>(dw) * (th + 2 * f), 0.0f);
     s.rowSum.assign(static_cast<size_t>(tw) * (th + 2 * f), 0.0f);
     s.total.assign(static_cast<size_t>(tw), 0.0f);
-    const bool normalFit = p.firstOrder && p.normalRegression && g.normal[0];
     for (int a = 0; a < kSumCount; ++a) {
-        const bool used = a < kVar || (a < kX      ? vv != nullptr
-                                       : a < kRowU ? p.firstOrder
-                                                   : normalFit);
+        const bool used = a < kVar || (a < kX ? vv != nullptr : p.firstOrder);
         // (kW and kV are always summed: directly, or for a first-order fit through addRowSums.)
         if (used) s.acc[a].assign(tileSize, 0.0f);
     }
@@ -466,15 +327,6 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
                                             sum(kRowX), sum(kRowXX), sum(kRowXV), sum(kRowXV + 1),
                                             sum(kRowXV + 2), values[0]->row(qy) + qx,
                                             values[1]->row(qy) + qx, values[2]->row(qy) + qx);
-                if (normalFit)
-                    accumulateNormalMoments(
-                        n, dist, static_cast<float>(dx) * offsetScale,
-                        {g.normal[0]->row(y) + xa, g.normal[1]->row(y) + xa,
-                         g.normal[2]->row(y) + xa},
-                        {g.normal[0]->row(qy) + qx, g.normal[1]->row(qy) + qx,
-                         g.normal[2]->row(qy) + qx},
-                        {values[0]->row(qy) + qx, values[1]->row(qy) + qx, values[2]->row(qy) + qx},
-                        s, o);
                 if (vv)
                     accumulateSquared(n, dist, sum(kVar), sum(kVar + 1), sum(kVar + 2),
                                       (*vv)[0]->row(qy) + qx, (*vv)[1]->row(qy) + qx,
@@ -489,8 +341,7 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
             const float inv = 1.0f / s.acc[kW][i];  // the centre's own weight is 1: never 0
             float fit[3], leverage = inv;
             if (p.firstOrder) {
-                if (!normalFit || !solveWithNormal(s, i, p.ridge, p.normalRidge, fit, leverage))
-                    solvePlane(s, i, p.ridge, fit, leverage);
+                solvePlane(s, i, p.ridge, fit, leverage);
             } else {
                 for (int c = 0; c < 3; ++c) fit[c] = s.acc[kV + c][i] * inv;
             }

@@ -43,11 +43,6 @@ struct NlMeansParams {
     /// pulled towards its other side's mean.
     bool firstOrder = false;
     float ridge = 0.01f;  // the fit's slopes' ridge, times the weights' sum
-    /// With firstOrder and a normal buffer: the fit is linear in the normal too (its difference
-    /// to p's), as Bitterli et al.'s regression on the features, so that shading that follows a
-    /// bumpy surface's normal is fitted rather than averaged away.
-    bool normalRegression = false;
-    float normalRidge = 0.01f;  // the normal slopes' ridge, times the weights' sum
 };
 
 /// Where nlMeans writes; only `value` is required.
