@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace glint::denoise_detail {
@@ -247,9 +248,27 @@ void solvePlane(const TileScratch& s, size_t i, float ridge, float out[3], float
 
 void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values,
                 const NlMeansParams& p, const Tile& t, const std::array<const Plane*, 3>* vv,
-                TileScratch& s, const NlMeansOutputs& out) {
+                const std::vector<uint8_t>* exact, TileScratch& s, const NlMeansOutputs& out) {
     const int width = g.color[0]->width(), height = g.color[0]->height();
     const int f = p.patch, tw = t.x1 - t.x0, th = t.y1 - t.y0;
+    // Pixels that keep their values (NlMeansParams::keepExact): a tile of them only, directly.
+    auto keep = [&](int x, int y) {
+        for (int c = 0; c < 3; ++c) {
+            out.value[c]->at(x, y) = values[c]->at(x, y);
+            if (out.variance[0]) out.variance[c]->at(x, y) = 0.0f;
+        }
+    };
+    if (exact) {
+        bool all = true;
+        for (int y = t.y0; all && y < t.y1; ++y)
+            for (int x = t.x0; x < t.x1; ++x)
+                all = all && (*exact)[static_cast<size_t>(y) * width + x];
+        if (all) {
+            for (int y = t.y0; y < t.y1; ++y)
+                for (int x = t.x0; x < t.x1; ++x) keep(x, y);
+            return;
+        }
+    }
     const int dw = tw + 2 * f;  // distance rows: tile columns grown by the patch
     const size_t tileSize = static_cast<size_t>(tw) * th;
     s.distance.assign(static_cast<size_t>(dw) * (th + 2 * f), 0.0f);
@@ -351,6 +370,7 @@ void filterTile(const NlMeansGuide& g, const std::array<const Plane*, 3>& values
             if (out.variance[0])
                 for (int c = 0; c < 3; ++c)
                     out.variance[c]->at(x, y) = s.acc[kVar + c][i] * inv * leverage;
+            if (exact && (*exact)[static_cast<size_t>(y) * width + x]) keep(x, y);
         }
 }
 
@@ -364,14 +384,45 @@ void nlMeans(const NlMeansGuide& guide, const std::array<const Plane*, 3>& value
     const int tilesY = (height + kTileHeight - 1) / kTileHeight;
     NlMeansParams p = params;
     p.patch = std::clamp(p.patch, 0, 3);
+    // keepExact: which pixels have no guide variance within their window's reach (a pixel's
+    // own decision, whatever the tiling).
+    std::vector<uint8_t> exact;
+    if (p.keepExact) {
+        const int reach = p.radius + p.patch;
+        const size_t n = static_cast<size_t>(width) * height;
+        std::vector<uint8_t> rows(n);  // no variance within reach along the row
+        exact.resize(n);
+        for (int y = 0; y < height; ++y) {
+            const float* v[3] = {guide.variance[0]->row(y), guide.variance[1]->row(y),
+                                 guide.variance[2]->row(y)};
+            int last = -(1 << 30);  // the last column with variance
+            std::vector<int> next(static_cast<size_t>(width) + 1, 1 << 30);
+            for (int x = width - 1; x >= 0; --x)
+                next[x] = v[0][x] != 0 || v[1][x] != 0 || v[2][x] != 0 ? x : next[x + 1];
+            for (int x = 0; x < width; ++x) {
+                if (v[0][x] != 0 || v[1][x] != 0 || v[2][x] != 0) last = x;
+                rows[static_cast<size_t>(y) * width + x] = x - last > reach && next[x] - x > reach;
+            }
+        }
+        for (int x = 0; x < width; ++x) {
+            int last = -(1 << 30);
+            std::vector<int> next(static_cast<size_t>(height) + 1, 1 << 30);
+            for (int y = height - 1; y >= 0; --y)
+                next[y] = rows[static_cast<size_t>(y) * width + x] ? next[y + 1] : y;
+            for (int y = 0; y < height; ++y) {
+                if (!rows[static_cast<size_t>(y) * width + x]) last = y;
+                exact[static_cast<size_t>(y) * width + x] = y - last > reach && next[y] - y > reach;
+            }
+        }
+    }
     parallelFor(pool, 0, static_cast<size_t>(tilesX) * tilesY, 1, [&](size_t first, size_t last) {
         TileScratch scratch;
         for (size_t i = first; i < last; ++i) {
             const int tx = static_cast<int>(i % tilesX), ty = static_cast<int>(i / tilesX);
             Tile t{tx * kTileWidth, std::min(width, (tx + 1) * kTileWidth), ty * kTileHeight,
                    std::min(height, (ty + 1) * kTileHeight)};
-            filterTile(guide, values, p, t, out.variance[0] ? valueVariance : nullptr, scratch,
-                       out);
+            filterTile(guide, values, p, t, out.variance[0] ? valueVariance : nullptr,
+                       exact.empty() ? nullptr : &exact, scratch, out);
         }
     });
 }

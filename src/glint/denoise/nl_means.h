@@ -43,6 +43,11 @@ struct NlMeansParams {
     /// pulled towards its other side's mean.
     bool firstOrder = false;
     float ridge = 0.01f;  // the fit's slopes' ridge, times the weights' sum
+    /// A pixel whose window (and its patches) holds no pixel of any guide variance keeps its
+    /// value: nothing there is noisy, and a difference rejects any neighbour anyway; tiles of
+    /// such pixels are not filtered at all. (The albedo's filter: most of a model's image has
+    /// an exact albedo.)
+    bool keepExact = false;
 };
 
 /// Where nlMeans writes; only `value` is required.

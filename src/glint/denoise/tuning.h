@@ -80,7 +80,8 @@ struct DenoiseTuning {
                          .albedoWeight = 0.0f,
                          .depthWeight = 100.0f,
                          .firstOrder = false,
-                         .ridge = 0.01f};
+                         .ridge = 0.01f,
+                         .keepExact = true};
     /// Radius of the box that smooths the albedo variance (0: none; 1 measured the same or
     /// slightly worse: glass 7.9x against 8.0x).
     int albedoVarianceRadius = 0;
