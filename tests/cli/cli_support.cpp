@@ -59,11 +59,35 @@ void writeFile(const std::string& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
 }
 
+namespace {
+
+/// The directories freshDir made in this process, removed when it ends unless a test failed
+/// (then they are kept to look at). A full run made 177 and left them all behind.
+struct MadeDirs {
+    std::vector<fs::path> dirs;
+    ~MadeDirs() {
+        if (::testing::UnitTest::GetInstance()->Failed()) return;
+        for (const fs::path& d : dirs) {
+            std::error_code ignored;
+            fs::remove_all(d, ignored);
+        }
+    }
+};
+
+MadeDirs& madeDirs() {
+    // Made after gtest's UnitTest (freshDir runs inside a test), so destroyed before it.
+    static MadeDirs made;
+    return made;
+}
+
+}  // namespace
+
 std::string freshDir(const std::string& name) {
     fs::path dir =
         fs::temp_directory_path() / ("glint-cli-" + std::to_string(::getpid()) + "-" + name);
     fs::remove_all(dir);
     fs::create_directories(dir);
+    madeDirs().dirs.push_back(dir);
     return dir.string();
 }
 

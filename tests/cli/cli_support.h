@@ -21,7 +21,8 @@ CommandResult runImgdiff(const std::string& args, const std::string& workDir);
 /// Writes `text` to `path`, creating directories as needed.
 void writeFile(const std::string& path, const std::string& text);
 
-/// A fresh, empty directory under the system's temporary directory, unique to this test.
+/// A fresh, empty directory under the system's temporary directory, unique to this test; removed
+/// when the test program ends, unless a test failed.
 std::string freshDir(const std::string& name);
 
 /// The bytes of the file at `path` (empty if it cannot be read).
