@@ -14,10 +14,9 @@
 // 0/1, its ridge), r2 ... ridge2 (second; r2=0: one pass), gvs (second guide's variance scale),
 // sov (second guide's outlier variance), vr (variance smoothing radius), ov (outlier variance
 // ratio), evs (estimated variance scale), af (albedo floor), ra ... ridgea (the albedo's filter;
-// ra=0: none), avr (its variance's smoothing radius), demf=1 (divide by the filtered albedo),
-// fire=P (synthetic: the probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1
-// nodepth=1 novariance=1 noalbedovariance=1 to leave a buffer out. relMSE = mean over pixels and
-// channels of (x - ref)^2 / (ref^2 + 0.01).
+// ra=0: none), fire=P (synthetic: the probability of a firefly sample, 0.001), and noalbedo=1
+// nonormal=1 nodepth=1 novariance=1 noalbedovariance=1 to leave a buffer out. relMSE = mean over
+// pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
 
 #include <algorithm>
 #include <chrono>
@@ -227,8 +226,6 @@ int main(int argc, char** argv) {
     pass(t.first, "1");
     pass(t.second, "2");
     pass(t.albedo, "a");  // the albedo's filter: ra=0 turns it off
-    t.albedoVarianceRadius = static_cast<int>(num("avr", t.albedoVarianceRadius));
-    t.demodulateFiltered = num("demf", t.demodulateFiltered) != 0;
     t.secondGuideVarianceScale = static_cast<float>(num("gvs", t.secondGuideVarianceScale));
     t.varianceRadius = static_cast<int>(num("vr", t.varianceRadius));
     t.estimatedVarianceScale = static_cast<float>(num("evs", t.estimatedVarianceScale));

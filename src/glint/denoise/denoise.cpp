@@ -87,8 +87,7 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
     const bool twoPasses = tuning.second.radius > 0;
     const bool filterAlbedo = in.albedo && in.albedoVariance && tuning.albedo.radius > 0;
     const int pad = std::max({tuning.first.patch, twoPasses ? tuning.second.patch : 0,
-                              filterAlbedo ? tuning.albedo.patch : 0, tuning.varianceRadius,
-                              tuning.albedoVarianceRadius, 1});
+                              filterAlbedo ? tuning.albedo.patch : 0, tuning.varianceRadius, 1});
 
     // Features.
     NlMeansGuide guide;
@@ -122,27 +121,26 @@ std::vector<Vec3> denoiseTuned(const DenoiseInput& in, const DenoiseOptions& opt
     if (in.albedo) {
         albedo = planesOf(in.albedo, width, height);
         if (filterAlbedo) {
-            Planes noisy = makePlanes(width, height, pad), noise = makePlanes(width, height, pad);
-            Planes smooth = makePlanes(width, height, pad);
+            // The pixels' own albedo (kept for the demodulation) and its variance, with borders
+            // for the patches; the filtered albedo goes to `albedo`.
+            ownAlbedo = makePlanes(width, height, pad);
+            Planes noise = makePlanes(width, height, pad);
             for (int y = 0; y < height; ++y)
                 for (int x = 0; x < width; ++x)
                     for (int c = 0; c < 3; ++c) {
                         const size_t i = static_cast<size_t>(y) * width + x;
-                        noisy[c].at(x, y) = albedo[c].at(x, y);
+                        ownAlbedo[c].at(x, y) = albedo[c].at(x, y);
                         noise[c].at(x, y) = std::max(finite(in.albedoVariance[i][c]), 0.0f);
                     }
             for (int c = 0; c < 3; ++c) {
-                noisy[c].replicateBorder();
+                ownAlbedo[c].replicateBorder();
                 noise[c].replicateBorder();
-                boxFilter(noise[c], tuning.albedoVarianceRadius, smooth[c], pool);
-                smooth[c].replicateBorder();
             }
             NlMeansGuide g = guide;
-            g.color = pointers(std::as_const(noisy));
-            g.variance = pointers(std::as_const(smooth));
-            nlMeans(g, pointers(std::as_const(noisy)), tuning.albedo,
+            g.color = pointers(std::as_const(ownAlbedo));
+            g.variance = pointers(std::as_const(noise));
+            nlMeans(g, pointers(std::as_const(ownAlbedo)), tuning.albedo,
                     NlMeansOutputs{.value = pointers(albedo)}, nullptr, pool);
-            if (!tuning.demodulateFiltered) ownAlbedo = planesOf(in.albedo, width, height);
         }
         guide.albedo = pointers(std::as_const(albedo));
     }
