@@ -19,8 +19,8 @@
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
 #include "glint/render/adaptive.h"
-#include "glint/render/integrator.h"
-#include "glint/render/piece.h"
+#include "glint/render/integrators/integrator.h"
+#include "glint/render/film/piece.h"
 #include "glint/render/progressive.h"
 #include "glint/scene/studio_environment.h"
 

@@ -14,7 +14,7 @@
 
 #include "glint/accel/bvh.h"
 #include "glint/io/registry.h"
-#include "glint/render/display.h"
+#include "glint/render/film/display.h"
 #include "glint/render/renderer.h"
 #include "glint/scene/model.h"
 #include "glint/scene/scene.h"

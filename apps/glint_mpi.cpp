@@ -27,7 +27,7 @@
 #include "glint/core/parallel.h"
 #include "glint/denoise/film_denoise.h"
 #include "glint/io/image/image_io.h"
-#include "glint/render/integrator.h"
+#include "glint/render/integrators/integrator.h"
 #include "mpi_load.h"
 #include "mpi_protocol.h"
 #include "mpi_render.h"

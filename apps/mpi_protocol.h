@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "glint/render/film.h"
-#include "glint/render/integrator.h"
+#include "glint/render/film/film.h"
+#include "glint/render/integrators/integrator.h"
 
 namespace glint::mpi {
 

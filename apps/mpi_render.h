@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "glint/render/adaptive.h"
-#include "glint/render/film.h"
+#include "glint/render/film/film.h"
 #include "glint/render/progress.h"
 #include "glint/render/renderer.h"
 #include "mpi_load.h"

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "glint/accel/bvh.h"
-#include "glint/render/film.h"
-#include "glint/render/integrator.h"
-#include "glint/render/piece.h"
+#include "glint/render/film/film.h"
+#include "glint/render/integrators/integrator.h"
+#include "glint/render/film/piece.h"
 #include "glint/scene/model.h"
 #include "glint/scene/scene.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "cli.h"
-#include "glint/render/piece.h"
+#include "glint/render/film/piece.h"
 #include "glint/render/renderer.h"
 
 namespace glint::cli {

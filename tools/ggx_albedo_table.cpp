@@ -1,8 +1,8 @@
 // glint_ggx_albedo_table [OUTPUT]: computes the table of GGX directional albedos E(mu, alpha)
-// of src/glint/render/ggx_albedo.h (its layout is there) and writes it as C++ to OUTPUT
+// of src/glint/render/bsdfs/ggx_albedo.h (its layout is there) and writes it as C++ to OUTPUT
 // (standard output without one):
 //
-//   build/tools/glint_ggx_albedo_table src/glint/render/ggx_albedo_table.cpp
+//   build/tools/glint_ggx_albedo_table src/glint/render/bsdfs/tables/ggx_albedo_table.cpp
 //
 // Run it when optics.h's GGX lobe or the table's layout changes; the unit tests recompute
 // entries independently and fail when the committed table no longer matches. It takes a few
@@ -36,8 +36,8 @@
 #include <vector>
 
 #include "glint/math/quadrature.h"
-#include "glint/render/ggx_albedo.h"
-#include "glint/render/optics.h"
+#include "glint/render/bsdfs/ggx_albedo.h"
+#include "glint/render/bsdfs/optics.h"
 
 namespace {
 
@@ -208,7 +208,7 @@ int main(int argc, char** argv) {
         checks.size(), alpha1, std::abs(errors[worst]), checks[worst].alpha, checks[worst].mu,
         alpha1, std::abs(errors[worstBelow]), checks[worstBelow].alpha, checks[worstBelow].mu);
     std::fprintf(
-        out, "#include \"glint/render/ggx_albedo.h\"\n\nnamespace glint::ggx_albedo_table {\n\n");
+        out, "#include \"glint/render/bsdfs/ggx_albedo.h\"\n\nnamespace glint::ggx_albedo_table {\n\n");
     std::fprintf(out, "const double kMaxError = %.2g;\n", bound(errors[worst]));
     std::fprintf(out, "const double kMaxErrorBelowRow1 = %.2g;\n\n", bound(errors[worstBelow]));
     std::fprintf(out, "// Six entries per line, as written.\n// clang-format off\n");

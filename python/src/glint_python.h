@@ -15,7 +15,7 @@
 
 #include "cli.h"
 #include "glint/core/parallel.h"
-#include "glint/render/film.h"
+#include "glint/render/film/film.h"
 
 namespace glint::python {
 

@@ -12,7 +12,7 @@
 
 #include "cli/cli_support.h"
 #include "glint/io/image/image_io.h"
-#include "glint/render/display.h"
+#include "glint/render/film/display.h"
 
 namespace glint::test {
 namespace {

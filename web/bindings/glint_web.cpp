@@ -26,8 +26,8 @@
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
-#include "glint/render/display.h"
-#include "glint/render/integrator.h"
+#include "glint/render/film/display.h"
+#include "glint/render/integrators/integrator.h"
 #include "glint/render/progressive.h"
 #include "glint/render/renderer.h"
 
@@ -250,7 +250,7 @@ class Session {
         s.height = std::clamp(intOr(o, "height", loaded_.height), 1, 16384);
         s.maxDepth = std::max(0, intOr(o, "maxDepth", loaded_.maxDepth));
         s.integrator = loaded_.integrator;
-        // No light pass (the path tracer's caustics, render/caustics.h): it traces a whole
+        // No light pass (the path tracer's caustics, render/integrators/caustics.h): it traces a whole
         // pass's light paths before the pass's first tiles, longer than a step may take (the
         // page must stay responsive and cancel within a step). The camera's paths find
         // caustics alone, as `--caustics off` does.

@@ -1,9 +1,9 @@
 #pragma once
-/// The denoiser (denoise.h) applied to a rendered film and its render passes (render/film.h):
+/// The denoiser (denoise.h) applied to a rendered film and its render passes (render/film/film.h):
 /// what `glint --denoise`, `glint denoise` and the web page's preview call.
 
 #include "glint/core/parallel.h"
-#include "glint/render/film.h"
+#include "glint/render/film/film.h"
 
 namespace glint {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "glint/render/integrator.h"
+#include "glint/render/integrators/integrator.h"
 #include "glint/render/progressive.h"
 
 namespace glint {

@@ -10,7 +10,7 @@
 
 #include "glint/core/error.h"
 #include "glint/core/parallel.h"
-#include "glint/render/sampler.h"
+#include "glint/render/film/sampler.h"
 
 namespace glint {
 

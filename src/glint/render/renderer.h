@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "glint/render/film.h"
-#include "glint/render/integrator.h"
+#include "glint/render/film/film.h"
+#include "glint/render/integrators/integrator.h"
 
 namespace glint {
 

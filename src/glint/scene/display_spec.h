@@ -1,6 +1,6 @@
 #pragma once
 /// How a scene's linear radiance is meant to become 8-bit pixels (the conversion itself is in
-/// render/display.h and render/tonemap.h). A scene carries its default; the command line may
+/// render/film/display.h and render/film/tonemap.h). A scene carries its default; the command line may
 /// override it (`--tonemap`, `--srgb`, `--no-srgb`).
 
 #include <optional>
@@ -11,8 +11,8 @@ namespace glint {
 /// What compresses radiance into [0, 1] before it is encoded.
 enum class ToneMap {
     Clamp,       ///< Each channel clamped to [0, 1]: the course's conversion.
-    PbrNeutral,  ///< Khronos PBR Neutral (render/tonemap.h): the glTF viewers' convention.
-    Aces  ///< three.js's ACES filmic fit (render/tonemap.h): Khronos' Render Fidelity images.
+    PbrNeutral,  ///< Khronos PBR Neutral (render/film/tonemap.h): the glTF viewers' convention.
+    Aces  ///< three.js's ACES filmic fit (render/film/tonemap.h): Khronos' Render Fidelity images.
 };
 
 struct DisplaySpec {

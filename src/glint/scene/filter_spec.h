@@ -1,5 +1,5 @@
 #pragma once
-/// Which reconstruction filter the scene asks for (the sampling is in render/filter.h).
+/// Which reconstruction filter the scene asks for (the sampling is in render/film/filter.h).
 
 #include <string_view>
 

@@ -5,7 +5,7 @@
 /// KHR_materials_transmission, KHR_materials_ior, KHR_materials_volume). glTF files, OBJ's PBR
 /// extensions and the scene file's `pbr` maps all describe their materials with it. A Material
 /// names one by id (Material::pbr); the path tracer evaluates it at every hit (evalSurface)
-/// and scatters by render/bsdf.h's MetallicRoughness. The Whitted integrator uses the flat
+/// and scatters by render/bsdfs/bsdf.h's MetallicRoughness. The Whitted integrator uses the flat
 /// Material the loaders also fill in.
 
 #include <array>

@@ -37,7 +37,7 @@ struct Background {
 /// mirrors and glass continue from them. Where they meet it, it shows what lies behind it (the
 /// environment or the background) darkened by the shadows the scene casts on it; every other
 /// ray passes through it, so it adds no light and no occlusion. Rendered by the path tracer
-/// (render/shadow_catcher.h); the Whitted integrator ignores it.
+/// (render/integrators/shadow_catcher.h); the Whitted integrator ignores it.
 struct ShadowCatcher {
     double height = 0;
 };
@@ -91,9 +91,9 @@ class Scene {
     /// Indirect"): each sample's light that reached the camera after two or more bounces is
     /// scaled down to at most this in its largest channel. 0: no clamp (unbiased).
     double clampIndirect = 0;
-    /// Whether the path tracer traces caustics from the lights (`--caustics`, render/caustics.h).
+    /// Whether the path tracer traces caustics from the lights (`--caustics`, render/integrators/caustics.h).
     bool caustics = true;
-    /// The integrator that renders the scene, by name (render/integrator.h; `integrator`).
+    /// The integrator that renders the scene, by name (render/integrators/integrator.h; `integrator`).
     std::string integrator = "whitted";
     std::string output;  ///< Output file the scene asks for; may be empty.
     std::optional<CameraSpec> camera;

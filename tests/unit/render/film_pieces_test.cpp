@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "glint/render/renderer.h"
-#include "glint/render/sampler.h"
+#include "glint/render/film/sampler.h"
 #include "unit/test_support.h"
 
 namespace glint {

@@ -10,8 +10,8 @@
 #include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/math/mat4.h"
-#include "glint/render/sampler.h"
-#include "glint/render/whitted.h"
+#include "glint/render/film/sampler.h"
+#include "glint/render/integrators/whitted.h"
 #include "unit/test_support.h"
 
 namespace glint {

@@ -11,7 +11,7 @@
 #include <numbers>
 
 #include "glint/math/rng.h"
-#include "glint/render/path.h"
+#include "glint/render/integrators/path.h"
 #include "unit/statistics.h"
 
 namespace glint {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "glint/render/whitted.h"
+#include "glint/render/integrators/whitted.h"
 #include "unit/test_support.h"
 
 namespace glint {

@@ -10,7 +10,7 @@
 #include "glint/geometry/polygon.h"
 #include "glint/io/course/course_parser.h"
 #include "glint/io/image/environment_io.h"
-#include "glint/render/integrator.h"
+#include "glint/render/integrators/integrator.h"
 
 namespace glint::course {
 

@@ -1,4 +1,4 @@
-// The glTF material extensions that layer over the metallic-roughness base (render/bsdf.h's
+// The glTF material extensions that layer over the metallic-roughness base (render/bsdfs/bsdf.h's
 // MetallicRoughness): KHR_materials_clearcoat, _sheen, _specular, _anisotropy, _iridescence and
 // _diffuse_transmission (and _dispersion), read into the PbrMaterial with their factors and
 // textures.

@@ -5,7 +5,7 @@
 #include <string_view>
 #include <utility>
 
-#include "glint/render/film.h"
+#include "glint/render/film/film.h"
 
 namespace glint {
 

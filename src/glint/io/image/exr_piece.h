@@ -16,8 +16,8 @@
 #include <string>
 #include <string_view>
 
-#include "glint/render/film.h"
-#include "glint/render/piece.h"
+#include "glint/render/film/film.h"
+#include "glint/render/film/piece.h"
 
 namespace glint {
 

@@ -7,7 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "glint/render/display.h"
+#include "glint/render/film/display.h"
 
 namespace glint {
 namespace {

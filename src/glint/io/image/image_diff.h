@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "glint/render/film.h"
+#include "glint/render/film/film.h"
 
 namespace glint {
 

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "glint/io/image/exr.h"
-#include "glint/render/display.h"
-#include "glint/render/film.h"
+#include "glint/render/film/display.h"
+#include "glint/render/film/film.h"
 
 namespace glint {
 

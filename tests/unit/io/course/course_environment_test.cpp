@@ -14,7 +14,7 @@
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/exr.h"
 #include "glint/io/image/image_io.h"
-#include "glint/render/whitted.h"
+#include "glint/render/integrators/whitted.h"
 #include "unit/io/course/course_test_support.h"
 #include "unit/test_support.h"
 

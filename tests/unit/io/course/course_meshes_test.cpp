@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "glint/io/course/course_loader.h"
-#include "glint/render/whitted.h"
+#include "glint/render/integrators/whitted.h"
 #include "unit/io/course/course_test_support.h"
 #include "unit/test_support.h"
 
