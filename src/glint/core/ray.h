@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iosfwd>
 #include <limits>
 #include <utility>
 
@@ -23,6 +24,8 @@ struct Ray {
 
     constexpr Vec3 at(double t) const { return origin + dir * t; }
 };
+/// "Ray{origin (x, y, z), dir (x, y, z), t [tMin, tMax]}".
+std::ostream& operator<<(std::ostream& out, const Ray& r);
 
 /// The same ray in float for traversal, with what box and triangle tests need precomputed.
 struct TraversalRay {
@@ -83,6 +86,8 @@ struct Hit {
     /// hit. Meaningless otherwise.
     uint32_t subId = 0;
 };
+/// "Hit{t 1.5, prim 12}" (with ", sub 3" for an instance's primitive), or "Hit{none}".
+std::ostream& operator<<(std::ostream& out, const Hit& h);
 
 /// Whether a candidate hit (t, id) beats `best`: nearer, or as near with a lower id. The tie
 /// rule makes the closest hit independent of the order primitives are tested in.

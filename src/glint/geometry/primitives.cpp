@@ -1,5 +1,6 @@
 #include "glint/geometry/primitives.h"
 
+#include <ostream>
 #include <stdexcept>
 
 namespace glint {
@@ -353,6 +354,13 @@ SurfaceInteraction Primitives::shapeInteraction(const Ray& ray, const Hit& hit) 
         si.material = planeMaterial_[i];
     }
     return si;
+}
+
+std::ostream& operator<<(std::ostream& out, const SurfaceInteraction& si) {
+    out << "SurfaceInteraction{p " << si.p << ", n " << si.n << ", ng " << si.ng << ", material "
+        << si.material;
+    if (si.hasUv) out << ", uv (" << si.u << ", " << si.v << ')';
+    return out << '}';
 }
 
 }  // namespace glint

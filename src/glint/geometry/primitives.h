@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <vector>
 
@@ -59,6 +60,8 @@ struct SurfaceInteraction {
     /// direction for surfaces without tangents; zero when the coordinates are degenerate.
     Vec3 dpdu;
 };
+/// "SurfaceInteraction{p (x, y, z), n (..), ng (..), material 2, uv (u, v)}" (uv when it has one).
+std::ostream& operator<<(std::ostream& out, const SurfaceInteraction& si);
 
 /// A triangle's attributes beyond normals and first texture coordinates: glTF's second
 /// texture coordinates, vertex colours and tangents (each present or absent as a whole).

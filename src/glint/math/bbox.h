@@ -2,6 +2,7 @@
 /// Axis-aligned bounding boxes, in float: they exist for traversal.
 
 #include <cmath>
+#include <iosfwd>
 #include <limits>
 
 #include "glint/math/vec3.h"
@@ -38,6 +39,8 @@ struct Bounds3f {
         return d.x >= d.y && d.x >= d.z ? 0 : (d.y >= d.z ? 1 : 2);
     }
 };
+/// "[(lo) .. (hi)]", or "[empty]".
+std::ostream& operator<<(std::ostream& out, const Bounds3f& b);
 
 inline Bounds3f Bounds3f::enclosing(const Vec3& lo, const Vec3& hi) {
     constexpr float inf = std::numeric_limits<float>::infinity();

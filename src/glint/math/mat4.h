@@ -2,6 +2,7 @@
 /// 4x4 matrices in double precision, used to compose transforms before they are baked into the
 /// scene. Row-major: m[row][col]; points are column vectors, so `a * b` applies b first.
 
+#include <iosfwd>
 #include <optional>
 
 namespace glint {
@@ -17,6 +18,8 @@ struct Mat4 {
 
     bool operator==(const Mat4&) const = default;
 };
+/// "[[a, b, c, d], [e, f, g, h], ...]", row by row.
+std::ostream& operator<<(std::ostream& out, const Mat4& m);
 
 Mat4 operator*(const Mat4& a, const Mat4& b);
 Mat4 transpose(const Mat4& a);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iosfwd>
 #include <numbers>
 #include <utility>
 
@@ -15,6 +16,8 @@ namespace glint {
 struct Point2 {
     double x = 0, y = 0;
 };
+/// "(x, y)".
+std::ostream& operator<<(std::ostream& out, const Point2& p);
 
 /// A point uniformly distributed on the unit disk, by Shirley and Chiu's concentric map
 /// ("A Low Distortion Map Between Disk and Square", 1997): strata of the square stay compact.

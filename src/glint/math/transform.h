@@ -1,6 +1,8 @@
 #pragma once
 /// Affine transforms baked for rendering: the matrix and its inverse, in double precision.
 
+#include <iosfwd>
+
 #include "glint/math/bbox.h"
 #include "glint/math/mat4.h"
 #include "glint/math/vec3.h"
@@ -70,5 +72,7 @@ class Transform {
     double m_[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
     double inv_[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
 };
+/// "Transform[[a, b, c, d], [e, f, g, h], [i, j, k, l]]": the matrix's first three rows.
+std::ostream& operator<<(std::ostream& out, const Transform& t);
 
 }  // namespace glint

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iosfwd>
 
 namespace glint {
 
@@ -49,6 +50,9 @@ struct Vec3T {
 
 using Vec3 = Vec3T<double>;
 using Vec3f = Vec3T<float>;
+/// "(x, y, z)", at the stream's precision: for messages, debug output and failing tests.
+std::ostream& operator<<(std::ostream& out, const Vec3& v);
+std::ostream& operator<<(std::ostream& out, const Vec3f& v);
 
 template <typename T>
 constexpr Vec3T<T> operator+(const Vec3T<T>& a, const Vec3T<T>& b) {

@@ -24,18 +24,6 @@ constexpr size_t kMaxPhotonPaths = size_t{1} << 22;
 /// Light paths per block: each block keeps its splats apart, then blocks are added in order.
 constexpr size_t kPathsPerBlock = 4096;
 
-/// The factor by which light's throughput differs from radiance's through a refraction of
-/// `bsdf` from `wo` to `wi` (local directions): radiance is scaled by (n_o / n_i)^2 at the
-/// boundary, power is not (Veach 1997, 5.2). 1 for reflection and for what does not bend.
-double adjointRefraction(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi) {
-    if (!(wo.z * wi.z < 0)) return 1;
-    double eta = 1;  // the index inside over outside
-    if (const auto* d = std::get_if<Dielectric>(&bsdf.lobe)) eta = d->eta;
-    if (const auto* m = std::get_if<MetallicRoughness>(&bsdf.lobe); m && !m->thin) eta = m->eta;
-    const double ratio = wo.z > 0 ? eta : 1 / eta;  // n_i / n_o
-    return ratio * ratio;
-}
-
 }  // namespace
 
 CausticPass::CausticPass(const Scene& scene, const LightSampler& lights,
@@ -183,18 +171,18 @@ void CausticPass::tracePath(uint64_t seed, std::vector<Splat>& out,
         const Frame& frame = shading.frame;
         const Vec3 wo = frame.toLocal(toLight);
         const Point2 uLobe = u2(), uDirection = u2();
-        std::optional<BsdfSample> bs = shading.bsdf.sample(wo, uLobe.x, uDirection);
+        std::optional<BsdfSample> bs =
+            shading.bsdf.sample(wo, uLobe.x, uDirection, TransportMode::Importance);
         if (!bs || !(bs->pdf > 0)) return;
         const Vec3 next = normalize(frame.toWorld(bs->wi));
         if (!(dot(next, si.ng) * bs->wi.z > 0)) return;  // a leak through the shading normal
-        // Light's throughput: the BSDF with its arguments swapped (the same but for the
-        // refraction's scaling) and pbrt's correction for shading normals.
+        // Light's throughput: the BSDF for importance (no radiance scaling where it refracts)
+        // and pbrt's correction for shading normals.
         const double woNg = std::abs(dot(toLight, si.ng)), wiNs = std::abs(bs->wi.z);
         if (!(woNg > 0) || !(wiNs > 0)) return;
         const double shadingCorrection =
             std::abs(wo.z) * std::abs(dot(next, si.ng)) / (woNg * wiNs);
-        beta =
-            beta * bs->weight() * (shadingCorrection * adjointRefraction(shading.bsdf, wo, bs->wi));
+        beta = beta * bs->weight() * shadingCorrection;
         if (beta == Vec3(0)) return;
         // Russian roulette once the light has dimmed.
         const double survive = maxComponent(beta) / maxComponent(emittedBeta);

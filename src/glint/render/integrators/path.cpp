@@ -15,47 +15,7 @@ namespace {
 /// The normal by which the light tree weighs lights for a point of `bsdf` on a surface of
 /// geometric normal `ng`: none where light also arrives through the surface (glass,
 /// transmission), so that lights on either side count.
-Vec3 receivingNormal(const Bsdf& bsdf, const Vec3& ng) {
-    struct Visitor {
-        bool operator()(const Dielectric&) const { return true; }
-        bool operator()(const MetallicRoughness& m) const {
-            return m.transmission > 0 || m.diffuseTransmission > 0;
-        }
-        bool operator()(const Lambertian&) const { return false; }
-        bool operator()(const Conductor&) const { return false; }
-        bool operator()(const DiffuseSpecular&) const { return false; }
-    };
-    return std::visit(Visitor{}, bsdf.lobe) ? Vec3(0) : ng;
-}
-
-/// GGX alpha below which a mirror-like or glass-like glTF surface counts as smooth for the
-/// render passes (perceptual roughness 0.1): they follow it to what is seen in it.
-constexpr double kPassSmoothAlpha = 0.01;
-
-/// The albedo the render passes give a surface of `bsdf` (film.h), or none for a perfect
-/// mirror or smooth glass (or a glTF surface nearly so), whose continuation they follow.
-std::optional<Vec3> passAlbedo(const Bsdf& bsdf) {
-    using Albedo = std::optional<Vec3>;
-    struct Visitor {
-        Albedo operator()(const Lambertian& l) const { return l.albedo; }
-        Albedo operator()(const Conductor& c) const {
-            return c.alpha == 0 ? Albedo() : Albedo(c.f0);
-        }
-        Albedo operator()(const Dielectric& d) const {
-            return d.rough() ? Albedo(d.tint) : Albedo();
-        }
-        Albedo operator()(const DiffuseSpecular& d) const {
-            if (d.alpha == 0 && d.diffuse == Vec3(0)) return Albedo();
-            return min(d.diffuse + d.specular, Vec3(1));
-        }
-        Albedo operator()(const MetallicRoughness& m) const {
-            const double clear = m.metallic + (1 - m.metallic) * m.transmission;
-            if (m.alpha < kPassSmoothAlpha && clear > 0.99) return Albedo();
-            return m.baseColor;
-        }
-    };
-    return std::visit(Visitor{}, bsdf.lobe);
-}
+Vec3 receivingNormal(const Bsdf& bsdf, const Vec3& ng) { return bsdf.transmits() ? Vec3(0) : ng; }
 
 }  // namespace
 
@@ -138,7 +98,7 @@ void PathIntegrator::passesAlone(const SurfaceInteraction& si, const Frame& fram
             continue;
         }
         const SurfaceShading shading = shadeSurface(scene_, next, -ray.dir, bsdfs_);
-        if (std::optional<Vec3> albedo = passAlbedo(shading.bsdf)) {
+        if (std::optional<Vec3> albedo = shading.bsdf.passAlbedo()) {
             passes.albedo = tint * *albedo;
             passes.normal = dot(shading.normal, ray.dir) > 0 ? -shading.normal : shading.normal;
             return;
@@ -265,22 +225,21 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         SurfaceShading shading = shadeSurface(scene_, si, -ray.dir, bsdfs_);
         // A dispersing volume refracts each colour its own way: the path follows one channel
         // (chosen at the first such surface, weighted by 3 to stay unbiased) from there on.
-        if (auto* mr = std::get_if<MetallicRoughness>(&shading.bsdf.lobe); mr && mr->disperses())
-            [[unlikely]] {
+        if (shading.bsdf.disperses()) [[unlikely]] {
             if (channel < 0) {
                 channel = std::min(2, static_cast<int>(ctx.rng.uniform() * 3));
                 Vec3 only(0);
                 only[channel] = 3;
                 beta = beta * only;
             }
-            mr->eta = mr->etaOfChannel(channel);
+            shading.bsdf.selectChannel(channel);
         }
         const Bsdf& bsdf = shading.bsdf;
         const Vec3& emission = shading.emission;
         const Vec3& shadingNormal = shading.normal;
         if (passes) [[unlikely]] {
             if (depth == 0) passes->depth = length(si.p - ray.origin);
-            if (std::optional<Vec3> albedo = passAlbedo(bsdf)) {
+            if (std::optional<Vec3> albedo = bsdf.passAlbedo()) {
                 passes->albedo = passTint * *albedo;
                 passes->normal = dot(shadingNormal, ray.dir) > 0 ? -shadingNormal : shadingNormal;
                 passes = nullptr;  // filled
@@ -339,7 +298,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const double uLight = uChoices.x;
         const Point2 uLightPoint = sampler.get2D();
         const Vec3 receiver = receivingNormal(bsdf, si.ng);
-        if (!lights_.empty() && !specularOnly(bsdf)) {
+        if (!lights_.empty() && !bsdf.specularOnly()) {
             std::optional<LightSample> ls = lights_.sample(si.p, receiver, uLight, uLightPoint);
             // BSDF sampling alone cannot reach delta lights: they are sampled in every mode.
             // Past casters from a seen surface, most lights are the light pass's.

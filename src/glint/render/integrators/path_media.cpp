@@ -6,21 +6,11 @@
 #include "glint/render/integrators/path.h"
 
 namespace glint {
-namespace {
-
-/// Whether `bsdf` refracts into a volume (glass, a glTF volume): its surface bounds a medium.
-bool refractsIntoVolume(const Bsdf& bsdf) {
-    if (std::holds_alternative<Dielectric>(bsdf.lobe)) return true;
-    const auto* m = std::get_if<MetallicRoughness>(&bsdf.lobe);
-    return m && !m->thin && m->transmission > 0;
-}
-
-}  // namespace
 
 uint32_t PathIntegrator::mediumAfter(const Material& m, const Bsdf& bsdf, const Vec3& dir,
                                      const Vec3& ng, uint32_t current) const {
     if (scene_.media.empty()) return current;
-    if (m.interior == 0 && !refractsIntoVolume(bsdf)) return current;
+    if (m.interior == 0 && !bsdf.relativeEta()) return current;
     return dot(dir, ng) < 0 ? m.interior : scene_.fog;
 }
 

@@ -24,22 +24,18 @@ Vec3 facingViewer(const Vec3& n, const Vec3& ng, const Vec3& wo) {
     return wo * kLift + across * (std::sqrt(1 - kLift * kLift) / len);
 }
 
-/// GGX alpha below which a surface counts as smooth enough to cast caustics: sharp enough that
-/// light traced from a small light through it lands in a small area, where the camera's paths
-/// find it as fireflies (the bench's metal ball, alpha 0.04, measured 13x the relMSE efficiency
-/// with the pass).
-constexpr double kCausticAlpha = 0.1;
-
 }  // namespace
 
 namespace {
 
+/// The GGX alpha of a glTF roughness.
+double ggxAlpha(double roughness) {
+    return std::max(roughness * roughness, MetallicRoughness::kMinAlpha);
+}
+
 /// glTF's BSDF for the evaluated material `ps` of `pm`, its vectors in `frame`.
 MetallicRoughness pbrBsdf(const PbrMaterial& pm, const PbrSurface& ps, const Frame& frame,
                           bool flip) {
-    auto ggxAlpha = [](double roughness) {
-        return std::max(roughness * roughness, MetallicRoughness::kMinAlpha);
-    };
     MetallicRoughness b{ps.baseColor,    ps.metallic, ggxAlpha(ps.roughness),
                         ps.transmission, pm.ior,      pm.thickness == 0};
     b.dispersion = pm.dispersion;
@@ -75,7 +71,7 @@ SurfaceShading shadeSurface(const Scene& scene, const SurfaceInteraction& si, co
         const bool flip = dot(s.normal, si.ng) < 0;
         const Vec3 ns = flip ? -s.normal : s.normal;
         s.frame = ps.anisotropy > 0 ? Frame(ns, ps.anisotropyDirection) : Frame(ns);
-        s.bsdf.lobe = pbrBsdf(pm, ps, s.frame, flip);
+        s.bsdf = pbrBsdf(pm, ps, s.frame, flip);
         return s;
     }
     if (m.texture != 0) {
@@ -112,36 +108,14 @@ Vec3 volumeTransmittance(const Scene& scene, const SurfaceInteraction& si, const
     return Vec3(keep(c.x), keep(c.y), keep(c.z));
 }
 
-bool specularOnly(const Bsdf& bsdf) {
-    struct Visitor {
-        bool operator()(const Lambertian&) const { return false; }
-        bool operator()(const Conductor& c) const { return c.alpha == 0; }
-        bool operator()(const Dielectric& d) const { return !d.rough(); }
-        bool operator()(const DiffuseSpecular& d) const {
-            return d.alpha == 0 && d.diffuse == Vec3(0);
-        }
-        bool operator()(const MetallicRoughness&) const { return false; }
-    };
-    return std::visit(Visitor{}, bsdf.lobe);
-}
-
 bool castsCaustics(const Scene& scene, const Material& m) {
-    if (m.pbr != 0) {
+    if (m.pbr != 0) {  // the material's own factors
         const PbrMaterial& pm = scene.pbr(m.pbr);
-        const double clear = pm.metallic + (1 - pm.metallic) * pm.transmission;
-        return clear > 0.99 && pm.roughness * pm.roughness < kCausticAlpha;
+        return MetallicRoughness{pm.baseColor,    pm.metallic, ggxAlpha(pm.roughness),
+                                 pm.transmission, pm.ior,      pm.thickness == 0}
+            .castsCaustics();
     }
-    if (m.texture != 0) return false;
-    struct Visitor {
-        bool operator()(const Lambertian&) const { return false; }
-        bool operator()(const Conductor& c) const { return c.alpha < kCausticAlpha; }
-        bool operator()(const Dielectric& d) const { return d.alpha < kCausticAlpha; }
-        bool operator()(const DiffuseSpecular& d) const {
-            return d.alpha < kCausticAlpha && d.diffuse == Vec3(0) && !(d.specular == Vec3(0));
-        }
-        bool operator()(const MetallicRoughness& r) const { return r.alpha < kCausticAlpha; }
-    };
-    return std::visit(Visitor{}, bsdfFromMaterial(m).lobe);
+    return m.texture == 0 && bsdfFromMaterial(m).castsCaustics();
 }
 
 }  // namespace glint

@@ -36,9 +36,6 @@ std::vector<Bsdf> materialBsdfs(const Scene& scene);
 Vec3 volumeTransmittance(const Scene& scene, const SurfaceInteraction& si, const Vec3& origin,
                          const Vec3& dir);
 
-/// Whether every lobe of `bsdf` is a delta: no light sample can meet it.
-bool specularOnly(const Bsdf& bsdf);
-
 /// Whether surfaces of material `m` cast caustics: mirrors, glass, metal and glTF metal or
 /// glass that are smooth or glossy (GGX alpha below 0.1, a glTF roughness below 0.32; at most
 /// 1% diffuse), judged by the material's own factors (not its textures) so that the answer is

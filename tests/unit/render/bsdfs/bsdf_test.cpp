@@ -690,15 +690,15 @@ TEST(BsdfFromMaterial, PicksTheLobesAndNeverLetsTheColoursSumAboveOne) {
     Material m;
     m.diffuse = {0.5, 1.5, -1};
     Bsdf b = bsdfFromMaterial(m);
-    ASSERT_TRUE(std::holds_alternative<Lambertian>(b.lobe));
-    EXPECT_EQ(std::get<Lambertian>(b.lobe).albedo, Vec3(0.5, 1, 0));
+    ASSERT_TRUE(b.as<Lambertian>()) << b;
+    EXPECT_EQ(b.as<Lambertian>()->albedo, Vec3(0.5, 1, 0));
 
     m.diffuse = {0.8, 0.2, 0};
     m.specular = {0.6, 0.2, 0.5};
     m.roughness = 0.3;
     b = bsdfFromMaterial(m);
-    ASSERT_TRUE(std::holds_alternative<DiffuseSpecular>(b.lobe));
-    const auto& ds = std::get<DiffuseSpecular>(b.lobe);
+    ASSERT_TRUE(b.as<DiffuseSpecular>()) << b;
+    const auto& ds = *b.as<DiffuseSpecular>();
     EXPECT_NEAR(ds.diffuse.x, 0.8 / 1.4, 1e-15);  // 0.8 + 0.6 > 1: both scaled
     EXPECT_NEAR(ds.specular.x, 0.6 / 1.4, 1e-15);
     EXPECT_EQ(ds.diffuse.y, 0.2);  // 0.2 + 0.2 <= 1: kept
@@ -708,10 +708,10 @@ TEST(BsdfFromMaterial, PicksTheLobesAndNeverLetsTheColoursSumAboveOne) {
     m.transmission = {1, 0.9, 2};
     m.ior = 1.33;
     b = bsdfFromMaterial(m);
-    ASSERT_TRUE(std::holds_alternative<Dielectric>(b.lobe));
-    EXPECT_EQ(std::get<Dielectric>(b.lobe).eta, 1.33);
-    EXPECT_EQ(std::get<Dielectric>(b.lobe).tint, Vec3(1, 0.9, 1));
-    EXPECT_EQ(std::get<Dielectric>(b.lobe).alpha, 0.3);  // rough glass
+    ASSERT_TRUE(b.as<Dielectric>()) << b;
+    EXPECT_EQ(b.as<Dielectric>()->eta, 1.33);
+    EXPECT_EQ(b.as<Dielectric>()->tint, Vec3(1, 0.9, 1));
+    EXPECT_EQ(b.as<Dielectric>()->alpha, 0.3);  // rough glass
 }
 
 }  // namespace

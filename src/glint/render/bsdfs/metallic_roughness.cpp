@@ -1,12 +1,15 @@
-// glTF's metallic-roughness BSDF and its layers (bsdf.h's MetallicRoughness): the base of
+// glTF's metallic-roughness BSDF and its layers (metallic_roughness.h): the base of
 // the specification's appendix B with the specular, anisotropy, iridescence, transmission,
 // diffuse transmission and volume extensions, under the sheen and clearcoat layers.
 
+#include "glint/render/bsdfs/metallic_roughness.h"
+
 #include <algorithm>
 #include <numbers>
+#include <ostream>
 
-#include "glint/render/bsdfs/bsdf.h"
 #include "glint/render/bsdfs/bsdf_util.h"
+#include "glint/render/bsdfs/dielectric.h"
 #include "glint/render/bsdfs/optics.h"
 #include "glint/render/bsdfs/sheen.h"
 #include "glint/render/bsdfs/thin_film.h"
@@ -70,11 +73,11 @@ MetallicRoughness::Weights MetallicRoughness::weights(const Vec3& o) const {
     return w;
 }
 
-Vec3 MetallicRoughness::baseEval(const Vec3& wo, const Vec3& wi) const {
+Vec3 MetallicRoughness::baseEval(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
     const double kt = (1 - metallic) * transmission;
     const double kd = (1 - metallic) * (1 - transmission);
     Vec3 f(0);
-    if (!thin && kt > 0) f += volumeOf(*this).eval(wo, wi) * kt;
+    if (!thin && kt > 0) f += volumeOf(*this).eval(wo, wi, mode) * kt;
     Vec3 o = wo.z > 0 ? wo : flipZ(wo), i = wo.z > 0 ? wi : flipZ(wi);
     if (!sameHemisphere(wo, wi)) {
         if (diffuseTransmission > 0 && o.z > 0 && i.z < 0)
@@ -111,7 +114,8 @@ double MetallicRoughness::basePdf(const Vec3& wo, const Vec3& wi) const {
     return pdf / sum;
 }
 
-std::optional<BsdfSample> MetallicRoughness::baseSample(const Vec3& wo, double uc, Point2 u) const {
+std::optional<BsdfSample> MetallicRoughness::baseSample(const Vec3& wo, double uc, Point2 u,
+                                                        TransportMode mode) const {
     if (wo.z == 0) return std::nullopt;
     Vec3 o = wo.z > 0 ? wo : flipZ(wo);
     const Weights w = weights(o);
@@ -136,7 +140,7 @@ std::optional<BsdfSample> MetallicRoughness::baseSample(const Vec3& wo, double u
         }
         const double ut =
             std::min((uc - w.spec - w.diffuse - w.diffuseTrans) / w.trans, 0.999999999);
-        std::optional<BsdfSample> ds = volumeOf(*this).sample(wo, ut, u);
+        std::optional<BsdfSample> ds = volumeOf(*this).sample(wo, ut, u, mode);
         if (!ds) return std::nullopt;
         if (ds->isSpecular()) {
             ds->f = ds->f * kt;
@@ -150,8 +154,16 @@ std::optional<BsdfSample> MetallicRoughness::baseSample(const Vec3& wo, double u
     const Vec3 wi = wo.z > 0 ? i : flipZ(i);
     const double p = basePdf(wo, wi);
     if (!(p > 0)) return std::nullopt;
-    return BsdfSample{wi, baseEval(wo, wi), p,
+    return BsdfSample{wi, baseEval(wo, wi, mode), p,
                       (sameHemisphere(wo, wi) ? Reflection : Transmission) | Glossy};
+}
+
+BsdfFlags MetallicRoughness::flags() const {
+    BsdfFlags f = Reflection | Glossy;
+    if ((1 - metallic) * (1 - transmission) > 0) f = f | Diffuse;
+    if (transmission > 0 || diffuseTransmission > 0) f = f | Transmission;
+    if (transmission > 0 && metallic < 1 && (thin || !volumeOf(*this).rough())) f = f | Specular;
+    return f;
 }
 
 double MetallicRoughness::etaOfChannel(int c) const {
@@ -218,8 +230,8 @@ MetallicRoughness::LayerChoice MetallicRoughness::layerChoice(const Vec3& o, boo
     return c;
 }
 
-Vec3 MetallicRoughness::eval(const Vec3& wo, const Vec3& wi) const {
-    Vec3 f = baseEval(wo, wi);
+Vec3 MetallicRoughness::eval(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
+    Vec3 f = baseEval(wo, wi, mode);
     if (!layered() || wo.z == 0) return f;
     const bool below = wo.z < 0;
     const Vec3 o = below ? flipZ(wo) : wo, i = below ? flipZ(wi) : wi;
@@ -235,7 +247,7 @@ Vec3 MetallicRoughness::eval(const Vec3& wo, const Vec3& wi) const {
     return f;
 }
 
-double MetallicRoughness::pdf(const Vec3& wo, const Vec3& wi) const {
+double MetallicRoughness::pdf(const Vec3& wo, const Vec3& wi, TransportMode) const {
     if (!layered()) return basePdf(wo, wi);
     if (wo.z == 0) return 0;
     const bool below = wo.z < 0;
@@ -247,8 +259,9 @@ double MetallicRoughness::pdf(const Vec3& wo, const Vec3& wi) const {
     return pdf;
 }
 
-std::optional<BsdfSample> MetallicRoughness::sample(const Vec3& wo, double uc, Point2 u) const {
-    if (!layered()) return baseSample(wo, uc, u);
+std::optional<BsdfSample> MetallicRoughness::sample(const Vec3& wo, double uc, Point2 u,
+                                                    TransportMode mode) const {
+    if (!layered()) return baseSample(wo, uc, u, mode);
     if (wo.z == 0) return std::nullopt;
     const bool below = wo.z < 0;
     const Vec3 o = below ? flipZ(wo) : wo;
@@ -267,7 +280,7 @@ std::optional<BsdfSample> MetallicRoughness::sample(const Vec3& wo, double uc, P
         i = sampleCosineHemisphere(u);
     } else if (c.base > 0) {
         const double ub = std::min((uc - c.coat - c.sheen) / c.base, 0.999999999);
-        std::optional<BsdfSample> bs = baseSample(wo, ub, u);
+        std::optional<BsdfSample> bs = baseSample(wo, ub, u, mode);
         if (!bs) return std::nullopt;
         if (bs->isSpecular()) {  // a delta of the base, seen through the layers
             const double fromBelow = std::abs(bs->wi.z);
@@ -282,8 +295,22 @@ std::optional<BsdfSample> MetallicRoughness::sample(const Vec3& wo, double uc, P
     const Vec3 wi = below ? flipZ(i) : i;
     const double p = pdf(wo, wi);
     if (!(p > 0)) return std::nullopt;
-    return BsdfSample{wi, eval(wo, wi), p,
+    return BsdfSample{wi, eval(wo, wi, mode), p,
                       (sameHemisphere(wo, wi) ? Reflection : Transmission) | Glossy};
+}
+
+std::ostream& operator<<(std::ostream& out, const MetallicRoughness& m) {
+    out << "MetallicRoughness{baseColor " << m.baseColor << ", metallic " << m.metallic
+        << ", alpha " << m.alpha << ", transmission " << m.transmission << ", eta " << m.eta
+        << (m.thin ? ", thin" : "");
+    if (m.diffuseTransmission > 0) out << ", diffuseTransmission " << m.diffuseTransmission;
+    if (m.anisotropy > 0) out << ", anisotropy " << m.anisotropy;
+    if (m.dispersion > 0) out << ", dispersion " << m.dispersion;
+    if (m.iridescence.weight > 0) out << ", iridescence " << m.iridescence.weight;
+    if (!(m.sheen.color == Vec3(0))) out << ", sheen " << m.sheen.color;
+    if (m.coat.weight > 0) out << ", coat " << m.coat.weight;
+    out << "}";
+    return out;
 }
 
 }  // namespace glint
