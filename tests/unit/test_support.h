@@ -103,12 +103,12 @@ inline void buildLensScene(Scene& scene, int width, int height, const std::strin
     scene.primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, floor);
     uint32_t red = scene.addMaterial(makeMaterial({0, 0, 0}, {0.8, 0.1, 0.1}, {}, 1));
     scene.primitives.addSphere(Sphere{{0, 1, 0}, 1, {}}, red);
-    Light point;
+    LightSpec point;
     point.position = {3, 5, 3};
     point.color = {8, 8, 8};
     scene.lights.push_back(point);
-    Light sun;
-    sun.kind = Light::Kind::Directional;
+    LightSpec sun;
+    sun.kind = LightSpec::Kind::Directional;
     sun.direction = normalize(Vec3{1, 1, -1});
     sun.color = {0.3, 0.3, 0.3};
     scene.lights.push_back(sun);

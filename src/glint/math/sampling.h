@@ -44,6 +44,13 @@ inline Vec3 sampleCosineHemisphere(Point2 u) {
     return {x, y, std::sqrt(std::max(0.0, 1 - x * x - y * y))};
 }
 
+/// A unit direction uniformly distributed over the hemisphere z > 0 (density 1 / (2 pi)).
+inline Vec3 sampleUniformHemisphere(Point2 u) {
+    double z = u.x, r = std::sqrt(std::max(0.0, 1 - z * z));
+    double phi = 2 * std::numbers::pi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
 /// A unit direction uniformly distributed over the sphere (density 1 / (4 pi)).
 inline Vec3 sampleUniformSphere(Point2 u) {
     double z = 1 - 2 * u.x;

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "glint/scene/light.h"
+#include "glint/scene/light_spec.h"
 
 namespace glint {
 namespace {

@@ -15,7 +15,7 @@
 #include "glint/math/bbox.h"
 #include "glint/math/transform.h"
 #include "glint/scene/camera.h"
-#include "glint/scene/light.h"
+#include "glint/scene/light_spec.h"
 #include "glint/scene/mesh.h"
 #include "glint/scene/scene_builder.h"
 
@@ -125,7 +125,7 @@ struct Model {
     std::optional<ModelCamera> camera;
     /// A camera that moves over the shutter: its specs at the shutter's keys; empty if still.
     std::vector<CameraSpec> cameraMotion;
-    std::vector<Light> lights;  ///< In the model's space.
+    std::vector<LightSpec> lights;  ///< In the model's space.
     /// The format's extensions the file uses, by name (glTF's; none for other formats).
     std::vector<FormatExtension> extensions;
     /// The file's animations (glTF's), played or not.

@@ -27,9 +27,9 @@ std::string format(double v) {
     return buf;
 }
 
-Light directional(const Vec3& towards, double intensity) {
-    Light l;
-    l.kind = Light::Kind::Directional;
+LightSpec directional(const Vec3& towards, double intensity) {
+    LightSpec l;
+    l.kind = LightSpec::Kind::Directional;
     l.direction = normalize(towards);
     l.color = Vec3(intensity);
     return l;
@@ -161,7 +161,7 @@ Placed placeWithItsOwn(const Model& model, int width, int height) {
                 std::lround(settings.width / model.camera->aspectRatio), 1L, long(kMaxImageSide)));
     }
     if (!model.lights.empty()) {
-        for (const Light& light : model.lights) builder.addLight(light);
+        for (const LightSpec& light : model.lights) builder.addLight(light);
         has = (has.empty() ? "" : has + " and ") + std::to_string(model.lights.size()) +
               (model.lights.size() == 1 ? " light" : " lights") + " of its own";
     }

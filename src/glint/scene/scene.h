@@ -13,7 +13,7 @@
 #include "glint/scene/display_spec.h"
 #include "glint/scene/environment.h"
 #include "glint/scene/filter_spec.h"
-#include "glint/scene/light.h"
+#include "glint/scene/light_spec.h"
 #include "glint/scene/material.h"
 #include "glint/scene/medium.h"
 #include "glint/scene/pbr_material.h"
@@ -91,9 +91,11 @@ class Scene {
     /// Indirect"): each sample's light that reached the camera after two or more bounces is
     /// scaled down to at most this in its largest channel. 0: no clamp (unbiased).
     double clampIndirect = 0;
-    /// Whether the path tracer traces caustics from the lights (`--caustics`, render/integrators/caustics.h).
+    /// Whether the path tracer traces caustics from the lights (`--caustics`,
+    /// render/integrators/caustics.h).
     bool caustics = true;
-    /// The integrator that renders the scene, by name (render/integrators/integrator.h; `integrator`).
+    /// The integrator that renders the scene, by name (render/integrators/integrator.h;
+    /// `integrator`).
     std::string integrator = "whitted";
     std::string output;  ///< Output file the scene asks for; may be empty.
     std::optional<CameraSpec> camera;
@@ -112,7 +114,7 @@ class Scene {
     /// How the image is meant to be shown: the course's clamp by default (the command line may
     /// override it).
     DisplaySpec display;
-    std::vector<Light> lights;
+    std::vector<LightSpec> lights;
     /// Camera rays per pixel the scene asks for (`spp`); 0: not given (the CLI decides).
     int spp = 0;
     FilterSpec filter;  ///< Reconstruction filter (`filter`); the one-pixel box by default.

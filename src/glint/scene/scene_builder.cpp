@@ -44,15 +44,15 @@ const Transform& SceneBuilder::bakeTransform() {
 }
 
 void SceneBuilder::addPointLight(const Vec3& position, const Vec3& colour) {
-    Light l;
-    l.kind = Light::Kind::Point;
+    LightSpec l;
+    l.kind = LightSpec::Kind::Point;
     l.position = position;
     l.color = colour;
     l.attenuation = attenuation_;
     scene_->lights.push_back(l);
 }
 
-void SceneBuilder::addQuadLight(const Light& quad) {
+void SceneBuilder::addQuadLight(const LightSpec& quad) {
     scene_->lights.push_back(quad);
     Material m;
     m.ambient = Vec3(0);

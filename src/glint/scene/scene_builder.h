@@ -120,12 +120,12 @@ class SceneBuilder {
     const Vec3& attenuation() const { return attenuation_; }
     void setAttenuation(const Vec3& a) { attenuation_ = a; }
     /// Adds `light` as it is (world space).
-    void addLight(const Light& light) { scene_->lights.push_back(light); }
+    void addLight(const LightSpec& light) { scene_->lights.push_back(light); }
     /// Adds a point light at `position` (world space) with the current attenuation.
     void addPointLight(const Vec3& position, const Vec3& colour);
     /// Adds the quad light `quad` (world space) and its surface, which camera and reflected
     /// rays see: emission only, from the front.
-    void addQuadLight(const Light& quad);
+    void addQuadLight(const LightSpec& quad);
     /// The thin lens (Camera::apertureRadius, focusDistance), applied to the camera when the
     /// scene is finished: it may be given before the camera.
     void setLens(double apertureRadius, double focusDistance) {

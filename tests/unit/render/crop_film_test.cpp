@@ -27,7 +27,7 @@ void buildScene(Scene& scene) {
     scene.primitives.addTriangle({-5, 0, -5}, {5, 0, 5}, {5, 0, -5}, nullptr, floor);
     uint32_t red = scene.addMaterial(test::makeMaterial({0, 0, 0}, {0.8, 0.1, 0.1}));
     scene.primitives.addSphere(Sphere{{0, 1, 0}, 1, {}}, red);
-    Light point;
+    LightSpec point;
     point.position = {3, 5, 3};
     point.color = {8, 8, 8};
     scene.lights.push_back(point);

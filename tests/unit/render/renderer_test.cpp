@@ -36,13 +36,13 @@ void buildScene(Scene& scene) {
     uint32_t blue = scene.addMaterial(makeMaterial({0, 0, 0.1}, {0.1, 0.2, 0.8}, {}, 1));
     Mat4 m = Mat4::translate(2, 0.5, 1) * Mat4::rotate(0, 1, 0, 30) * Mat4::scale(1, 0.5, 0.5);
     scene.primitives.addSphere(Sphere{{0, 0, 0}, 1, *Transform::fromMatrix(m)}, blue);
-    Light point;
+    LightSpec point;
     point.position = {3, 5, 3};
     point.color = {1, 1, 1};
     point.attenuation = {1, 0.1, 0.05};
     scene.lights.push_back(point);
-    Light sun;
-    sun.kind = Light::Kind::Directional;
+    LightSpec sun;
+    sun.kind = LightSpec::Kind::Directional;
     sun.direction = normalize(Vec3{1, 1, -1});
     sun.color = {0.2, 0.2, 0.2};
     scene.lights.push_back(sun);

@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "glint/math/rng.h"
-#include "glint/scene/light.h"
+#include "glint/scene/light_spec.h"
 #include "unit/statistics.h"
 #include "unit/test_support.h"
 

@@ -169,7 +169,7 @@ TEST(ModelFraming, AModelWithoutCameraOrLightsGetsGlintsAndSaysSo) {
 TEST(ModelFraming, TheModelsOwnCameraAndLightsAreKept) {
     Model model = singleMeshModel(triangle());
     model.camera = ModelCamera{{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 30}, 2.0, "camera 0 (node 1)"};
-    Light light;
+    LightSpec light;
     light.position = {0, 0, 3};
     model.lights.push_back(light);
     ModelScene m = frameModelScene(model, 0, 0, ModelLook::classic());
@@ -228,7 +228,7 @@ TEST(ModelFraming, TheStudioLookPathTracesInTheStudioOnAGroundShadow) {
 TEST(ModelFraming, TheStudioAddsToTheModelsOwnCameraAndLights) {
     Model model = singleMeshModel(triangle());
     model.camera = ModelCamera{{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 30}, 2.0, "camera 0 (node 1)"};
-    Light light;
+    LightSpec light;
     light.position = {0, 0, 3};
     model.lights.push_back(light);
     ModelScene m = frameModelScene(model);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "glint/scene/light.h"
+#include "glint/scene/light_spec.h"
 
 namespace glint::test {
 
@@ -23,9 +23,9 @@ inline double polygonIrradiance(const std::vector<Vec3>& poly, const Vec3& p, co
 }
 
 /// A quad light of unit radiance.
-inline Light quadLight(const Vec3& corner, const Vec3& e1, const Vec3& e2) {
-    Light l;
-    l.kind = Light::Kind::Quad;
+inline LightSpec quadLight(const Vec3& corner, const Vec3& e1, const Vec3& e2) {
+    LightSpec l;
+    l.kind = LightSpec::Kind::Quad;
     l.position = corner;
     l.edge1 = e1;
     l.edge2 = e2;
@@ -34,7 +34,7 @@ inline Light quadLight(const Vec3& corner, const Vec3& e1, const Vec3& e2) {
 }
 
 /// The exact irradiance at `p` (unit normal `n`) from the quad light `l` of unit radiance.
-inline double quadIrradiance(const Light& l, const Vec3& p, const Vec3& n) {
+inline double quadIrradiance(const LightSpec& l, const Vec3& p, const Vec3& n) {
     return polygonIrradiance(
         {l.position, l.position + l.edge1, l.position + l.edge1 + l.edge2, l.position + l.edge2}, p,
         n);

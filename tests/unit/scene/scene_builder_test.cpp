@@ -91,8 +91,8 @@ TEST(SceneBuilder, PointLightsTakeTheAttenuationCurrentWhenAdded) {
 
 TEST(SceneBuilder, AQuadLightAddsItsEmittingSurface) {
     SceneBuilder b;
-    Light quad;
-    quad.kind = Light::Kind::Quad;
+    LightSpec quad;
+    quad.kind = LightSpec::Kind::Quad;
     quad.edge1 = {1, 0, 0};
     quad.edge2 = {0, 1, 0};
     quad.color = Vec3(5);

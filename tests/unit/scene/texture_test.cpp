@@ -176,8 +176,8 @@ TEST(TexturedShading, TheTextureReplacesTheDiffuseColour) {
     Material m = test::makeMaterial({0, 0, 0}, {0.2, 0.2, 0.2});
     m.texture = scene.addTexture(t);
     addTexturedFloor(scene, scene.addMaterial(m));
-    Light l;
-    l.kind = Light::Kind::Directional;
+    LightSpec l;
+    l.kind = LightSpec::Kind::Directional;
     l.direction = {0, 0, 1};
     l.color = {1, 1, 1};
     scene.lights.push_back(l);
@@ -201,8 +201,8 @@ TEST(TexturedShading, UntexturedTrianglesBesideTexturedOnesKeepTheirColour) {
     scene.primitives.addTriangle({2, 2, 0}, {4, 2, 0}, {2, 4, 0}, nullptr, plain);
     addTexturedFloor(scene, textured);
     scene.primitives.addTriangle({-4, -4, 0}, {-2, -4, 0}, {-4, -2, 0}, nullptr, plain);
-    Light l;
-    l.kind = Light::Kind::Directional;
+    LightSpec l;
+    l.kind = LightSpec::Kind::Directional;
     l.direction = {0, 0, 1};
     l.color = {1, 1, 1};
     scene.lights.push_back(l);

@@ -228,8 +228,8 @@ void Parser::cmdPopTransform() {
 }
 
 void Parser::cmdDirectional() {
-    Light l;
-    l.kind = Light::Kind::Directional;
+    LightSpec l;
+    l.kind = LightSpec::Kind::Directional;
     Vec3 d = transform().vector(vec3(1));
     double len = length(d);
     if (!(len > 0) || !std::isfinite(len)) fail(1, "light direction must not be zero");

@@ -29,8 +29,8 @@ void Parser::cmdRoughness() {
 
 void Parser::cmdQuadLight() {
     const Transform& t = transform();
-    Light l;
-    l.kind = Light::Kind::Quad;
+    LightSpec l;
+    l.kind = LightSpec::Kind::Quad;
     l.position = checkedVertex(t.point(vec3(1)), 1);
     l.edge1 = t.vector(vec3(4));
     l.edge2 = t.vector(vec3(7));

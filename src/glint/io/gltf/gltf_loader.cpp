@@ -184,8 +184,8 @@ std::optional<ModelCamera> nodeCamera(const Context& ctx, const CameraNode& node
 }
 
 /// Light `index` of KHR_lights_punctual, placed by `world`, if Glint can use it.
-std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
-                               const std::string& node) {
+std::optional<LightSpec> nodeLight(Context& ctx, int index, const Mat4& world,
+                                   const std::string& node) {
     const tinygltf::Light& l = ctx.model.lights[static_cast<size_t>(index)];
     const std::string label = describe("light", static_cast<size_t>(index), l.name);
     Vec3 colour(1);
@@ -202,19 +202,19 @@ std::optional<Light> nodeLight(Context& ctx, int index, const Mat4& world,
         ctx.warnOnce("range",
                      "the range of lights is ignored: they fall off with the square of "
                      "the distance, without a cut-off");
-    Light out;
+    LightSpec out;
     out.color = colour * (l.intensity * kGltfLightScale);
     if (l.type == "point" || l.type == "spot") {
         if (l.type == "spot")
             ctx.warnOnce("spot", label +
                                      " is a spot light: Glint lights it as a point light, "
                                      "in every direction");
-        out.kind = Light::Kind::Point;
+        out.kind = LightSpec::Kind::Point;
         out.position = applyPoint(world, Vec3(0));
         out.attenuation = {0, 0, 1};
         if (isFinite(out.position) && withinCoordinateRange(out.position)) return out;
     } else if (l.type == "directional") {
-        out.kind = Light::Kind::Directional;
+        out.kind = LightSpec::Kind::Directional;
         Vec3 towards = applyVector(world, {0, 0, 1});  // it shines along its node's -z
         double len = length(towards);
         if (len > 0 && std::isfinite(len)) {
@@ -367,7 +367,7 @@ void walkNodes(Context& ctx, Model& out, std::vector<SkinnedPlacement>& skinned)
             int light = v.GetNumberAsInt();
             if (light < 0 || static_cast<size_t>(light) >= ctx.model.lights.size())
                 missing(ctx, "light", light, ctx.model.lights.size(), label);
-            if (std::optional<Light> l = nodeLight(ctx, light, world, label))
+            if (std::optional<LightSpec> l = nodeLight(ctx, light, world, label))
                 out.lights.push_back(*l);
         }
         for (auto it = n.children.rbegin(); it != n.children.rend(); ++it)

@@ -63,7 +63,9 @@ CausticPass::CausticPass(const Scene& scene, const LightSampler& lights,
     radius_ = std::max(length(hi - lo) * 0.5, 1e-9);
     const Bounds3f all = prims.bounds();
     const Vec3 alo(all.lo), ahi(all.hi);
-    far_ = (length((alo + ahi) * 0.5 - center_) + length(ahi - alo) * 0.5 + radius_) * 1.01 + 1;
+    const double far =
+        (length((alo + ahi) * 0.5 - center_) + length(ahi - alo) * 0.5 + radius_) * 1.01 + 1;
+    target_ = LightLeContext{center_, radius_, far, scene.spawnOffset()};
     choice_ = Distribution1D(lights.emissionWeights(center_, radius_));
     camera_.emplace(spec, scene.width, scene.height);
     // Photons are gathered within about two pixels' footprint at the casters' distance.
@@ -135,8 +137,10 @@ void CausticPass::tracePath(uint64_t seed, std::vector<Splat>& out,
     double pChoice = 0;
     const size_t light = choice_.sampleDiscrete(rng.uniform(), &pChoice);
     const Point2 uPoint = u2(), uDir = u2();
-    std::optional<EmittedRay> emitted = lights_.emit(light, center_, radius_, far_, uPoint, uDir);
-    if (!emitted || !(pChoice > 0)) return;
+    const Light& source = lights_.light(light);
+    std::optional<LightLeSample> emitted = source.sampleLe(uPoint, uDir, target_);
+    // Light the pass leaves to the camera's paths (an emissive plane, the sky's dim parts).
+    if (!emitted || !source.tracedByLightPass(emitted->L) || !(pChoice > 0)) return;
     const Vec3 emittedBeta = emitted->beta / pChoice;
     Vec3 beta = emittedBeta;
     Ray ray = emitted->ray;
@@ -149,10 +153,10 @@ void CausticPass::tracePath(uint64_t seed, std::vector<Splat>& out,
             if (m != Primitives::kMixedMaterials && !casters_[m]) return;
         }
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
-        if (casters == 0 && emitted->attenuated) {  // the course's fall-off, over the first leg
-            const Light& l = *emitted->attenuated;
+        if (casters == 0 && emitted->attenuation) {  // the course's fall-off, over the first leg
+            const Vec3& a = *emitted->attenuation;
             const double d = length(si.p - ray.origin);
-            const double att = l.attenuation.x + l.attenuation.y * d + l.attenuation.z * d * d;
+            const double att = a.x + a.y * d + a.z * d * d;
             beta = finiteRadiance(beta * (d * d / att));
         }
         beta = beta * volumeTransmittance(scene_, si, ray.origin, ray.dir);

@@ -37,8 +37,8 @@
 
 #include "glint/render/film/filter.h"
 #include "glint/render/integrators/light_pass.h"
-#include "glint/render/lights/light_sampler.h"
 #include "glint/render/integrators/surface_shading.h"
+#include "glint/render/lights/light_sampler.h"
 #include "glint/scene/camera.h"
 
 namespace glint {
@@ -85,8 +85,9 @@ class CausticPass {
     std::optional<Camera> camera_;
     Vec3 center_;  ///< The bounding sphere of the casters.
     double radius_ = 0;
-    double far_ =
-        0;  ///< Beyond the sphere's centre, outside the scene: where light at infinity starts.
+    /// Where light paths are aimed: that sphere, and far beyond its centre, outside the scene,
+    /// where light at infinity starts.
+    LightLeContext target_;
     Distribution1D choice_;    ///< Of the lights.
     double photonRadius_ = 0;  ///< The photons' gathering radius for a pass of one index.
     FilterSampler filter_;     ///< The scene's pixel filter,

@@ -55,7 +55,7 @@ struct PathContext {
     const LightPassResult* lightPass = nullptr;
 };
 
-/// `c` if every channel is finite and within +-kMaxRadiance (scene/light.h); otherwise `c`
+/// `c` if every channel is finite and within +-kMaxRadiance (scene/light_spec.h); otherwise `c`
 /// clamped there, NaN channels set to 0, and counted in `counts.nonFinite` if any channel was
 /// NaN or infinite. Every integrator passes the radiance it returns through this.
 Vec3 repairRadiance(const Vec3& c, RayCounts& counts);
@@ -85,8 +85,8 @@ class Integrator {
     virtual bool usesRandomNumbers() const = 0;
 
     /// Light this integrator leaves to a pass over the whole image of its own (the path
-    /// tracer's caustics, render/integrators/caustics.h), for camera sample indices [begin, end): light
-    /// for the renderer to add to each pixel's sum of samples, and photons for li() to gather
+    /// tracer's caustics, render/integrators/caustics.h), for camera sample indices [begin, end):
+    /// light for the renderer to add to each pixel's sum of samples, and photons for li() to gather
     /// (PathContext::lightPass); null if it leaves nothing. `seed` is the render's seed; `pool`
     /// the threads to trace on; it stops early if `cancel` becomes true. May be called from
     /// several threads at once, and keeps recent results for calls that ask again (a frame

@@ -263,7 +263,8 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             const Vec3 light =
                 depth == 0 || specularBounce
                     ? beta * emission
-                    : beta * emission * bsdfWeight(bsdfPdf, lights_.pdfHit(from, fromN, hit, si));
+                    : beta * emission *
+                          bsdfWeight(bsdfPdf, lights_.pdfHit(from, fromN, ray.dir, hit, si));
             L += clamped(light, depth);
         }
         if (depth >= scene_.maxDepth) break;

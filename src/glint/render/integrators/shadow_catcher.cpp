@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "glint/core/spawn.h"
-#include "glint/scene/light.h"
+#include "glint/scene/light_spec.h"
 
 namespace glint {
 namespace {
@@ -58,6 +58,7 @@ ShadowCatcherShading::ShadowCatcherShading(const Scene& scene)
     : scene_(scene),
       height_(scene.shadowCatcher ? scene.shadowCatcher->height : 0),
       environmentIrradiance_(upwardIrradiance(scene)) {
+    for (const LightSpec& l : scene.lights) lights_.push_back(lightFromSpec(l));
     if (!scene.environment) return;
     const EnvironmentMap& map = *scene.environment;
     const int w = map.width(), h = map.height();
@@ -137,7 +138,7 @@ Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvi
 
     // The lights: each one's irradiance, and its shadow ray (or, among many lights, one
     // shadow ray to a light chosen at random, counted for all).
-    const auto& lights = scene_.lights;
+    const std::vector<Light>& lights = lights_;
     const bool each = lights.size() <= kLightsEach;
     const size_t chosen =
         each ? 0

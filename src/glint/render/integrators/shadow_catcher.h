@@ -18,11 +18,13 @@
 /// is then nearly noiseless too. Lights of emissive surfaces cast no shadow on it.
 
 #include <optional>
+#include <vector>
 
 #include "glint/core/ray.h"
 #include "glint/math/distribution.h"
 #include "glint/math/sampling.h"
 #include "glint/render/integrators/integrator.h"
+#include "glint/render/lights/light.h"
 #include "glint/scene/scene.h"
 
 namespace glint {
@@ -56,6 +58,7 @@ class ShadowCatcherShading {
 
   private:
     const Scene& scene_;
+    std::vector<Light> lights_;  ///< The scene's own (point, spot, directional, quad).
     double height_;
     Vec3 environmentIrradiance_;
     /// With a map: its upper rows' texels, each weighted by the mean luminance of the bilinear

@@ -73,7 +73,10 @@ WhittedIntegrator::WhittedIntegrator(const Scene& scene, int spp)
         anyTransmissive_ = anyTransmissive_ || m.transmissive() || m.interface;
         usesRandomNumbers_ = usesRandomNumbers_ || m.roughness > 0;
     }
-    for (const Light& l : scene.lights) anyAreaLights_ = anyAreaLights_ || l.isArea();
+    for (const LightSpec& l : scene.lights) {
+        lights_.push_back(lightFromSpec(l));
+        anyAreaLights_ = anyAreaLights_ || l.isArea();
+    }
     usesRandomNumbers_ = usesRandomNumbers_ || anyAreaLights_;
 }
 
@@ -117,7 +120,7 @@ Vec3 WhittedIntegrator::transmittance(const Vec3& p, const Vec3& wi, double dist
                                                                   const Vec3& wo, const Material& m,
                                                                   bool glossyRay, Vec3& color,
                                                                   PathContext& ctx) const {
-    for (const Light& light : scene_.lights) {
+    for (const Light& light : lights_) {
         if (!light.isDelta()) {
             areaLight(light, si, wo, m, glossyRay, color, ctx);
             continue;
@@ -170,7 +173,7 @@ void WhittedIntegrator::areaLight(const Light& light, const SurfaceInteraction& 
             }
             // The GGX lobe's reflected ray finds this light too: weigh the two estimates of its
             // highlight by multiple importance sampling (n x n light samples against one ray).
-            double pl = n * n * ls->pdf();
+            double pl = n * n * ls->pdf;
             double w = powerHeuristic(pl, ggxReflectionPdf(si, wo, ls->wi, m.roughness));
             Vec3 diffuse = m.diffuse * nDotL;
             Vec3 specular = m.specular * (ggxSpecular(si, wo, ls->wi, m.roughness) * w);
@@ -229,8 +232,8 @@ Vec3 WhittedIntegrator::indirect(const Ray& ray, const SurfaceInteraction& si, c
             Vec3 c = lm.ambient;
             if (dot(wi, at.ng) < 0) {
                 double pl = 0;
-                for (const Light& light : scene_.lights)
-                    if (light.isArea()) pl += light.pdfLi(si.p, wi);
+                for (const Light& light : lights_)
+                    if (!light.isDelta()) pl += light.pdfLi(si.p, LightPoint{at.p, at.ng, wi});
                 double pb = ggx.g1(woL) * ggx.d(h) / (4 * woL.z);
                 c += lm.emission *
                      (std::numbers::pi * powerHeuristic(pb, areaGrid_ * areaGrid_ * pl));

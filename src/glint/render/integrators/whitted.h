@@ -4,7 +4,10 @@
 /// Glint's extensions of it, following the lecture: refraction with Fresnel weighting, soft
 /// shadows from area lights, and a rough (GGX) specular lobe. See docs/scene-format.md.
 
+#include <vector>
+
 #include "glint/render/integrators/integrator.h"
+#include "glint/render/lights/light.h"
 
 namespace glint {
 
@@ -75,6 +78,7 @@ class WhittedIntegrator final : public Integrator {
                   double weight, PathContext& ctx) const;
 
     const Scene& scene_;
+    std::vector<Light> lights_;  ///< The scene's own (point, spot, directional, quad).
     bool anyTransmissive_ = false;
     bool anyAreaLights_ = false;
     bool usesRandomNumbers_ = false;

@@ -47,13 +47,13 @@ TEST(CourseExtensions, MaterialErrors) {
 TEST(CourseExtensions, QuadLightIsALightAndAnEmittingSurface) {
     auto s = parseOk("translate 0 5 0\nquadLight -1 0 -1 2 0 0 0 0 2 4 4 4\n");
     ASSERT_EQ(s->lights.size(), 1u);
-    const Light& l = s->lights[0];
-    EXPECT_EQ(l.kind, Light::Kind::Quad);
+    const LightSpec& l = s->lights[0];
+    EXPECT_EQ(l.kind, LightSpec::Kind::Quad);
     expectNear(l.position, {-1, 5, -1});
     expectNear(l.edge1, {2, 0, 0});
     expectNear(l.edge2, {0, 0, 2});
     EXPECT_NEAR(l.quadArea(), 4, 1e-12);
-    expectNear(l.quadNormal(), {0, -1, 0});  // emits downwards
+    expectNear(normalize(cross(l.edge1, l.edge2)), {0, -1, 0});  // emits downwards
     EXPECT_EQ(s->primitives.triangleCount(), 2u);
     // Seen from below: the emitting face, radiance 4; from above: the back, black.
     auto below = shoot(*s, {0.3, 0, 0.2}, {0, 1, 0});

@@ -254,7 +254,7 @@ TEST(CourseLoader, PushAndPopDoNotSaveOrRestoreMaterials) {
 TEST(CourseLoader, DirectionalLightPointsTowardsTheLightTransformedAsAVectorAndNormalised) {
     auto s = parseOk("directional 0 0 2 1 0.5 0.25\n");
     ASSERT_EQ(s->lights.size(), 1u);
-    EXPECT_EQ(s->lights[0].kind, Light::Kind::Directional);
+    EXPECT_EQ(s->lights[0].kind, LightSpec::Kind::Directional);
     expectNear(s->lights[0].direction, {0, 0, 1});
     EXPECT_EQ(s->lights[0].color, Vec3(1, 0.5, 0.25));
     // Transformed as a vector.
@@ -271,7 +271,7 @@ TEST(CourseLoader, DirectionalLightPointsTowardsTheLightTransformedAsAVectorAndN
 TEST(CourseLoader, PointLightPositionIsTransformed) {
     auto s = parseOk("translate 1 2 3\nrotate 0 0 1 90\npoint 1 0 0 0.1 0.2 0.3\n");
     ASSERT_EQ(s->lights.size(), 1u);
-    EXPECT_EQ(s->lights[0].kind, Light::Kind::Point);
+    EXPECT_EQ(s->lights[0].kind, LightSpec::Kind::Point);
     expectNear(s->lights[0].position, {1, 3, 3});
     EXPECT_EQ(s->lights[0].color, Vec3(0.1, 0.2, 0.3));
 }

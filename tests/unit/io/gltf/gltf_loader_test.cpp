@@ -330,13 +330,13 @@ TEST(GltfLoader, TheCameraAndLightsAreImported) {
     EXPECT_EQ(model.camera->description, "camera 0 'view' (node 3 'camera')");
 
     ASSERT_EQ(model.lights.size(), 2u);
-    const Light& bulb = model.lights[0];
-    EXPECT_EQ(bulb.kind, Light::Kind::Point);
+    const LightSpec& bulb = model.lights[0];
+    EXPECT_EQ(bulb.kind, LightSpec::Kind::Point);
     expectNear(bulb.position, {2, 3, 2.5});
     expectNear(bulb.attenuation, {0, 0, 1});
     expectNear(bulb.color, Vec3(1, 0.9, 0.8) * (30 / std::numbers::pi), 1e-9);
-    const Light& sun = model.lights[1];
-    EXPECT_EQ(sun.kind, Light::Kind::Directional);
+    const LightSpec& sun = model.lights[1];
+    EXPECT_EQ(sun.kind, LightSpec::Kind::Directional);
     expectNear(sun.color, Vec3(1.2 / std::numbers::pi), 1e-12);
     // The node turns -50 degrees about (1, 0.6, 0): its +z, towards the light, is raised.
     EXPECT_NEAR(length(sun.direction), 1, 1e-12);
@@ -357,7 +357,7 @@ TEST(GltfLoader, SpotLightsAreLitAsPointLightsAndOrthographicCamerasIgnored) {
                         &warnings);
     EXPECT_FALSE(model.camera);
     ASSERT_EQ(model.lights.size(), 1u);
-    EXPECT_EQ(model.lights[0].kind, Light::Kind::Point);
+    EXPECT_EQ(model.lights[0].kind, LightSpec::Kind::Point);
     expectNear(model.lights[0].position, {0, 2, 0});
     ASSERT_EQ(warnings.size(), 2u);
     EXPECT_THAT(warnings[0].message, HasSubstr("camera 0 (node 0) is orthographic"));

@@ -389,8 +389,8 @@ Image8 renderFromFront(Scene& scene, int w, int h, double distance = 4) {
     scene.camera = CameraSpec{{0, 0, distance}, {0, 0, 0}, {0, 1, 0}, 45};
     scene.width = w;
     scene.height = h;
-    Light l;
-    l.kind = Light::Kind::Directional;
+    LightSpec l;
+    l.kind = LightSpec::Kind::Directional;
     l.direction = {0, 0, 1};
     l.color = {1, 1, 1};
     scene.lights.push_back(l);

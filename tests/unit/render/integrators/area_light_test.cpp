@@ -9,8 +9,8 @@
 #include <numbers>
 
 #include "glint/render/bsdfs/optics.h"
-#include "glint/render/renderer.h"
 #include "glint/render/integrators/whitted.h"
+#include "glint/render/renderer.h"
 #include "unit/scene/quad_light_support.h"
 #include "unit/statistics.h"
 #include "unit/test_support.h"
@@ -23,7 +23,7 @@ const Vec3 kRadiance{2, 3, 4};
 
 /// Adds the quad light `l` of radiance kRadiance with its emitting surface, as the course
 /// loader does.
-void addQuadLight(Scene& scene, Light l) {
+void addQuadLight(Scene& scene, LightSpec l) {
     l.color = kRadiance;
     scene.lights.push_back(l);
     Material m = test::makeMaterial(Vec3(0));
@@ -57,7 +57,7 @@ std::unique_ptr<Scene> floorUnderQuadLight(int grid) {
 TEST(AreaLight, WhittedPixelsAreDiffuseTimesTheAnalyticIrradianceOnAverage) {
     for (int grid : {1, 4}) {
         std::unique_ptr<Scene> scene = floorUnderQuadLight(grid);
-        const Light& light = scene->lights[0];
+        const LightSpec& light = scene->lights[0];
         Camera camera(*scene->camera, scene->width, scene->height);
         test::MeanEstimate ratio;  // pixel / (kd L E), over floor pixels and seeds
         int floorPixels = 0;

@@ -88,7 +88,7 @@ TEST(CausticPass, AMirrorSendsDownThePointLightOfItsImage) {
     const uint32_t mm = scene.addMaterial(mirror);
     addSquare(scene, 0, 10, true, fm);
     addSquare(scene, 1.4, 5, false, mm);
-    Light lamp;
+    LightSpec lamp;
     lamp.position = Vec3(0.3, 1, 0.3);
     lamp.color = Vec3(1);
     lamp.attenuation = Vec3(0, 0, 1);  // physical: I / d^2

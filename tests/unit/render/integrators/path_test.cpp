@@ -222,7 +222,7 @@ void lightsAndGloss(Scene& scene) {
     // Facing down: cross(b - a, c - a) points to -y.
     scene.primitives.addTriangle({-1, 3, -1}, {1, 3, 1}, {-1, 3, 1}, nullptr, p);
     scene.primitives.addTriangle({-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, nullptr, p);
-    Light point;
+    LightSpec point;
     point.position = Vec3(-2, 2, 2);
     point.color = Vec3(2);
     scene.lights.push_back(point);
@@ -251,7 +251,7 @@ TEST(PathCorners, NoPathLeavesAClosedRoomThroughItsCorners) {
         scene.primitives.addTriangle(c[q[0]], c[q[1]], c[q[2]], nullptr, w);
         scene.primitives.addTriangle(c[q[0]], c[q[2]], c[q[3]], nullptr, w);
     }
-    Light lamp;
+    LightSpec lamp;
     lamp.position = Vec3(0.2, 0.6, -0.1);
     lamp.color = Vec3(1);
     scene.lights.push_back(lamp);

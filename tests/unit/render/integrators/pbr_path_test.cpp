@@ -58,9 +58,9 @@ uint32_t pbrMaterial(Scene& scene, const PbrMaterial& pm) {
     return scene.addMaterial(m);
 }
 
-Light directional(const Vec3& towards, double intensity) {
-    Light l;
-    l.kind = Light::Kind::Directional;
+LightSpec directional(const Vec3& towards, double intensity) {
+    LightSpec l;
+    l.kind = LightSpec::Kind::Directional;
     l.direction = normalize(towards);
     l.color = Vec3(intensity);
     return l;

@@ -1,7 +1,7 @@
-// The shadow catcher (render/integrators/shadow_catcher.h): the irradiance it divides by, where rays meet
-// it, exactly the environment where nothing is in the way, and the fraction of light a square
-// above it blocks (its form factor, known in closed form) in the mean of many samples; in the
-// path tracer, camera rays see it and no other ray does.
+// The shadow catcher (render/integrators/shadow_catcher.h): the irradiance it divides by, where
+// rays meet it, exactly the environment where nothing is in the way, and the fraction of light a
+// square above it blocks (its form factor, known in closed form) in the mean of many samples; in
+// the path tracer, camera rays see it and no other ray does.
 
 #include "glint/render/integrators/shadow_catcher.h"
 
@@ -195,7 +195,7 @@ TEST(ShadowCatcher, TheSceneLightsCastShadowsToo) {
     scene.shadowCatcher = ShadowCatcher{0};
     scene.environment = constantMap(env);
     addSquare(scene, 1, 1);
-    Light point;
+    LightSpec point;
     point.position = {0, 3, 0};
     point.color = Vec3(light);  // no fall-off: irradiance `light` straight below
     scene.lights.push_back(point);
@@ -236,7 +236,7 @@ TEST(ShadowCatcher, LayersOfAlphaBlendedSurfacesLetThroughTheirShareOfLight) {
             scene.primitives.addTriangle({-w, h, -w}, {w, h, -w}, {w, h, w}, nullptr, id);
             scene.primitives.addTriangle({-w, h, -w}, {w, h, w}, {-w, h, w}, nullptr, id);
         }
-        Light point;
+        LightSpec point;
         point.position = {0, 3, 0};
         point.color = Vec3(light);
         scene.lights.push_back(point);

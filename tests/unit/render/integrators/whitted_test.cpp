@@ -33,18 +33,18 @@ void addBlocker(Scene& scene, double z) {
     scene.primitives.addTriangle({-0.5, -0.5, z}, {0.5, -0.5, z}, {0, 0.5, z}, nullptr, id);
 }
 
-Light pointLight(const Vec3& position, const Vec3& color, const Vec3& attenuation = {1, 0, 0}) {
-    Light l;
-    l.kind = Light::Kind::Point;
+LightSpec pointLight(const Vec3& position, const Vec3& color, const Vec3& attenuation = {1, 0, 0}) {
+    LightSpec l;
+    l.kind = LightSpec::Kind::Point;
     l.position = position;
     l.color = color;
     l.attenuation = attenuation;
     return l;
 }
 
-Light directionalLight(const Vec3& towards, const Vec3& color) {
-    Light l;
-    l.kind = Light::Kind::Directional;
+LightSpec directionalLight(const Vec3& towards, const Vec3& color) {
+    LightSpec l;
+    l.kind = LightSpec::Kind::Directional;
     l.direction = normalize(towards);
     l.color = color;
     return l;
@@ -121,7 +121,7 @@ TEST(Whitted, PointLightsAreAttenuatedByDistance) {
 TEST(Whitted, DirectionalLightsAreNeverAttenuated) {
     Scene scene;
     addPlane(scene, 0, makeMaterial({0, 0, 0}, {1, 1, 1}));
-    Light l = directionalLight({0, 0, 1}, {0.9, 0.6, 0.3});
+    LightSpec l = directionalLight({0, 0, 1}, {0.9, 0.6, 0.3});
     l.attenuation = {1, 0.5, 0.25};
     scene.lights.push_back(l);
     expectNear(shade(scene, kFromAbove), {0.9, 0.6, 0.3});

@@ -61,7 +61,7 @@ void checkLight(const Scene& scene, const Vec3& p, int surfaces, const char* wha
                 SurfaceInteraction si = scene.primitives.interaction(ray, hit);
                 // Points within rounding of an edge may be given the neighbouring face's
                 // normal by the hit, and grazing ones lose digits: a few may differ.
-                (std::abs(lights.pdfHit(p, Vec3(0), hit, si) - s->pdf) <= 1e-6 * s->pdf
+                (std::abs(lights.pdfHit(p, Vec3(0), ray.dir, hit, si) - s->pdf) <= 1e-6 * s->pdf
                      ? consistent
                      : inconsistent)++;
             }
@@ -200,8 +200,8 @@ TEST(LightSampler, LightsAreChosenAsTheirProbabilitiesSay) {
                                  scene.addMaterial(dim));
     scene.primitives.addTriangle({1, 0, 0}, {2, 0, 0}, {1, 1, 0}, nullptr,
                                  scene.addMaterial(bright));
-    Light sun;
-    sun.kind = Light::Kind::Directional;
+    LightSpec sun;
+    sun.kind = LightSpec::Kind::Directional;
     sun.direction = normalize(Vec3(1, 1, 1));
     sun.color = Vec3(2);
     scene.lights.push_back(sun);

@@ -1,7 +1,7 @@
-// Lights: what sampleLi() draws and pdfLi() says, for delta lights and quads; a quad's
-// irradiance estimated with sampleLi() converges to the analytic value.
+// The scene's own lights (point, directional, quad): what sampleLi() draws and pdfLi() says; a
+// quad's irradiance estimated with sampleLi() converges to the analytic value.
 
-#include "glint/scene/light.h"
+#include "glint/render/lights/light.h"
 
 #include <gtest/gtest.h>
 
@@ -19,13 +19,14 @@ namespace glint {
 namespace {
 
 using test::expectNear;
-using test::quadLight;
+
+/// The quad light of unit radiance (test::quadLight) that the Whitted integrator samples.
+QuadLight quadLight(const Vec3& corner, const Vec3& e1, const Vec3& e2) {
+    return *lightFromSpec(test::quadLight(corner, e1, e2)).as<QuadLight>();
+}
 
 TEST(PointLight, SampleLiIsTheAttenuatedColourFromItsDirectionWithPdfOne) {
-    Light l;
-    l.position = {0, 4, 3};
-    l.color = {10, 20, 30};
-    l.attenuation = {1, 0.5, 0.25};
+    PointLight l{{0, 4, 3}, {10, 20, 30}, {1, 0.5, 0.25}};
     EXPECT_TRUE(l.isDelta());
     std::optional<LightLiSample> s = l.sampleLi({0, 0, 0}, {0.3, 0.9});
     ASSERT_TRUE(s);
@@ -33,42 +34,40 @@ TEST(PointLight, SampleLiIsTheAttenuatedColourFromItsDirectionWithPdfOne) {
     EXPECT_DOUBLE_EQ(s->distance, 5);
     expectNear(s->L, Vec3(10, 20, 30) / (1 + 0.5 * 5 + 0.25 * 25));
     EXPECT_EQ(s->invPdf, 1);
-    EXPECT_EQ(s->pdf(), 1);
+    EXPECT_EQ(s->pdf, 1);
+    EXPECT_TRUE(s->delta);
     // No BSDF sample can hit a point.
-    EXPECT_EQ(l.pdfLi({0, 0, 0}, s->wi), 0);
+    EXPECT_EQ(l.pdfLi({0, 0, 0}, {l.position, Vec3(0), s->wi}), 0);
     // At the light itself there is no direction.
     EXPECT_FALSE(l.sampleLi(l.position, {}));
 }
 
 TEST(DirectionalLight, SampleLiIsItsColourFromItsDirectionAtInfiniteDistance) {
-    Light l;
-    l.kind = Light::Kind::Directional;
-    l.direction = normalize(Vec3(1, 1, 0));
-    l.color = {0.5, 0.6, 0.7};
+    DirectionalLight l{normalize(Vec3(1, 1, 0)), {0.5, 0.6, 0.7}};
     EXPECT_TRUE(l.isDelta());
     std::optional<LightLiSample> s = l.sampleLi({3, -2, 1}, {0.5, 0.5});
     ASSERT_TRUE(s);
     EXPECT_EQ(s->wi, l.direction);
     EXPECT_EQ(s->L, l.color);
     EXPECT_EQ(s->distance, kInfinity);
-    EXPECT_EQ(s->pdf(), 1);
-    EXPECT_EQ(l.pdfLi({3, -2, 1}, l.direction), 0);
+    EXPECT_EQ(s->pdf, 1);
+    EXPECT_EQ(l.pdfLi({3, -2, 1}, {Vec3(0), Vec3(0), l.direction}), 0);
 }
 
 TEST(QuadLight, NothingFromBehindTheEmittingFace) {
     // cross((1, 0, 0), (0, 0, 1)) = (0, -1, 0): the light faces down; a point above sees its back.
-    Light l = quadLight({-0.5, 0, -0.5}, {1, 0, 0}, {0, 0, 1});
-    ASSERT_NEAR(l.quadNormal().y, -1, 1e-12);
+    QuadLight l = quadLight({-0.5, 0, -0.5}, {1, 0, 0}, {0, 0, 1});
+    ASSERT_NEAR(normalize(cross(l.edge1, l.edge2)).y, -1, 1e-12);
     EXPECT_FALSE(l.isDelta());
     EXPECT_FALSE(l.sampleLi({0, 1, 0}, {0.5, 0.5}));
-    EXPECT_EQ(l.pdfLi({0, 1, 0}, {0, -1, 0}), 0);
+    EXPECT_EQ(l.pdfLi({0, 1, 0}, {Vec3(0), Vec3(0), {0, -1, 0}}), 0);
     EXPECT_FALSE(l.sampleLi({3, 0, 0}, {0.5, 0.5}));  // in its plane
     ASSERT_TRUE(l.sampleLi({0, -1, 0}, {0.5, 0.5}));
-    EXPECT_GT(l.pdfLi({0, -1, 0}, {0, 1, 0}), 0);
+    EXPECT_GT(l.pdfLi({0, -1, 0}, {Vec3(0), Vec3(0), {0, 1, 0}}), 0);
 }
 
 TEST(QuadLight, SampleLiIsUniformOverTheAreaConvertedToSolidAngle) {
-    Light l = quadLight({-1, 2, -1}, {2, 0, 0}, {0, 0, 2});  // area 4, facing -y
+    QuadLight l = quadLight({-1, 2, -1}, {2, 0, 0}, {0, 0, 2});  // area 4, facing -y
     l.color = {2, 1, 0.5};
     std::optional<LightLiSample> s = l.sampleLi({0, 0, 0}, {0.5, 0.5});  // the centre, above
     ASSERT_TRUE(s);
@@ -81,33 +80,35 @@ TEST(QuadLight, SampleLiIsUniformOverTheAreaConvertedToSolidAngle) {
     s = l.sampleLi({0, 0, 0}, {1, 1});
     ASSERT_TRUE(s);
     expectNear(s->wi, Vec3(1, 2, 1) / std::sqrt(6.0));
-    EXPECT_NEAR(s->pdf(), 6 / (4 * 2 / std::sqrt(6.0)), 1e-12);
+    EXPECT_NEAR(s->pdf, 6 / (4 * 2 / std::sqrt(6.0)), 1e-12);
 }
 
 TEST(QuadLight, PdfLiIsThePdfSampleLiReturnedAndZeroOffTheQuad) {
-    Light l = quadLight({-2, 0.5, -1}, {3, 0.2, 0.8}, {0, 0, 2});  // sheared, facing down
+    QuadLight l = quadLight({-2, 0.5, -1}, {3, 0.2, 0.8}, {0, 0, 2});  // sheared, facing down
+    auto along = [](const Vec3& wi) { return LightPoint{Vec3(0), Vec3(0), wi}; };
     Rng rng(99);
     for (int k = 0; k < 2000; ++k) {
         Vec3 p(8 * rng.uniform() - 4, -3 * rng.uniform(), 8 * rng.uniform() - 4);
         std::optional<LightLiSample> s = l.sampleLi(p, {rng.uniform(), rng.uniform()});
         if (!s) continue;
-        EXPECT_NEAR(l.pdfLi(p, s->wi), s->pdf(), 1e-9 * s->pdf()) << k;
+        EXPECT_NEAR(l.pdfLi(p, along(s->wi)), s->pdf, 1e-9 * s->pdf) << k;
         // Just beyond an edge (s = 1.01): no density.
         Vec3 beyond = l.position + l.edge1 * 1.01 + l.edge2 * double(rng.uniform()) - p;
-        EXPECT_EQ(l.pdfLi(p, normalize(beyond)), 0);
-        EXPECT_EQ(l.pdfLi(p, -s->wi), 0);  // away from the light
+        EXPECT_EQ(l.pdfLi(p, along(normalize(beyond))), 0);
+        EXPECT_EQ(l.pdfLi(p, along(-s->wi)), 0);  // away from the light
     }
 }
 
 TEST(QuadLight, PdfLiIntegratesToOneOverTheSphere) {
     // By uniform directions, independently of sampleLi: the mean of 4 pi pdfLi is 1.
-    Light l = quadLight({-0.5, 1, -0.5}, {1, 0, 0}, {0, 0, 1});
+    QuadLight l = quadLight({-0.5, 1, -0.5}, {1, 0, 0}, {0, 0, 1});
     Rng rng(5);
     test::MeanEstimate e;
     for (int k = 0; k < 1'000'000; ++k) {
         double z = 2 * rng.uniform() - 1, phi = 2 * std::numbers::pi * rng.uniform();
         double r = std::sqrt(std::max(0.0, 1 - z * z));
-        e.add(4 * std::numbers::pi * l.pdfLi({0, 0, 0}, {r * std::cos(phi), z, r * std::sin(phi)}));
+        const Vec3 wi(r * std::cos(phi), z, r * std::sin(phi));
+        e.add(4 * std::numbers::pi * l.pdfLi({0, 0, 0}, {Vec3(0), Vec3(0), wi}));
     }
     EXPECT_NEAR(e.mean(), 1, 4 * e.standardError()) << "standard error " << e.standardError();
 }
@@ -121,9 +122,9 @@ class QuadIrradiance : public testing::TestWithParam<Case> {};
 
 TEST_P(QuadIrradiance, SampleLiEstimateIsWithinFourStandardErrorsOfTheAnalyticValue) {
     const Case& c = GetParam();
-    Light l = quadLight(c.corner, c.e1, c.e2);
+    QuadLight l = quadLight(c.corner, c.e1, c.e2);
     Vec3 n = normalize(c.n);
-    double exact = test::quadIrradiance(l, c.p, n);
+    double exact = test::quadIrradiance(test::quadLight(c.corner, c.e1, c.e2), c.p, n);
     ASSERT_GT(exact, 0);
     Rng rng(2024);
     test::MeanEstimate e;

@@ -1,0 +1,47 @@
+#pragma once
+/// An emissive sphere as a light (light.h's conventions).
+
+#include <iosfwd>
+#include <optional>
+
+#include "glint/geometry/sphere.h"
+#include "glint/math/sampling.h"
+#include "glint/render/lights/light_sample.h"
+#include "glint/render/lights/light_tree.h"
+
+namespace glint {
+
+/// An emissive sphere, transformed as the scene placed it. A round one (placed by a
+/// similarity) is sampled from outside uniformly over the cone of directions it fills
+/// (pbrt-v4's Sphere::Sample), which puts every sample on the side facing the point; from its
+/// surface, and an ellipsoid from anywhere, uniformly over its canonical surface
+/// (geometry/surface_sampling.h).
+struct SphereLight {
+    const Sphere* sphere = nullptr;
+    Vec3 emission;
+    bool frontOnly = false;
+    /// A round sphere's world centre and radius; radius 0 for an ellipsoid.
+    Vec3 center;
+    double radius = 0;
+    Vec3 lo, hi;     ///< Its bounds,
+    double phi = 0;  ///< and its power (pi A L, both sides unless front-only).
+
+    /// The light of `sphere` with `emission`; its power from its approximate area.
+    static SphereLight make(const Sphere& sphere, const Vec3& lo, const Vec3& hi,
+                            const Vec3& emission, bool frontOnly);
+
+    std::optional<LightLiSample> sampleLi(const Vec3& p, Point2 u) const;
+    double pdfLi(const Vec3& from, const LightPoint& at, double choice = 1) const;
+    std::optional<LightLeSample> sampleLe(Point2 uPos, Point2 uDir,
+                                          const LightLeContext& ctx) const;
+    LightLePdf pdfLe(const Vec3& origin, const Vec3& n, const Vec3& dir,
+                     const LightLeContext& ctx) const;
+    std::optional<LightBounds> bounds() const;
+    double infiniteImportance() const { return 0; }
+    double lightPassShare() const { return 1; }
+    bool tracedByLightPass(const Vec3&) const { return true; }
+    bool isDelta() const { return false; }
+};
+std::ostream& operator<<(std::ostream& out, const SphereLight& l);
+
+}  // namespace glint
