@@ -17,8 +17,8 @@
 ///    chosen the light) is multiplied in first, so the product rounds as one expression.
 ///  - sampleLe(uPos, uDir, ctx) draws a ray leaving the light for a light path, aimed at the
 ///    sphere of ctx (LightLeSample: the ray, the radiance it carries, its flux weight and the
-///    densities of its origin and direction); pdfLe(origin, n, dir, ctx) gives those densities
-///    for any such ray, origin on the light with normal n (delta densities 0).
+///    densities of its origin and direction); pdfLe(p, n, dir, ctx) gives those densities for
+///    any such ray, leaving point p of the light, of normal n there (delta densities 0).
 ///  - bounds() is what the light tree weighs a bounded light by (light_tree.h); lights at
 ///    infinity have none and give infiniteImportance() instead.
 ///

@@ -49,9 +49,12 @@ struct LightLeContext {
 
 /// A ray leaving a light, for a path traced from it (sampleLe).
 struct LightLeSample {
-    Ray ray;  ///< From the light's surface, or from outside the scene for lights at infinity.
-    Vec3 n;   ///< The light's unit normal at the ray's origin; zero for points and at infinity.
-    Vec3 L;   ///< Radiance (points: intensity) the light emits along the ray.
+    /// From the light's surface (started just off it), or from outside the scene for lights
+    /// at infinity.
+    Ray ray;
+    Vec3 p;  ///< The point the ray leaves the light from (on its surface; the ray's origin else).
+    Vec3 n;  ///< The light's unit normal at p; zero for points and at infinity.
+    Vec3 L;  ///< Radiance (points: intensity) the light emits along the ray.
     /// L |cos| / (pdfPos pdfDir) (delta densities as their coefficients, 1): the flux the
     /// ray carries, in the units of a path's throughput.
     Vec3 beta;

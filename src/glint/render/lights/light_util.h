@@ -87,13 +87,8 @@ inline LightLeSample acrossDisc(const Vec3& towards, const Vec3& radiance, doubl
     const Frame frame(towards);
     const Vec3 origin = ctx.center + towards * ctx.far + (frame.t * dx + frame.b * dy) * ctx.radius;
     const double area = kPi * ctx.radius * ctx.radius;
-    return LightLeSample{Ray{origin, -towards, 0, kInfinity},
-                         Vec3(0),
-                         radiance,
-                         radiance * (area / pdfDir),
-                         1 / area,
-                         pdfDir,
-                         std::nullopt};
+    return LightLeSample{Ray{origin, -towards, 0, kInfinity}, origin,   Vec3(0), radiance,
+                         radiance * (area / pdfDir),          1 / area, pdfDir,  std::nullopt};
 }
 
 /// A ray from point `p` of a surface of unit normal `n`, emitting `radiance` (from its front
@@ -108,8 +103,14 @@ inline std::optional<LightLeSample> fromSurface(const Vec3& p, const Vec3& n, do
     const double cosLight = dot(dir, n);
     if (frontOnly ? !(cosLight > 0) : cosLight == 0) return std::nullopt;
     const Vec3 beta = radiance * (std::abs(cosLight) / (pdfPos * pdfDir));
-    return LightLeSample{
-        spawnRayOffSurface(p, n, dir, ctx.offset), n, radiance, beta, pdfPos, pdfDir, std::nullopt};
+    return LightLeSample{spawnRayOffSurface(p, n, dir, ctx.offset),
+                         p,
+                         n,
+                         radiance,
+                         beta,
+                         pdfPos,
+                         pdfDir,
+                         std::nullopt};
 }
 
 /// fromSurface's direction density for a ray leaving `p` (normal `n`) along `dir`.

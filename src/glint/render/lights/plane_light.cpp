@@ -45,15 +45,20 @@ std::optional<LightLeSample> PlaneLight::sampleLe(Point2 uPos, Point2 uDir,
     const double cosine = dot(s.ray.dir, normal);
     if (!(height * side > 0) || !(cosine * side > 0)) return std::nullopt;
     s.n = side > 0 ? normal : -normal;
-    s.ray = spawnRayOffSurface(onDisc - s.ray.dir * (height / cosine), s.n, s.ray.dir, ctx.offset);
+    s.p = onDisc - s.ray.dir * (height / cosine);
+    s.ray = spawnRayOffSurface(s.p, s.n, s.ray.dir, ctx.offset);
+    // The disc's density over the plane's area, which the disc's points fill stretched by
+    // 1 / cos: beta (the disc's) is then L cos / (pdfPos pdfDir), as for any surface.
+    s.pdfPos *= std::abs(cosine);
     return s;
 }
 
 LightLePdf PlaneLight::pdfLe(const Vec3&, const Vec3&, const Vec3& dir,
                              const LightLeContext& ctx) const {
     const double side = dot(ctx.center - point, normal);
-    if (side == 0 || (frontOnly && side < 0) || !(dot(dir, normal) * side > 0)) return {};
-    return {1 / (kPi * ctx.radius * ctx.radius), 1 / (2 * kPi)};
+    const double cosine = dot(dir, normal);
+    if (side == 0 || (frontOnly && side < 0) || !(cosine * side > 0)) return {};
+    return {std::abs(cosine) / (kPi * ctx.radius * ctx.radius), 1 / (2 * kPi)};
 }
 
 double PlaneLight::infiniteImportance() const { return kPi * kPi * brightness(emission); }

@@ -16,8 +16,14 @@ double PointLight::pdfLi(const Vec3&, const LightPoint&, double) const { return 
 std::optional<LightLeSample> PointLight::sampleLe(Point2, Point2 uDir,
                                                   const LightLeContext& ctx) const {
     const auto [dir, pdf] = sampleTowardsSphere(position, ctx.center, ctx.radius, uDir);
-    return LightLeSample{
-        Ray{position, dir, 0, kInfinity}, Vec3(0), intensity, intensity / pdf, 1, pdf, attenuation};
+    return LightLeSample{Ray{position, dir, 0, kInfinity},
+                         position,
+                         Vec3(0),
+                         intensity,
+                         intensity / pdf,
+                         1,
+                         pdf,
+                         attenuation};
 }
 
 LightLePdf PointLight::pdfLe(const Vec3&, const Vec3&, const Vec3& dir,

@@ -38,7 +38,7 @@ std::optional<LightLeSample> SpotLight::sampleLe(Point2, Point2 uDir,
     if (!(f > 0)) return std::nullopt;
     const Vec3 L = intensity * f;
     return LightLeSample{
-        Ray{position, dir, 0, kInfinity}, Vec3(0), L, L / pdf, 1, pdf, attenuation};
+        Ray{position, dir, 0, kInfinity}, position, Vec3(0), L, L / pdf, 1, pdf, attenuation};
 }
 
 LightLePdf SpotLight::pdfLe(const Vec3&, const Vec3&, const Vec3& dir,
