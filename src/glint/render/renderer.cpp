@@ -15,7 +15,22 @@
 namespace glint {
 
 namespace {
+
 constexpr double kReportSeconds = 0.1;  // progress about ten times a second
+
+/// The tiles of part `part` of `parts`: the image's grid of `tile`-pixel tiles, every
+/// parts-th row of it from the top, each tile clipped to `crop`.
+std::vector<PixelBounds> partTiles(const PixelBounds& crop, int tile, int parts, int part) {
+    std::vector<PixelBounds> tiles;
+    for (int y0 = crop.y0 - crop.y0 % tile; y0 < crop.y1; y0 += tile) {
+        if ((y0 / tile) % parts != part) continue;
+        for (int x0 = crop.x0 - crop.x0 % tile; x0 < crop.x1; x0 += tile)
+            tiles.push_back({std::max(x0, crop.x0), std::min(x0 + tile, crop.x1),
+                             std::max(y0, crop.y0), std::min(y0 + tile, crop.y1)});
+    }
+    return tiles;
+}
+
 }  // namespace
 
 FilmLayout filmLayout(const Scene& scene, const RenderOptions& options) {
@@ -37,6 +52,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     auto start = Clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
+    // ==== 1. What every sample needs: camera, integrator, sample positions, random numbers ====
     RenderResult result;
     const Camera camera(*scene.camera, scene.width, scene.height);
     std::unique_ptr<Integrator> ownIntegrator;
@@ -57,8 +73,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         options.sampleEnd > 0 ? std::clamp(options.sampleEnd, sampleBegin, spp) : spp;
     const double rendered = sampleEnd - sampleBegin;  // samples per pixel of this part
 
-    // The tiles of the part asked for: the image's tile grid, rows of it picked by `part`,
-    // each tile clipped to the crop.
+    // ==== 2. Where the pixels go: the film (or the caller's, or sums to add into) ====
     const int tile = std::max(1, options.tileSize);
     const FilmLayout layout = filmLayout(scene, options);
     const PixelBounds crop = layout.crop;
@@ -84,14 +99,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         result.aovs = RenderPasses(filmWidth, filmHeight);
         if (options.keepSums) result.sums.keepPasses();
     }
-    const int parts = std::max(options.parts, 1);
-    std::vector<PixelBounds> tiles;
-    for (int y0 = crop.y0 - crop.y0 % tile; y0 < crop.y1; y0 += tile) {
-        if ((y0 / tile) % parts != options.part) continue;
-        for (int x0 = crop.x0 - crop.x0 % tile; x0 < crop.x1; x0 += tile)
-            tiles.push_back({std::max(x0, crop.x0), std::min(x0 + tile, crop.x1),
-                             std::max(y0, crop.y0), std::min(y0 + tile, crop.y1)});
-    }
+
+    // ==== 3. Which tiles: the part's, of the range asked for ====
+    const std::vector<PixelBounds> tiles =
+        partTiles(crop, tile, std::max(options.parts, 1), options.part);
     // Of those, tiles [firstTile, firstTile + tileCount) only (the web page's calls).
     const int firstTile = std::clamp(options.firstTile, 0, static_cast<int>(tiles.size()));
     const int available = static_cast<int>(tiles.size()) - firstTile;
@@ -99,6 +110,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         options.tileCount < 0 ? available : std::min(options.tileCount, available);
     std::atomic<int> nextTile{0}, tilesDone{0};  // counted from firstTile
 
+    // ==== 4. One block of 4 x 2 pixels: camera rays, their hits, the integrator, the film ====
     // Camera rays go in packets of eight: 4 x 2 pixels at one sample per pixel, or eight
     // samples of one pixel. Each pixel still sums its samples in the sampler's order. Shadow
     // and mirror rays go one by one: they start on the surfaces, often in different leaves of
@@ -126,6 +138,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     // writing nothing, if the render is cancelled (the tile is then not done).
     auto renderBlock = [&](int bx, int by, int x1, int y1, std::vector<Sample>& samples,
                            RayCounts& counts, bool reports) {
+        // -- The block's camera samples: positions, lens, shutter time, random numbers --
         samples.clear();
         int w = std::min(4, x1 - bx), h = std::min(2, y1 - by);
         static constexpr Rng kUnseeded{};
@@ -163,6 +176,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                     sampleBegin, sampleEnd);
             }
         if (active && samples.empty()) return;
+        // -- Packets of eight camera rays, then the integrator for each sample --
         SampleSum sum[8];  // each pixel's samples, summed exactly (film.h)
         PassSums passSums[8];
         for (size_t i = 0; i < samples.size(); i += 8) {
@@ -212,6 +226,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                 passSums[s.pixel].addSample(v, sp);
             }
         }
+        // -- Each pixel's sum, with the light pass's share, into the film, sums or passes --
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
                 SampleSum s = sum[y * 4 + x];
@@ -248,6 +263,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             }
     };
 
+    // ==== 5. The threads: tiles handed out one at a time, until done or cancelled ====
     // Each thread counts its rays in a local and stores them once at the end: counters of two
     // threads side by side in one cache line, updated for every ray, cost 10% of the render on
     // two cores.
@@ -282,6 +298,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         out = counts;
     };
 
+    // ==== 6. The light pass first (the path tracer's caustics), then every thread renders ====
     std::optional<ThreadPool> ownPool;
     ThreadPool& pool = options.pool ? *options.pool : ownPool.emplace(options.threads);
     if (tilesTotal > 0 && seeded)
@@ -298,6 +315,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     }
     for (const RayCounts& c : counts) result.rays += c;
 
+    // ==== 7. What happened: rays, time, tiles ====
     result.seconds = elapsed();
     result.tilesDone = tilesDone.load();
     result.tilesTotal = tilesTotal;

@@ -137,7 +137,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     int channel = -1;  // the colour channel a dispersing surface chose; -1: all
 
     for (int depth = 0;; ++depth) {
-        // A shadow catcher is seen by camera rays and their specular continuations only.
+        // ==== Shadow catcher: seen by camera rays and their specular continuations only ====
         if (catcher_ && (depth == 0 || specularBounce)) [[unlikely]] {
             std::optional<double> t = catcher_->intersect(ray);
             if (t && (!found || *t < hit.t)) {
@@ -153,7 +153,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                 break;
             }
         }
-        // Through a medium: it may scatter or absorb before the surface (or the sky).
+        // ==== Medium: it may scatter or absorb before the surface (or the sky) ====
         if (medium != 0) [[unlikely]] {
             const Medium& med = scene_.medium(medium);
             const MediumEvent e = sampleMedium(med, ray, found ? hit.t : kInfinity, ctx.rng, beta);
@@ -189,6 +189,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                 continue;
             }
         }
+        // ==== Escaped: the environment, weighed against light sampling ====
         if (!found) {
             // Seen by the camera or through a mirror it counts in full: no density is needed.
             Vec3 light(0);
@@ -208,6 +209,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             L += clamped(light, depth);  // light found at depth d came through d bounces
             break;
         }
+        // ==== The surface: a medium's boundary is crossed; anything else is shaded ====
         const SurfaceInteraction si = scene_.primitives.interaction(ray, hit);
         const Material& m = scene_.materials[si.material];
         if (m.interface) [[unlikely]] {  // only a medium's boundary: cross it unchanged
@@ -237,6 +239,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const Bsdf& bsdf = shading.bsdf;
         const Vec3& emission = shading.emission;
         const Vec3& shadingNormal = shading.normal;
+        // ==== Render passes: albedo, normal, depth at the first surface that fills them ====
         if (passes) [[unlikely]] {
             if (depth == 0) passes->depth = length(si.p - ray.origin);
             if (std::optional<Vec3> albedo = bsdf.passAlbedo()) {
@@ -246,6 +249,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
 
+        // ==== The light pass's share: which paths it traces instead ====
         // Whether the path is one the light pass traces (any light it meets through casters
         // but an emissive plane, LightSample::leftToPass).
         const bool caster = caustics_ && caustics_->caster(si.material);
@@ -257,7 +261,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const bool seenHere = caustics_ && throughCasters && !caster;
         throughCasters = throughCasters && caster;
 
-        // Light the surface emits towards the path.
+        // ==== Emission: light the surface sends along the path, weighed against light samples ====
         if (!(emission == Vec3(0)) && (!m.frontEmissionOnly || dot(ray.dir, si.ng) < 0) &&
             !leftToPass) {
             const Vec3 light =
@@ -278,6 +282,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             return dot(wWorld, si.ng) * wLocal.z > 0;
         };
 
+        // ==== Photons: light through casters, gathered where the camera sees through them ====
         // Seen through casters: the light that reaches it through casters is the photons'
         // (the light pass's splats bring it where the camera sees the surface directly).
         if (seenHere && depth > 0 && ctx.lightPass && depth < scene_.maxDepth) [[unlikely]] {
@@ -292,7 +297,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             L += clamped(beta * gathered, depth + 2);
         }
 
-        // Next-event estimation: one light sample, weighted against the BSDF's density.
+        // ==== Light sample: next-event estimation, weighed against the BSDF's density ====
         // Three pairs of dimensions per bounce: (light, lobe), the point on the light, the
         // BSDF's direction; Russian roulette takes the sample's own random numbers.
         const Point2 uChoices = sampler.get2D();
@@ -324,7 +329,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
 
-        // The next direction, from the BSDF.
+        // ==== BSDF sample: the next direction, and the passes' way on from smooth surfaces ====
         const double uLobe = uChoices.y;
         const Point2 uDir = sampler.get2D();
         std::optional<BsdfSample> bs = bsdf.sample(wo, uLobe, uDir);
@@ -352,6 +357,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         from = si.p;
         fromN = receiver;
 
+        // ==== Russian roulette, then the next ray ====
         // Russian roulette from the second bounce on: a path of throughput below 1 survives
         // with probability equal to it, and is reweighted so the estimate stays unbiased.
         double survive = maxComponent(beta);

@@ -30,4 +30,11 @@ std::ostream& operator<<(std::ostream& out, const LightLiSample& s) {
     return out << "}";
 }
 
+std::ostream& operator<<(std::ostream& out, const LightLeSample& s) {
+    out << "LightLeSample{" << s.ray << ", L " << s.L << ", beta " << s.beta << ", pdfPos "
+        << s.pdfPos << ", pdfDir " << s.pdfDir;
+    if (s.attenuation) out << ", attenuation " << *s.attenuation;
+    return out << "}";
+}
+
 }  // namespace glint

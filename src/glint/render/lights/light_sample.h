@@ -69,6 +69,9 @@ struct LightLeSample {
     std::optional<Vec3> attenuation;
 };
 
+/// "LightLeSample{Ray{...}, L (..), beta (..), pdfPos p, pdfDir d}".
+std::ostream& operator<<(std::ostream& out, const LightLeSample& s);
+
 /// The densities with which sampleLe draws a ray (pdfLe); delta densities are 0, as a BSDF's
 /// pdf() is for its delta lobes.
 struct LightLePdf {

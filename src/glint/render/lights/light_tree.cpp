@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <ostream>
 
 #include "glint/core/ray.h"
 
@@ -155,6 +156,14 @@ double LightTree::Compact::importance(const Vec3& pd, const Vec3& nd) const {
     }
     // In double: a bright point light a hair away must not overflow a float.
     return std::max(static_cast<double>(phi) * cosines / d2, 0.0);
+}
+
+std::ostream& operator<<(std::ostream& out, const LightBounds& b) {
+    out << "LightBounds{[" << b.lo << " .. " << b.hi << "], phi " << b.phi
+        << ", normals within acos(" << b.cosThetaO << ") of " << b.w << ", emitting within acos("
+        << b.cosThetaE << ")";
+    if (b.twoSided) out << ", two-sided";
+    return out << "}";
 }
 
 LightBounds unite(const LightBounds& a, const LightBounds& b) {

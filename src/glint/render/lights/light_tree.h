@@ -12,6 +12,7 @@
 /// the root, so that multiple importance sampling weights a light found by a BSDF ray exactly.
 
 #include <cstdint>
+#include <iosfwd>
 #include <optional>
 #include <vector>
 
@@ -43,6 +44,10 @@ struct LightBounds {
     /// direction the bounds allow. 0 only where none of the lights can reach p.
     double importance(const Vec3& p, const Vec3& n) const;
 };
+
+/// "LightBounds{[(lo) .. (hi)], phi 12, normals within acos(1) of (0, 0, 1), emitting within
+/// acos(0), two-sided}".
+std::ostream& operator<<(std::ostream& out, const LightBounds& b);
 
 /// The bounds of two groups of lights together.
 LightBounds unite(const LightBounds& a, const LightBounds& b);
