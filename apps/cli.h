@@ -31,7 +31,7 @@ class UsageError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// A model's default sampling (docs/denoising.md): adaptive to this noise threshold, within
+/// A model's default sampling (docs/clean-images.md): adaptive to this noise threshold, within
 /// this many seconds of rendering; and the most samples per pixel of an adaptive render when
 /// --spp does not say.
 constexpr double kModelNoiseThreshold = 0.02;
@@ -70,7 +70,7 @@ struct Options {
     std::string crop;     ///< --crop x0,x1,y0,y1
     std::string samples;  ///< --samples A:B
     std::string part;     ///< --part K/N
-    // Clean images (docs/denoising.md).
+    // Clean images (docs/clean-images.md).
     std::string aov;            ///< --aov: passes to write as layers of the EXR output.
     int denoise = 0;            ///< 1 --denoise, -1 --no-denoise, 0 the default (on for models).
     double noiseThreshold = 0;  ///< --noise-threshold; 0: a fixed number of samples.
@@ -153,7 +153,7 @@ void applyRenderSettings(const Options& opt, Scene& scene);
 /// error; returns kGoOn, or the exit code to end with.
 int prepare(const Options& opt, Prepared& out, AssetCache* assets = nullptr);
 
-/// How a render samples and cleans its image, from the options and the scene (docs/denoising.md).
+/// How a render samples and cleans its image, from the options and the scene (docs/clean-images.md).
 struct SamplingPlan {
     int spp = 1;           ///< A fixed count: --spp, else the scene's `spp`, else 1.
     int maxSpp = 1;        ///< Adaptive sampling's cap: --spp, else kAdaptiveMaxSpp.

@@ -1,5 +1,5 @@
 // glint denoise: reads an OpenEXR render with its passes, denoises it, writes the result
-// (docs/denoising.md, "Denoising a saved render").
+// (docs/clean-images.md, "Denoising a saved render").
 
 #include "denoise.h"
 

@@ -74,7 +74,7 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
     Prepared prepared;
     if (int code = prepare(opt, prepared, assets); code != kGoOn) return code;
     glint::PieceInfo pieceInfo;
-    // Passes, denoising and adaptive sampling (docs/denoising.md).
+    // Passes, denoising and adaptive sampling (docs/clean-images.md).
     const SamplingPlan plan = planSampling(opt, prepared, piece, true);
     const int spp = plan.spp, maxSpp = plan.maxSpp;
     if (piece) {

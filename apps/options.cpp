@@ -272,7 +272,7 @@ void addOptions(CLI::App& app, Options& opt) {
         ->group(render)
         ->type_name("N");
 
-    const char* clean = "Clean images (docs/denoising.md)";
+    const char* clean = "Clean images (docs/clean-images.md)";
     app.add_option("--aov", opt.aov,
                    "Render passes to write as layers of the .exr output: albedo, normal, depth, "
                    "variance, comma-separated, or all")

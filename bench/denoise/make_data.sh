@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders the denoising benchmark's inputs (docs/denoising.md, "Benchmark"): each scene at
+# Renders the denoising benchmark's inputs (docs/clean-images.md, "Benchmark"): each scene at
 # 4, 16, 64 and 512 samples per pixel with every render pass (glint --aov all --no-denoise), and
 # a 4096-spp reference, then splits each EXR into PFM files for bench/denoise/run.sh:
 #   OUT/NAME_SPP.pfm, .albedo.pfm, .normal.pfm, .depth.pfm, .variance.pfm; OUT/NAME_ref.pfm

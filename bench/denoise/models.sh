@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The model mode's defaults on five Khronos sample models (docs/denoising.md, "Model mode"):
+# The model mode's defaults on five Khronos sample models (docs/clean-images.md, "Model mode"):
 # the wall time of `glint MODEL -o OUT.png` (load, build, adaptive sampling, denoising, write;
 # median of RUNS runs) and what the adaptive sampler chose, and the images: OUT_DIR/NAME.png at
 # the defaults and OUT_DIR/NAME_raw.png, the same time budget without the denoiser.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The model mode's defaults, two glint programs in turn (docs/denoising.md, "A model's
+# The model mode's defaults, two glint programs in turn (docs/clean-images.md, "A model's
 # defaults"): for each of models.sh's five Khronos models, RUNS rounds of OLD then NEW at their
 # defaults (`glint MODEL -o OUT.png`), and a Markdown row of the median wall times, their ratio,
 # and what NEW's adaptive sampler and denoiser reported. Alternating them puts the machine's

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The model mode's defaults beside a converged reference (docs/denoising.md, "A model's
+# The model mode's defaults beside a converged reference (docs/clean-images.md, "A model's
 # defaults"): for each of the five Khronos models of models.sh,
 #   OUT/NAME_ref.{exr,pfm,png}  the reference: REF_SPP samples per pixel, no denoiser (kept if
 #                               there: it takes long, about 20 minutes at 640x480 on 2 cores)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The denoising benchmark (docs/denoising.md, "Benchmark"): for each scene of make_data.sh and
+# The denoising benchmark (docs/clean-images.md, "Benchmark"): for each scene of make_data.sh and
 # 4, 16 and 64 spp, the relMSE of the raw and the denoised image against the 4096-spp reference,
 # the gain, the sample-equivalent (the raw spp whose relMSE the denoised image equals, from the
 # raw 512-spp render's relMSE and 1/spp scaling), the mean SSIM of the raw and the denoised

@@ -1,4 +1,4 @@
-// Clean images from the command line (docs/denoising.md): render passes as EXR layers,
+// Clean images from the command line (docs/clean-images.md): render passes as EXR layers,
 // --denoise, glint denoise, adaptive sampling and the model mode's defaults.
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #pragma once
 /// Glint's image-space denoiser: a noisy Monte Carlo image and its feature buffers (albedo,
 /// normal, depth, the variance of each pixel's mean) in, a denoised image out. It knows images,
-/// not scenes: the renderer writes the buffers, this stage reads them (docs/denoise.md).
+/// not scenes: the renderer writes the buffers, this stage reads them (docs/denoiser-method.md).
 ///
 /// The method: colour is divided by albedo (the "demodulated irradiance", so that texture
 /// detail is never blurred) and filtered by joint non-local means, each neighbour weighted by
