@@ -26,7 +26,7 @@
 #include <string>
 
 #include "glint/core/error.h"
-#include "glint/io/vdb/vdb_reader.h"
+#include "glint/io/vdb/vdb_module.h"
 
 // OpenVDB's RootNode::readTopology keeps one child per origin: a corrupt file that repeats an
 // origin makes it drop (and leak) the child read before. That is the library's, past Glint's
@@ -50,7 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     limits.memoryBytes = size_t(64) << 20;
     std::shared_ptr<const glint::DensityGrid> grid;
     try {
-        grid = glint::loadVdbDensity(path, "", limits);
+        grid = glint::readVdbDensity(path, "", limits);
     } catch (const glint::RenderError&) {
         return 0;
     }

@@ -18,6 +18,7 @@
 #include "glint/core/error.h"
 #include "glint/core/system.h"
 #include "glint/io/vdb/vdb_contents.h"
+#include "glint/io/vdb/vdb_module.h"
 
 namespace glint {
 namespace {
@@ -201,7 +202,7 @@ std::shared_ptr<const DensityGrid> readDensity(const std::string& path, const st
 
 }  // namespace
 
-std::shared_ptr<const DensityGrid> loadVdbDensity(const std::string& path,
+std::shared_ptr<const DensityGrid> readVdbDensity(const std::string& path,
                                                   const std::string& gridName,
                                                   const LoadLimits& limits) {
     // Any size: OpenVDB seeks to the one grid it reads, whose size is checked on its own.

@@ -1,6 +1,8 @@
 #pragma once
 /// Reading density grids from OpenVDB files (.vdb) into scene/'s dense DensityGrid. Only this
-/// folder sees OpenVDB's types (vdb_reader.cpp, vdb_contents.cpp); builds without the library (the
+/// folder sees OpenVDB's types (vdb_reader.cpp, vdb_contents.cpp), and only the OpenVDB module
+/// links them (vdb_module.h: libglint_vdb.so, loaded by vdb_loader.cpp the first time a file is
+/// read, so that runs that read none pay nothing for OpenVDB); builds without the library (the
 /// web build, GLINT_OPENVDB=OFF) link vdb_reader_none.cpp, which refuses every file.
 
 #include <memory>
@@ -42,9 +44,9 @@ constexpr long long kMaxDensityVoxels = 512LL * 512 * 512;
 /// truncated (a grid ending beyond the file) or corrupt file, an OpenVDB stream (io::Stream's
 /// files, without grid offsets), a file without the grid (the message lists the grids it has and
 /// their types), a grid without active voxels, a non-linear (frustum) or singular transform,
-/// too many voxels (the message gives the size), a non-finite value, or a build without
-/// OpenVDB. A scene parser reports it at its command's file:line:col, as Parser::sceneImage does
-/// for textures.
+/// too many voxels (the message gives the size), a non-finite value, a build without OpenVDB,
+/// or an OpenVDB module that cannot be loaded (the message says where it was looked for). A scene
+/// parser reports it at its command's file:line:col, as Parser::sceneImage does for textures.
 ///
 /// A corrupt file's structure is OpenVDB's parser's to check, and it trusts the lengths and
 /// counts it reads: such a file can make it allocate much more than the file holds before it
