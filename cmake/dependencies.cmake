@@ -37,15 +37,16 @@ find_package(draco CONFIG REQUIRED)
 find_package(meshoptimizer CONFIG REQUIRED)
 
 # OpenVDB 10 (libopenvdb-dev): the density grids of heterogeneous media, read in io/
-# (src/glint/io/vdb/vdb_reader.cpp) into a dense copy. Debian ships no CMake config for it but
+# (src/glint/io/vdb/vdb_reader.cpp, built as a module of its own) into a dense copy. Debian ships no CMake config for it but
 # its find module, FindOpenVDB.cmake, in a folder of its own that joins the module path only
 # here (beside it are find modules for OpenEXR and TBB that must not replace the others). That
 # module requires Boost.Iostreams (libboost-iostreams-dev, whose headers OpenVDB's need too),
 # which libopenvdb-dev does not pull in. It also sets BUILD_SHARED_LIBS and Boost_* variables in
 # the caller's scope: hence the function. GLINT_OPENVDB=OFF builds vdb_reader_none.cpp instead,
-# which refuses .vdb files with a message (the web build always does). Debian's libopenvdb links
-# log4cplus 2.0, which starts a few idle threads of its own when it is loaded: every program that
-# links glint_io has them (the tests that count threads count from a start, unaffected).
+# which refuses .vdb files with a message (the web build always does). Only the OpenVDB module
+# (libglint_vdb.so, src/CMakeLists.txt) links it, loaded the first time a .vdb file is read:
+# Debian's libopenvdb links log4cplus 2.0, which starts a few idle threads of its own when it is
+# loaded, and TBB, Boost.Iostreams and blosc, which cost every run that linked them 0.03 s.
 option(GLINT_OPENVDB "Read OpenVDB density grids (libopenvdb-dev, libboost-iostreams-dev)" ON)
 function(glint_find_openvdb)
     find_path(GLINT_OPENVDB_MODULE_DIR FindOpenVDB.cmake
@@ -58,6 +59,10 @@ function(glint_find_openvdb)
                             "libopenvdb-dev libboost-iostreams-dev (or `make deps`); or configure "
                             "with -DGLINT_OPENVDB=OFF to build Glint without .vdb files")
     endif()
+    # TBB's own config first, all its targets at once: the OpenVDB module's FindTBB defines
+    # TBB::tbb alone, and Embree's config (the benchmarks', bench/) then fails on a half-defined
+    # export set.
+    find_package(TBB CONFIG QUIET)
     list(PREPEND CMAKE_MODULE_PATH ${GLINT_OPENVDB_MODULE_DIR})
     find_package(OpenVDB REQUIRED COMPONENTS openvdb)
     message(STATUS "OpenVDB ${OpenVDB_VERSION}: .vdb density grids")
