@@ -13,6 +13,19 @@
 #include "options.h"
 
 namespace glint::cli {
+namespace {
+
+/// The first `n` bytes of the file at `path` (fewer if it is shorter or cannot be read).
+std::string readHead(const std::string& path, size_t n) {
+    std::string bytes(n, '\0');
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return {};
+    bytes.resize(std::fread(bytes.data(), 1, n, f));
+    std::fclose(f);
+    return bytes;
+}
+
+}  // namespace
 
 int denoiseMain(int argc, char** argv) {
     DenoiseOptions opt;
@@ -24,6 +37,16 @@ int denoiseMain(int argc, char** argv) {
                      "Run 'glint denoise --help' for usage.\n",
                      opt.output.c_str(), kImageExtensions);
         return kExitUsage;
+    }
+    // OpenEXR alone keeps the float values and the passes the denoiser needs: say so, and how
+    // to make one, rather than OpenEXR's "File is not an image file."
+    const std::string head = readHead(opt.input, 4);
+    if (head.size() == 4 && head != std::string("\x76\x2f\x31\x01", 4)) {
+        std::fprintf(stderr,
+                     "glint denoise: error: %s is not an OpenEXR file: glint denoise reads renders "
+                     "saved as OpenEXR, with their passes (glint SCENE -o render.exr --aov all)\n",
+                     opt.input.c_str());
+        return kExitSceneError;
     }
     try {
         const auto t0 = std::chrono::steady_clock::now();

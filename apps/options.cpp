@@ -4,6 +4,7 @@
 #include "options.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -15,13 +16,134 @@
 
 #include "glint/accel/bvh.h"
 #include "glint/render/film/film.h"
-#include "glint/render/integrators/integrator.h"
 #include "glint/render/film/piece.h"
+#include "glint/render/integrators/integrator.h"
 #include "glint/scene/model.h"
 #include "glint/scene/scene.h"
 
 namespace glint::cli {
 namespace {
+
+/// Edit distance between a and b counting a swap of two neighbouring letters as one edit
+/// (optimal string alignment): "srbg" is one from "srgb".
+size_t editDistance(std::string_view a, std::string_view b) {
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i)
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+/// What `program`'s command line `args` (without the program's name) got wrong, in Glint's
+/// words, for the errors CLI11 words its own way: an unknown option (with the nearest known one,
+/// as the scene parser suggests commands), one positional too many, an option without its value.
+/// Empty for every other error: CLI11's message (and Glint's validators') says it well.
+std::string explainUsageError(const CLI::App& app, const CLI::ParseError& e,
+                              const std::vector<std::string>& args) {
+    // The options by every name they answer to, and whether each takes a value.
+    struct Known {
+        const CLI::Option* option;
+        bool takesValue;
+    };
+    std::vector<std::pair<std::string, Known>> names;
+    std::vector<const CLI::Option*> positionals;
+    for (const CLI::Option* o : app.get_options()) {
+        const bool takesValue = o->get_items_expected_min() > 0;
+        for (const std::string& n : o->get_lnames()) names.push_back({"--" + n, {o, takesValue}});
+        for (const std::string& n : o->get_snames()) names.push_back({"-" + n, {o, takesValue}});
+        if (!o->nonpositional()) positionals.push_back(o);
+    }
+    auto find = [&](std::string_view name) -> const Known* {
+        for (const auto& [n, k] : names)
+            if (n == name) return &k;
+        return nullptr;
+    };
+    auto isNumber = [](const std::string& t) {
+        double v;
+        auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+        return ec == std::errc() && p == t.data() + t.size();
+    };
+    // Walk the arguments as the parser does: unknown options, and the positionals.
+    std::vector<std::string> unknown, given;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& t = args[i];
+        if (t == "--") {
+            given.insert(given.end(), args.begin() + static_cast<long>(i) + 1, args.end());
+            break;
+        }
+        if (t.size() > 1 && t[0] == '-' && !isNumber(t)) {
+            const bool twoDashes = t.rfind("--", 0) == 0;
+            const std::string name = twoDashes ? t.substr(0, t.find('=')) : t.substr(0, 2);
+            const Known* k = find(name);
+            if (!k || (!twoDashes && t.size() > 2 && !k->takesValue)) {
+                unknown.push_back(twoDashes ? name : t);
+                continue;
+            }
+            const bool attached = twoDashes ? t.find('=') != std::string::npos : t.size() > 2;
+            if (k->takesValue && !attached) ++i;
+            continue;
+        }
+        given.push_back(t);
+    }
+    if (!unknown.empty()) {
+        std::string out;
+        for (const std::string& u : unknown) {
+            const std::string bare = u.substr(u.find_first_not_of('-'));
+            std::string best;
+            size_t bestDistance = std::string::npos;
+            for (const auto& [n, k] : names) {
+                const size_t d = editDistance(bare, n.substr(n.find_first_not_of('-')));
+                if (d < bestDistance) bestDistance = d, best = n;
+            }
+            out += (out.empty() ? "" : "; ") + std::string("unknown option '") + u + "'";
+            if (bestDistance == 0)
+                out += ": did you mean '" + best + "'? (" +
+                       (best.rfind("--", 0) == 0 ? "long options take two dashes)"
+                                                 : "short options take one dash)");
+            else if (bare.size() > 2 && bestDistance <= std::max<size_t>(1, bare.size() / 3))
+                out += ": did you mean '" + best + "'?";
+        }
+        return out;
+    }
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !positionals.empty() &&
+        given.size() > static_cast<size_t>(std::max(1, positionals[0]->get_expected_max()))) {
+        std::string list;
+        for (size_t i = 0; i < given.size(); ++i)
+            list += (i ? (i + 1 == given.size() ? " and '" : ", '") : "'") + given[i] + "'";
+        return "one " + positionals[0]->get_name() + " only, got " + list;
+    }
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
+        // CLI11's "--spp: 1 required N missing": the option without its value.
+        const std::string what = e.what();
+        const std::string name = what.substr(0, what.find(':'));
+        if (const Known* k = find(name))
+            return "option " + name + " needs a value: " + k->option->get_type_name();
+    }
+    return {};
+}
+
+/// Parses `args` with `app`; on a usage error prints it as `program: error: ...` and returns
+/// kExitUsage, after --help or --version 0, else kGoOn.
+int parseOrExplain(CLI::App& app, int argc, char** argv, const std::string& program) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        const std::vector<std::string> args(argv + 1, argv + argc);
+        const std::string why = explainUsageError(app, e, args);
+        if (why.empty()) return app.exit(e) == 0 ? 0 : kExitUsage;
+        std::fprintf(stderr, "%s: error: %s\nRun '%s --help' for usage.\n", program.c_str(),
+                     why.c_str(), program.c_str());
+        return kExitUsage;
+    }
+    return kGoOn;
+}
 
 /// A validator from `problem(text)`: what is wrong with an option's text, empty if nothing.
 template <class Problem>
@@ -351,23 +473,19 @@ int parseOptions(int argc, char** argv, Options& opt) {
     });
     app.footer(
         "Frame pieces rendered with --part, --crop or --samples are merged with\n"
-        "  glint merge -o OUT PIECE.exr...   (glint merge --help; docs/scale-out.md)");
+        "  glint merge -o OUT PIECE.exr...   (glint merge --help; docs/scale-out.md)\n"
+        "A render saved as OpenEXR (with its passes: --aov all) is denoised with\n"
+        "  glint denoise IN.exr -o OUT       (glint denoise --help; docs/clean-images.md)");
     addOptions(app, opt);
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        for (int i = 2; i < argc && code != 0; ++i)
-            if (std::string_view(argv[i]) == "merge") {
-                std::fprintf(stderr,
-                             "(to merge pieces, 'merge' comes first: glint merge -o OUT "
-                             "PIECE.exr...)\n");
-                break;
-            }
-        return code == 0 ? 0 : kExitUsage;
-    }
-    return kGoOn;
+    const int code = parseOrExplain(app, argc, argv, "glint");
+    for (int i = 2; i < argc && code == kExitUsage; ++i)
+        if (std::string_view(argv[i]) == "merge" || std::string_view(argv[i]) == "denoise") {
+            std::fprintf(stderr, "(the command comes first: glint %s ...; glint %s --help)\n",
+                         argv[i], argv[i]);
+            break;
+        }
+    return code;
 }
 
 int parseMergeOptions(int argc, char** argv, MergeOptions& opt) {
@@ -392,13 +510,7 @@ int parseMergeOptions(int argc, char** argv, MergeOptions& opt) {
     addDisplayOptions(app, opt.shown, "as the pieces were rendered");
     app.add_flag("-q,--quiet", opt.quiet, "No messages; warnings and errors only");
     app.set_help_flag("-h,--help", "Print this help and exit");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        return code == 0 ? 0 : kExitUsage;
-    }
-    return kGoOn;
+    return parseOrExplain(app, argc, argv, "glint merge");
 }
 
 int parseDenoiseOptions(int argc, char** argv, DenoiseOptions& opt) {
@@ -426,13 +538,7 @@ int parseDenoiseOptions(int argc, char** argv, DenoiseOptions& opt) {
     addDisplayOptions(app, opt.shown, "off");
     app.add_flag("-q,--quiet", opt.quiet, "No messages; errors only");
     app.set_help_flag("-h,--help", "Print this help and exit");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        int code = app.exit(e);
-        return code == 0 ? 0 : kExitUsage;
-    }
-    return kGoOn;
+    return parseOrExplain(app, argc, argv, "glint denoise");
 }
 
 }  // namespace glint::cli

@@ -83,6 +83,13 @@ TEST(CliCleanImages, DenoiseSmoothsAndGlintDenoiseDoesTheSameToASavedRender) {
     EXPECT_TRUE(contains(r.err, "glint denoise: error: cannot read image 'missing.exr'")) << r.err;
     r = runGlint("denoise raw.exr", dir);
     EXPECT_EQ(r.exitCode, 2);
+    // Not an OpenEXR file: what it reads, and how to make one.
+    r = runGlint("denoise later.png -o again.png", dir);
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_EQ(r.err,
+              "glint denoise: error: later.png is not an OpenEXR file: glint denoise reads "
+              "renders saved as OpenEXR, with their passes (glint SCENE -o render.exr --aov "
+              "all)\n");
 }
 
 TEST(CliCleanImages, AdaptiveSamplingSaysWhatItDid) {

@@ -447,9 +447,10 @@ TEST(Cli, HelpShowsOptionGroupsAndExitsZero) {
         SCOPED_TRACE(flag);
         CommandResult r = runGlint(flag, dir);
         EXPECT_EQ(r.exitCode, 0);
-        for (const char* text : {"Usage: glint [OPTIONS] [SCENE]", "Output:", "Rendering:",
-                                 "Information:", "-o,--output", "-t,--threads", "--size",
-                                 "--maxdepth", "--check", "--stats", "-q,--quiet", "--version"})
+        for (const char* text :
+             {"Usage: glint [OPTIONS] [SCENE]", "Output:", "Rendering:", "Information:",
+              "-o,--output", "-t,--threads", "--size", "--maxdepth", "--check", "--stats",
+              "-q,--quiet", "--version", "glint merge -o OUT", "glint denoise IN.exr -o OUT"})
             EXPECT_TRUE(contains(r.out, text)) << text << " missing from:\n" << r.out;
     }
     EXPECT_EQ(filesIn(dir), std::vector<std::string>{});
@@ -463,9 +464,69 @@ TEST(Cli, UnknownFlagIsAUsageError) {
 
 TEST(Cli, SecondSceneArgumentIsAUsageError) {
     std::string dir = sceneDir("twoscenes");
-    CommandResult r = runGlint("scene.test scene.test", dir);
+    CommandResult r = runGlint("scene.test other.test", dir);
     EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err,
+              "glint: error: one SCENE only, got 'scene.test' and 'other.test'\n"
+              "Run 'glint --help' for usage.\n");
     EXPECT_EQ(filesIn(dir), std::vector<std::string>{"scene.test"});
+}
+
+// Misspelt options get the nearest option's name, in the words of the scene parser's "did you
+// mean"; one letter alone is not guessed at.
+TEST(Cli, MisspeltOptionsSuggestTheNearestOne) {
+    const std::string dir = freshDir("misspelt");
+    const struct {
+        const char* args;
+        const char* message;
+    } cases[] = {
+        {"--sampels 4", "unknown option '--sampels': did you mean '--samples'?"},
+        {"--srbg", "unknown option '--srbg': did you mean '--srgb'?"},
+        {"--maxdepht 3", "unknown option '--maxdepht': did you mean '--maxdepth'?"},
+        {"-denoise",
+         "unknown option '-denoise': did you mean '--denoise'? (long options take two dashes)"},
+        {"--no-such-flag", "unknown option '--no-such-flag'"},
+        {"-x", "unknown option '-x'"},
+        {"--spp", "option --spp needs a value: N"},
+        {"--srgb --tonemapp neutral", "unknown option '--tonemapp': did you mean '--tonemap'?"},
+    };
+    for (const auto& c : cases) {
+        const CommandResult r = runGlint(c.args, dir);
+        EXPECT_EQ(r.exitCode, 2) << c.args;
+        EXPECT_EQ(r.err,
+                  std::string("glint: error: ") + c.message + "\nRun 'glint --help' for usage.\n")
+            << c.args;
+    }
+    // Every program's usage errors read the same way.
+    CommandResult r = runGlint("merge --quite -o x.exr a.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err,
+              "glint merge: error: unknown option '--quite': did you mean '--quiet'?\n"
+              "Run 'glint merge --help' for usage.\n");
+    r = runGlint("denoise in.exr other.exr -o out.exr", dir);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err,
+                         "glint denoise: error: one INPUT only, got 'in.exr' and "
+                         "'other.exr'"))
+        << r.err;
+    EXPECT_EQ(filesIn(dir), std::vector<std::string>{});
+}
+
+// docs/cli.md shows the whole of `glint --help`: it must be what the program prints.
+TEST(Cli, TheHelpInDocsCliMdIsTheProgramsHelp) {
+    const std::string doc = readBytes(std::string(GLINT_SOURCE_DIR) + "/docs/cli.md");
+    const std::string begin = "<!-- glint --help -->\n```\n", end = "```\n<!-- end -->";
+    const size_t a = doc.find(begin), b = doc.find(end, a);
+    ASSERT_NE(a, std::string::npos) << "docs/cli.md has no '<!-- glint --help -->' block";
+    ASSERT_NE(b, std::string::npos);
+    // The kernels this CPU runs are the one thing that differs between machines.
+    const std::regex machine("the best this CPU runs: [a-z0-9]+ here");
+    const std::string shown = std::regex_replace(doc.substr(a + begin.size(), b - a - begin.size()),
+                                                 machine, "the best this CPU runs");
+    const CommandResult r = runGlint("--help", freshDir("helpdoc"));
+    ASSERT_EQ(r.exitCode, 0);
+    EXPECT_EQ(shown, std::regex_replace(r.out, machine, "the best this CPU runs"))
+        << "regenerate docs/cli.md's copy with: build/glint --help";
 }
 
 TEST(Cli, MissingSceneFileExitsOneWithCannotRead) {
