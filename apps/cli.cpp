@@ -19,8 +19,8 @@
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
 #include "glint/render/adaptive.h"
-#include "glint/render/integrators/integrator.h"
 #include "glint/render/film/piece.h"
+#include "glint/render/integrators/integrator.h"
 #include "glint/render/progressive.h"
 #include "glint/scene/studio_environment.h"
 
@@ -420,7 +420,8 @@ int prepare(const Options& opt, Prepared& out, AssetCache* assets) {
     std::vector<Diagnostic> warnings;
     auto report = [&] {
         for (const auto& w : warnings) std::fprintf(stderr, "%s\n", w.format("warning").c_str());
-        if (!out.note.empty() && !opt.quiet) std::fprintf(stderr, "glint: %s\n", out.note.c_str());
+        if (!out.note.empty() && !opt.quiet && !opt.noteSaid)
+            std::fprintf(stderr, "glint: %s\n", out.note.c_str());
         for (const std::string& w : out.optionWarnings)
             std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
     };

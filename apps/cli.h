@@ -63,6 +63,9 @@ struct Options {
     bool check = false;
     bool stats = false;
     bool quiet = false;
+    /// A later frame of a --frames sequence: the model's note (its framing, its pose) was
+    /// said at the first frame and is not repeated.
+    bool noteSaid = false;
     bool lenient = false;
     std::string camera;  ///< --camera: empty for the model's first camera.
     double fovy = 0;     ///< --fov: the vertical field of view in degrees; 0: the camera's.
@@ -153,7 +156,8 @@ void applyRenderSettings(const Options& opt, Scene& scene);
 /// error; returns kGoOn, or the exit code to end with.
 int prepare(const Options& opt, Prepared& out, AssetCache* assets = nullptr);
 
-/// How a render samples and cleans its image, from the options and the scene (docs/clean-images.md).
+/// How a render samples and cleans its image, from the options and the scene
+/// (docs/clean-images.md).
 struct SamplingPlan {
     int spp = 1;           ///< A fixed count: --spp, else the scene's `spp`, else 1.
     int maxSpp = 1;        ///< Adaptive sampling's cap: --spp, else kAdaptiveMaxSpp.

@@ -243,6 +243,7 @@ int runFrames(const Options& opt) {
         frame.frames.clear();
         frame.frame = range.first + i * range.step;
         frame.output = frameFileName(pattern, *frame.frame);
+        frame.noteSaid = i > 0;  // the framing is the same for every frame: said once
         if (!opt.quiet)
             std::fprintf(stderr, "glint: frame %lld (%lld of %lld)\n", *frame.frame, i + 1, n);
         if (int code = run(frame, keep ? &assets : nullptr, &accel); code != 0) return code;

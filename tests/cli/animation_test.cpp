@@ -107,10 +107,21 @@ TEST(CliAnimation, TheNoteSaysWhatIsPlayed) {
                          "animations (1):\n  0  'Slide'  0 to 2 s (frames 0 to 48 at 24 "
                          "fps), 2 channels\n"))
         << r.out;
-    r = runGlint("anim.gltf --size 40x30 --spp 1 -t 1 --frames 1:2 -o s%d.png", dir);
+    r = runGlint("anim.gltf --size 40x30 --spp 1 -t 1 --frames 1:3 -o s%d.png", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(contains(r.err, "glint: frame 1 (1 of 2)")) << r.err;
-    EXPECT_TRUE(contains(r.err, "glint: frame 2 (2 of 2)")) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: frame 1 (1 of 3)")) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: frame 3 (3 of 3)")) << r.err;
+    // A sequence plays the animation: its note says so once, at the first frame, with the
+    // camera every frame uses, and never that the animation is not played.
+    EXPECT_FALSE(contains(r.err, "not played")) << r.err;
+    const size_t first = r.err.find("has no camera: framing it with");
+    ASSERT_NE(first, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("has no camera", first + 1), std::string::npos) << r.err;
+    EXPECT_LT(first, r.err.find("glint: frame 2 (2 of 3)")) << r.err;
+    EXPECT_TRUE(contains(r.err,
+                         "posed by animation 0 'Slide' at 0.0416667 s, framed for the "
+                         "whole animation"))
+        << r.err;
 }
 
 TEST(CliAnimation, BadTimeOptionsSayWhatIsWrong) {
