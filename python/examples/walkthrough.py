@@ -5,7 +5,7 @@
 
 OUT_DIR (default: the current folder) gets:
 - strip.png: the course's scene6 from three places;
-- turntable.png: DamagedHelmet from four sides of twelve;
+- turntable.png: Blender's Suzanne (tests/data/gltf) from four sides of twelve;
 - terrain.png: a scene made in code, with a mesh of arrays placed twice;
 - box.exr: the path-traced Cornell box with albedo, normal and depth layers.
 """
@@ -18,12 +18,12 @@ import numpy as np
 
 import glint
 
+# Every file it reads is in the repository: it runs in a clone.
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SHARED = os.path.join(os.path.dirname(ROOT), "shared")
 OUT = sys.argv[1] if len(sys.argv) > 1 else "."
 
 # Load a course scene and look at it.
-scene = glint.load(os.path.join(SHARED, "scenes/cse167x/scene6.test"), size=(320, 240))
+scene = glint.load(os.path.join(ROOT, "tests/data/cse167x/scene6.test"), size=(320, 240))
 print(scene.info["triangles"], scene.info["lights"], scene.camera)
 image = scene.render()
 print(image.shape, image.dtype, f"{image.info['seconds']:.3f} s")
@@ -37,18 +37,17 @@ glint.write(os.path.join(OUT, "strip.png"), np.concatenate(frames[::4], axis=1))
 
 # A turntable of a glTF model, framed and denoised as the glint command does it.
 start = time.perf_counter()
-helmet = glint.load(os.path.join(SHARED, "real-world/gltf/DamagedHelmet/glTF/DamagedHelmet.gltf"),
-                    size=(320, 320))
-print(f"loaded the helmet in {time.perf_counter() - start:.2f} s")
-c = helmet.camera
+monkey = glint.load(os.path.join(ROOT, "tests/data/gltf/blender-monkey.gltf"), size=(240, 240))
+print(f"loaded the model in {time.perf_counter() - start:.2f} s")
+c = monkey.camera
 target = np.array(c["target"])
 offset = np.array(c["eye"]) - target
 turntable = []
 for degrees in range(0, 360, 30):
     a = np.radians(degrees)
     turn = np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
-    helmet.camera = dict(eye=tuple(target + turn @ offset))
-    turntable.append(helmet.render(spp=16))
+    monkey.camera = dict(eye=tuple(target + turn @ offset))
+    turntable.append(monkey.render(spp=16))
 print("seconds per frame:", [round(img.info["seconds"], 2) for img in turntable])
 # Four of the twelve side by side, shown as the model is (its display: PBR Neutral, sRGB).
 glint.write(os.path.join(OUT, "turntable.png"), np.concatenate(turntable[::3], axis=1),
@@ -79,7 +78,7 @@ print(scene.text)
 
 # Passes and progress.
 box = glint.load(os.path.join(ROOT, "scenes/cornell.test"), integrator="path", size=(256, 256))
-image = box.render(spp=64, aovs=["albedo", "normal", "depth"],
+image = box.render(spp=64, aov=["albedo", "normal", "depth"],
                    progress=lambda fraction, seconds: print(f"{fraction:4.0%}", end="\r"))
 print(image.passes["albedo"].shape, image.passes["depth"].shape)
 glint.write(os.path.join(OUT, "box.exr"), image)

@@ -34,6 +34,13 @@ __all__ = [
     "write",
 ]
 
+__version__: str = _glint.__version__
+
+
+def __dir__() -> list:
+    """What `dir(glint)` shows: the API, not the modules and names it is written with."""
+    return sorted(__all__ + ["__version__"])
+
 PathLike = Union[str, "os.PathLike[str]"]
 Vec3 = Sequence[float]
 
@@ -51,6 +58,8 @@ _RENDER_OPTIONS = frozenset(
         "time", "maxdepth", "clamp-indirect", "caustics", "exposure", "srgb", "tonemap",
     ]
 )
+# One name per option: the command line's, underscores for dashes (maxdepth, aov, tonemap, as
+# --maxdepth, --aov, --tonemap and the scene format's maxdepth). Older spellings still work.
 _ALIASES = {"max_depth": "maxdepth", "aovs": "aov", "passes": "aov", "tone_map": "tonemap"}
 # Flags with a negative form: True gives --NAME, False --no-NAME.
 _NEGATABLE = frozenset(["denoise", "srgb"])
@@ -99,7 +108,7 @@ class Image(np.ndarray):
     """A rendered image: linear radiance as float32, rows x columns x 3, row 0 at the top.
 
     An ndarray like any other, with what the render knows beside it:
-      passes   the render passes asked for (``aovs=``), by name: albedo, normal and variance
+      passes   the render passes asked for (``aov=``), by name: albedo, normal and variance
                (rows x columns x 3) and depth (rows x columns); with albedo and variance also
                albedoVariance, the albedo's (what the denoiser reads)
       info     spp, mean_spp, seconds, build_seconds, denoised, denoise_seconds, rays, ...
@@ -131,6 +140,19 @@ def _display(image: Any, exposure, srgb, tonemap) -> tuple:
     )
 
 
+def _check_radiance(image: Any, where: str) -> None:
+    """Images are linear radiance in floats: an array of integers (8-bit pixel values, most
+    likely) would be written as radiance of 0 to 255, all white. Refused, saying how to convert."""
+    dtype = np.asarray(image).dtype
+    if dtype.kind in "iub":
+        raise TypeError(
+            f"{where}: the image is an array of {dtype} values; glint writes linear radiance "
+            "as floats (a glint.Image, or float32/float64 arrays): for 8-bit pixel values, "
+            "image / 255.0 is their value in [0, 1] (and, for an sRGB picture, "
+            "((image / 255.0 + 0.055) / 1.055) ** 2.4 their linear radiance)"
+        )
+
+
 def write(
     path: PathLike,
     image: np.ndarray,
@@ -145,6 +167,7 @@ def write(
     tone mapper), which the keyword arguments change; float files hold linear radiance times
     2^exposure. An .exr file also holds the image's render passes (or `passes`) as layers."""
     path = os.fspath(path)
+    _check_radiance(image, "write")
     if passes is None:
         passes = getattr(image, "passes", {}) if path.lower().endswith(".exr") else {}
     _glint.write(
@@ -162,6 +185,7 @@ def encode(
     tonemap: Optional[str] = None,
 ) -> bytes:
     """The bytes `write` would put in a file of `format` (png, ppm, pfm, exr)."""
+    _check_radiance(image, "encode")
     return _glint.encode(
         format, np.asarray(image), {}, *_display(image, exposure, srgb, tonemap),
         getattr(image, "_frame", None),
@@ -319,23 +343,39 @@ class Scene:
     def attenuation(self, constant: float, linear: float, quadratic: float) -> "Scene":
         return self.command("attenuation", float(constant), float(linear), float(quadratic))
 
+    def _refuse(self, message: str) -> None:
+        """Raises SceneError at the caller's line, as building the scene would later."""
+        file, line = _caller()
+        error = SceneError(f"{file}:{line}: error: {message}")
+        error.file, error.line, error.column, error.message = file, line, 0, message
+        raise error
+
+    def _radius(self, what: str, radius: float, positive: bool) -> float:
+        radius = float(radius)
+        if positive and not radius > 0:
+            self._refuse(f"{what} radius must be positive, got '{radius!r}'")
+        if not positive and not radius >= 0:
+            self._refuse(f"{what} radius must not be negative, got '{radius!r}'")
+        return radius
+
     def sphere(self, center: Vec3, radius: float) -> "Scene":
-        return self.command("sphere", _vec(center, 3, "center"), float(radius))
+        radius = self._radius("sphere", radius, False)
+        return self.command("sphere", _vec(center, 3, "center"), radius)
 
     def box(self, corner0: Vec3, corner1: Vec3) -> "Scene":
         return self.command("box", _vec(corner0, 3, "corner0"), _vec(corner1, 3, "corner1"))
 
     def cylinder(self, end0: Vec3, end1: Vec3, radius: float) -> "Scene":
-        return self.command("cylinder", _vec(end0, 3, "end0"), _vec(end1, 3, "end1"), float(radius))
+        radius = self._radius("cylinder", radius, True)
+        return self.command("cylinder", _vec(end0, 3, "end0"), _vec(end1, 3, "end1"), radius)
 
     def cone(self, end0: Vec3, radius0: float, end1: Vec3, radius1: float) -> "Scene":
-        return self.command(
-            "cone", _vec(end0, 3, "end0"), float(radius0), _vec(end1, 3, "end1"), float(radius1)
-        )
+        radius0, radius1 = self._radius("cone", radius0, False), self._radius("cone", radius1, False)
+        return self.command("cone", _vec(end0, 3, "end0"), radius0, _vec(end1, 3, "end1"), radius1)
 
     def disk(self, center: Vec3, normal: Vec3, radius: float) -> "Scene":
-        return self.command("disk", _vec(center, 3, "center"), _vec(normal, 3, "normal"),
-                            float(radius))
+        radius = self._radius("disk", radius, True)
+        return self.command("disk", _vec(center, 3, "center"), _vec(normal, 3, "normal"), radius)
 
     def plane(self, point: Vec3, normal: Vec3) -> "Scene":
         return self.command("plane", _vec(point, 3, "point"), _vec(normal, 3, "normal"))
@@ -353,7 +393,11 @@ class Scene:
         uvs N x 2; float32 is read as it is), or a mesh file (OBJ, glTF, PLY, STL). A Mesh
         placed several times is stored once. Returns the Mesh (None for a file)."""
         if isinstance(positions, (str, os.PathLike)):
-            self.command("mesh", os.fspath(positions))
+            path = os.fspath(positions)
+            if not os.path.isfile(path):
+                why = "no such file" if not os.path.exists(path) else "not a file"
+                self._refuse(f"cannot read mesh '{path}': {why}")
+            self.command("mesh", path)
             return None
         mesh = positions if isinstance(positions, Mesh) else Mesh(positions, indices, normals, uvs)
         key = None
@@ -508,8 +552,8 @@ class Scene:
         """Renders the scene and returns the image (glint.Image, float32 rows x columns x 3).
 
         `options` are the command line's rendering options: spp, integrator, threads, seed,
-        aovs (a list of albedo, normal, depth, variance: Image.passes), denoise,
-        noise_threshold, min_spp, time, max_depth, clamp_indirect, caustics, and exposure, srgb
+        aov (a list of albedo, normal, depth, variance: Image.passes), denoise,
+        noise_threshold, min_spp, time, maxdepth, clamp_indirect, caustics, and exposure, srgb
         and tonemap for how it is shown. A model (and nothing else) is sampled until clean and
         denoised unless told otherwise, as by the glint command. The interpreter's lock is
         released while it renders; Ctrl-C stops it (KeyboardInterrupt) within a fraction of a

@@ -5,6 +5,8 @@ from typing import Any, Callable, Optional, Sequence
 import numpy as np
 import numpy.typing as npt
 
+__version__: str
+
 class SceneError(ValueError):
     file: Optional[str]
     line: int

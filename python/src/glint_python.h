@@ -21,6 +21,11 @@ namespace glint::python {
 
 namespace py = pybind11;
 
+/// `message` with the command line's option names as Python spells them: --maxdepth is
+/// maxdepth=, --spp: is spp:, --lenient is lenient=True, --no-denoise is denoise=False. Every
+/// message the module raises or warns with goes through it.
+std::string pythonWords(const std::string& message);
+
 /// `base` with the options `args` give, parsed as the glint command line parses them (the same
 /// names, checks and messages). Throws cli::UsageError.
 cli::Options parseOptions(const std::vector<std::string>& args, cli::Options base);

@@ -1,7 +1,11 @@
 // glint._glint: the module, its exceptions, and loading (docs/python.md).
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <exception>
+#include <string_view>
+#include <utility>
 
 #include "glint/core/error.h"
 #include "glint/scene/scene_builder.h"
@@ -19,11 +23,11 @@ PyObject* gSceneWarning = nullptr;
 /// Raises `e` as glint.SceneError, with its place in the file as attributes.
 void raiseSceneError(const SceneError& e) {
     const Diagnostic& d = e.diagnostic();
-    py::object error = py::reinterpret_borrow<py::object>(gSceneError)(e.what());
+    py::object error = py::reinterpret_borrow<py::object>(gSceneError)(pythonWords(e.what()));
     error.attr("file") = d.loc.file.empty() ? py::object(py::none()) : py::str(d.loc.file);
     error.attr("line") = d.loc.line;
     error.attr("column") = d.loc.column;
-    error.attr("message") = d.message;
+    error.attr("message") = pythonWords(d.message);
     PyErr_SetObject(gSceneError, error.ptr());
 }
 
@@ -34,6 +38,45 @@ std::shared_ptr<LoadedScene> load(const std::string& path, const std::vector<std
 }
 
 }  // namespace
+
+std::string pythonWords(const std::string& message) {
+    // The flags, by what they are as keyword arguments.
+    static const std::pair<std::string_view, std::string_view> kFlags[] = {
+        {"lenient", "lenient=True"},
+        {"no-denoise", "denoise=False"},
+        {"denoise", "denoise=True"},
+        {"no-srgb", "srgb=False"},
+        {"srgb", "srgb=True"}};
+    auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    std::string out;
+    for (size_t i = 0; i < message.size();) {
+        const bool starts = message.compare(i, 2, "--") == 0 && i + 2 < message.size() &&
+                            std::islower(static_cast<unsigned char>(message[i + 2])) &&
+                            (i == 0 || (!word(message[i - 1]) && message[i - 1] != '-'));
+        if (!starts) {
+            out += message[i++];
+            continue;
+        }
+        size_t end = i + 2;
+        while (end < message.size() &&
+               (std::islower(static_cast<unsigned char>(message[end])) ||
+                std::isdigit(static_cast<unsigned char>(message[end])) || message[end] == '-'))
+            ++end;
+        std::string name = message.substr(i + 2, end - i - 2);
+        std::string python = name;
+        std::replace(python.begin(), python.end(), '-', '_');
+        if (end < message.size() && message[end] == ':') {
+            out += python;  // "--spp: must be ..." names the option: "spp: must be ..."
+        } else {
+            std::string_view flag;
+            for (const auto& [n, f] : kFlags)
+                if (n == name) flag = f;
+            out += flag.empty() ? python + "=" : std::string(flag);
+        }
+        i = end;
+    }
+    return out;
+}
 
 cli::Options parseOptions(const std::vector<std::string>& args, cli::Options base) {
     CLI::App app{"glint", "glint"};
@@ -50,10 +93,11 @@ cli::Options parseOptions(const std::vector<std::string>& args, cli::Options bas
 
 void warn(const std::vector<Diagnostic>& warnings, const std::vector<std::string>& optionWarnings) {
     for (const Diagnostic& w : warnings)
-        if (PyErr_WarnEx(gSceneWarning, w.format("warning").c_str(), 2) != 0)
+        if (PyErr_WarnEx(gSceneWarning, pythonWords(w.format("warning")).c_str(), 2) != 0)
             throw py::error_already_set();
     for (const std::string& w : optionWarnings)
-        if (PyErr_WarnEx(gSceneWarning, w.c_str(), 2) != 0) throw py::error_already_set();
+        if (PyErr_WarnEx(gSceneWarning, pythonWords(w).c_str(), 2) != 0)
+            throw py::error_already_set();
 }
 
 }  // namespace glint::python
@@ -76,6 +120,7 @@ PYBIND11_MODULE(_glint, m) {
         "What the command line prints as a warning: a scene line it skipped or an option that "
         "does not apply.",
         PyExc_UserWarning, nullptr);
+    m.attr("__version__") = GLINT_VERSION;
     m.attr("SceneError") = py::handle(gSceneError);
     m.attr("RenderError") = py::handle(gRenderError);
     m.attr("SceneWarning") = py::handle(gSceneWarning);
@@ -86,9 +131,9 @@ PYBIND11_MODULE(_glint, m) {
         } catch (const glint::SceneError& e) {
             raiseSceneError(e);
         } catch (const glint::cli::UsageError& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            PyErr_SetString(PyExc_ValueError, pythonWords(e.what()).c_str());
         } catch (const glint::BuildError& e) {
-            PyErr_SetString(PyExc_ValueError, e.what());
+            PyErr_SetString(PyExc_ValueError, pythonWords(e.what()).c_str());
         } catch (const glint::RenderError& e) {
             PyErr_SetString(gRenderError, e.what());
         }

@@ -60,7 +60,7 @@ def test_render_options_override_the_load_options_for_one_render(course_scene6):
 def test_passes_come_back_by_name_and_round_trip_through_exr(cli, tmp_path):
     box = SOURCE / "scenes" / "cornell.test"
     image = glint.load(box, size=(32, 32), integrator="path", spp=2).render(
-        aovs=["albedo", "normal", "depth", "variance"]
+        aov=["albedo", "normal", "depth", "variance"]
     )
     assert set(image.passes) == {"albedo", "normal", "depth", "variance", "albedoVariance"}
     assert image.passes["albedo"].shape == (32, 32, 3)
