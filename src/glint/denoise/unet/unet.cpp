@@ -1,0 +1,185 @@
+#include "glint/denoise/unet/unet.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace glint {
+namespace {
+
+/// The layer `name` of the archive, checked to take `in` channels (0: any).
+Conv3x3 layer(const TzaTensors& tensors, const std::string& name, int in) {
+    const auto w = tensors.find(name + ".weight"), b = tensors.find(name + ".bias");
+    if (w == tensors.end() || b == tensors.end())
+        throw std::runtime_error("the weights have no layer '" + name + "'");
+    const TzaTensor& weights = w->second;
+    if (weights.dims.size() != 4 || weights.dims[2] != 3 || weights.dims[3] != 3 ||
+        weights.layout != "oihw")
+        throw std::runtime_error("layer '" + name + "' is not a 3x3 convolution (oihw)");
+    Conv3x3 conv{name, weights.dims[1], weights.dims[0], weights.values, b->second.values};
+    if (static_cast<int>(conv.bias.size()) != conv.out)
+        throw std::runtime_error("layer '" + name + "' has " + std::to_string(conv.bias.size()) +
+                                 " biases for " + std::to_string(conv.out) + " outputs");
+    if (in != 0 && conv.in != in)
+        throw std::runtime_error("layer '" + name + "' takes " + std::to_string(conv.in) +
+                                 " channels where the network gives it " + std::to_string(in));
+    return conv;
+}
+
+bool has(const TzaTensors& tensors, const std::string& name) {
+    return tensors.count(name + ".weight") != 0;
+}
+
+}  // namespace
+
+UNet UNet::fromTensors(const TzaTensors& tensors) {
+    UNet net;
+    const bool large = has(tensors, "enc_conv1a");
+    // The encoder, level by level: its layers chained, each taking the last one's output.
+    int channels = 0;
+    std::array<int, 4> skip{};  // the channels of each level's pooled output
+    auto chain = [&](std::vector<Conv3x3>& out, std::initializer_list<std::string> names) {
+        for (const std::string& name : names) {
+            out.push_back(layer(tensors, name, channels));
+            channels = out.back().out;
+        }
+    };
+    for (int level = 1; level <= 4; ++level) {
+        const std::string n = std::to_string(level);
+        if (large)
+            chain(net.encoder_[level - 1], {"enc_conv" + n + "a", "enc_conv" + n + "b"});
+        else if (level == 1)
+            chain(net.encoder_[0], {"enc_conv0", "enc_conv1"});
+        else
+            chain(net.encoder_[level - 1], {"enc_conv" + n});
+        skip[level - 1] = channels;
+    }
+    chain(net.bottom_, {"enc_conv5a", "enc_conv5b"});
+    const int input = net.encoder_[0].front().in;
+    for (int level = 4; level >= 1; --level) {
+        const std::string n = std::to_string(level);
+        channels += level == 1 ? input : skip[level - 2];  // joined with the skip
+        if (level > 1)
+            chain(net.decoder_[level - 1], {"dec_conv" + n + "a", "dec_conv" + n + "b"});
+        else
+            chain(net.decoder_[0],
+                  {"dec_conv1a", "dec_conv1b", large ? "dec_conv1c" : "dec_conv0"});
+    }
+    return net;
+}
+
+size_t UNet::parameters() const {
+    size_t n = 0;
+    auto count = [&](const std::vector<Conv3x3>& convs) {
+        for (const Conv3x3& c : convs) n += c.weights.size() + c.bias.size();
+    };
+    for (const auto& level : encoder_) count(level);
+    count(bottom_);
+    for (const auto& level : decoder_) count(level);
+    return n;
+}
+
+double UNet::multiplyAddsPerPixel() const {
+    double perPixel = 0;
+    auto count = [&](const std::vector<Conv3x3>& convs, double scale) {
+        for (const Conv3x3& c : convs) perPixel += 9.0 * c.in * c.out * scale;
+    };
+    // Level L (from 1) of the encoder runs at 1 / 4^(L-1) of the pixels; the decoder's level L
+    // too, and the bottom at 1 / 4^4.
+    for (int level = 0; level < 4; ++level) {
+        count(encoder_[level], 1.0 / (1 << (2 * level)));
+        count(decoder_[level], 1.0 / (1 << (2 * level)));
+    }
+    count(bottom_, 1.0 / 256);
+    return perPixel;
+}
+
+FeatureMap UNet::run(const FeatureMap& input, ThreadPool& pool) const {
+    if (input.channels != inputChannels() || input.height % kAlignment != 0 ||
+        input.width % kAlignment != 0)
+        throw std::invalid_argument("UNet::run: the input has " + std::to_string(input.channels) +
+                                    " channels of " + std::to_string(input.width) + "x" +
+                                    std::to_string(input.height));
+    std::array<FeatureMap, 4> pooled;
+    const FeatureMap* x = &input;
+    FeatureMap current;
+    for (int level = 0; level < 4; ++level) {
+        for (const Conv3x3& conv : encoder_[level]) {
+            current = convolveRelu(conv, *x, pool);
+            x = &current;
+        }
+        pooled[level] = maxPool2x2(*x);
+        x = &pooled[level];
+    }
+    for (const Conv3x3& conv : bottom_) {
+        current = convolveRelu(conv, *x, pool);
+        x = &current;
+    }
+    current = upsample2x(current);
+    for (int level = 3; level >= 0; --level) {
+        current = concatenate(current, level == 0 ? input : pooled[level - 1]);
+        for (const Conv3x3& conv : decoder_[level]) current = convolveRelu(conv, current, pool);
+        if (level > 0) current = upsample2x(current);
+    }
+    return current;
+}
+
+FeatureMap convolveRelu(const Conv3x3& conv, const FeatureMap& in, ThreadPool& pool) {
+    const int h = in.height, w = in.width;
+    FeatureMap out(conv.out, h, w);
+    parallelFor(pool, 0, static_cast<size_t>(conv.out), 1, [&](size_t first, size_t last) {
+        for (size_t o = first; o < last; ++o) {
+            float* dst = out.plane(static_cast<int>(o));
+            std::fill(dst, dst + static_cast<size_t>(h) * w, conv.bias[o]);
+            for (int i = 0; i < conv.in; ++i) {
+                const float* src = in.plane(i);
+                const float* k = conv.weights.data() + (o * conv.in + i) * 9;
+                for (int ky = 0; ky < 3; ++ky)
+                    for (int kx = 0; kx < 3; ++kx) {
+                        const float weight = k[ky * 3 + kx];
+                        // out(y, x) += weight * in(y + ky - 1, x + kx - 1), zero outside.
+                        const int y0 = std::max(0, 1 - ky), y1 = std::min(h, h + 1 - ky);
+                        const int x0 = std::max(0, 1 - kx), x1 = std::min(w, w + 1 - kx);
+                        for (int y = y0; y < y1; ++y) {
+                            float* row = dst + static_cast<size_t>(y) * w;
+                            const float* from =
+                                src + static_cast<size_t>(y + ky - 1) * w + (kx - 1);
+                            for (int xx = x0; xx < x1; ++xx) row[xx] += weight * from[xx];
+                        }
+                    }
+            }
+            for (size_t p = 0; p < static_cast<size_t>(h) * w; ++p) dst[p] = std::max(dst[p], 0.0f);
+        }
+    });
+    return out;
+}
+
+FeatureMap maxPool2x2(const FeatureMap& in) {
+    FeatureMap out(in.channels, in.height / 2, in.width / 2);
+    for (int c = 0; c < in.channels; ++c)
+        for (int y = 0; y < out.height; ++y)
+            for (int x = 0; x < out.width; ++x)
+                out.at(c, y, x) =
+                    std::max(std::max(in.at(c, 2 * y, 2 * x), in.at(c, 2 * y, 2 * x + 1)),
+                             std::max(in.at(c, 2 * y + 1, 2 * x), in.at(c, 2 * y + 1, 2 * x + 1)));
+    return out;
+}
+
+FeatureMap upsample2x(const FeatureMap& in) {
+    FeatureMap out(in.channels, in.height * 2, in.width * 2);
+    for (int c = 0; c < in.channels; ++c)
+        for (int y = 0; y < out.height; ++y)
+            for (int x = 0; x < out.width; ++x) out.at(c, y, x) = in.at(c, y / 2, x / 2);
+    return out;
+}
+
+FeatureMap concatenate(const FeatureMap& a, const FeatureMap& b) {
+    if (a.height != b.height || a.width != b.width)
+        throw std::invalid_argument("concatenate: images of different sizes");
+    FeatureMap out(a.channels + b.channels, a.height, a.width);
+    std::copy(a.values.begin(), a.values.end(), out.values.begin());
+    std::copy(b.values.begin(), b.values.end(),
+              out.values.begin() + static_cast<long>(a.values.size()));
+    return out;
+}
+
+}  // namespace glint

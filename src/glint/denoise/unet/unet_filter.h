@@ -1,0 +1,46 @@
+#pragma once
+/// Denoising with Open Image Denoise's U-Net (unet.h): what goes in and comes out of the network
+/// as OIDN's own filter has it for HDR colour with albedo and normal ("RT", hdr), from the
+/// published description of OIDN 2 and its sources' constants:
+///  - the colour is scaled by an exposure chosen from the image (key 0.18 over the geometric
+///    mean of the luminance of blocks of at most 16 x 16 pixels, blocks darker than 1e-8 left
+///    out), clamped below at 0 and mapped by the perceptual-uniform transfer function "PU" (a
+///    fit of the PU2 curve, Aydin et al. 2008), normalised so that 65504 maps to 1;
+///  - the albedo is clamped to [0, 1]; the normal to [-1, 1] and mapped to [0, 1];
+///  - the image is padded with zeros to a multiple of 16 on each side;
+///  - the output is clamped below at 0 in the network's space, mapped back through the
+///    transfer function's inverse and divided by the exposure.
+
+#include <vector>
+
+#include "glint/core/parallel.h"
+#include "glint/denoise/unet/unet.h"
+#include "glint/math/vec3.h"
+
+namespace glint {
+
+/// The images the network reads, each width * height pixels in rows, row 0 at the top. `albedo`
+/// and `normal` are needed by networks that read them (9 input channels: both; 6: albedo only).
+struct UNetImages {
+    int width = 0, height = 0;
+    const Vec3* color = nullptr;
+    const Vec3* albedo = nullptr;
+    const Vec3* normal = nullptr;
+};
+
+/// OIDN's exposure for HDR colour `color` (width * height pixels): 0.18 over the geometric mean
+/// of the blocks' luminance; 1 for an image with no block brighter than 1e-8.
+float autoexposure(const Vec3* color, int width, int height);
+
+/// OIDN's PU transfer function, normalised: forward maps radiance 0 to 65504 to [0, 1], inverse
+/// maps back.
+float puForward(float radiance);
+float puInverse(float value);
+
+/// The network's input planes for `images` at `exposure`, padded to multiples of 16.
+FeatureMap unetInput(const UNet& net, const UNetImages& images, float exposure);
+
+/// Denoises `images.color` with `net` (OIDN's HDR weights): width * height pixels.
+std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& images, ThreadPool& pool);
+
+}  // namespace glint
