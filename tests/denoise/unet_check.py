@@ -3,14 +3,16 @@
 own, on the same weights and images: outputs equal to float rounding. CTest runs it as
 denoise.unet_matches_numpy:
 
-    unet_check.py GLINT_UNET_DENOISE_BINARY [WEIGHTS.tza ...]
+    unet_check.py GLINT_UNET_DENOISE_BINARY [WEIGHTS.tza ...] [--kernels NAME,...|all]
 
 Random weights of each of OIDN's three shapes (its base, small-level names and large one, with
 few channels, so that it runs in seconds) on a random image of a size no multiple of 16 (the
 padding), colour of a wide range with albedo and normal; and any real weights named, on a small
 image. Both the network's raw output and the whole filter (exposure, transfer function) are
-compared."""
+compared, for each set of kernels named (default: the best this machine runs; all: every one it
+runs)."""
 
+import itertools
 import os
 import struct
 import subprocess
@@ -85,6 +87,15 @@ def worst_of_scale(a, b):
 
 def main():
     binary = sys.argv[1]
+    args = sys.argv[2:]
+    kernels = [None]
+    if "--kernels" in args:
+        at = args.index("--kernels")
+        kernels = args[at + 1].split(",")
+        del args[at:at + 2]
+        if kernels == ["all"]:
+            kernels = subprocess.run([binary, "--list-kernels"], check=True, capture_output=True,
+                                     text=True).stdout.split()
     rng = np.random.default_rng(2026)
     failures = 0
     with tempfile.TemporaryDirectory() as d:
@@ -102,25 +113,25 @@ def main():
             path = os.path.join(d, shape + ".tza")
             write_tza(path, random_weights(rng, shape))
             cases.append((shape, path))
-        cases += [(os.path.basename(p), p) for p in sys.argv[2:]]
-        for name, weights in cases:
+        cases += [(os.path.basename(p), p) for p in args]
+        for (name, weights), kernel, mode in itertools.product(cases, kernels, ("raw", "filter")):
             t = ref.read_tza(weights)
-            for mode in ("raw", "filter"):
-                out = os.path.join(d, f"{name}-{mode}.pfm")
-                args = [binary, weights, *files, out] + (["--raw"] if mode == "raw" else [])
-                subprocess.run(args, check=True)
-                glint = ref.read_pfm(out)
-                images = [ref.read_pfm(f) for f in files]
-                if mode == "raw":
-                    expected = ref.run_padded(t, np.concatenate(images, 2).astype(np.float32))
-                else:
-                    expected = ref.denoise(t, *images)
-                error = (worst_of_scale(glint, expected) if mode == "raw" else
-                         worst(glint, expected, 1e-3))
-                ok = error < 2e-3
-                failures += not ok
-                print(f"{name:24s} {mode:7s} largest difference {error:.2e} "
-                      f"{'ok' if ok else 'TOO LARGE'}")
+            out = os.path.join(d, f"{name}-{mode}.pfm")
+            command = [binary, weights, *files, out] + (["--raw"] if mode == "raw" else [])
+            command += ["--kernels", kernel] if kernel else []
+            subprocess.run(command, check=True)
+            glint = ref.read_pfm(out)
+            images = [ref.read_pfm(f) for f in files]
+            if mode == "raw":
+                expected = ref.run_padded(t, np.concatenate(images, 2).astype(np.float32))
+            else:
+                expected = ref.denoise(t, *images)
+            error = (worst_of_scale(glint, expected) if mode == "raw" else
+                     worst(glint, expected, 1e-3))
+            ok = error < 2e-3
+            failures += not ok
+            print(f"{name:24s} {kernel or 'best':10s} {mode:7s} largest difference {error:.2e} "
+                  f"{'ok' if ok else 'TOO LARGE'}")
     sys.exit(1 if failures else 0)
 
 

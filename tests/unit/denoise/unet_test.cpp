@@ -323,3 +323,107 @@ TEST(UNetFilter, TransferFunctionRoundTripsAndExposureMapsTheKeyTo018) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// A base-shaped U-Net with these channels per layer (encoder levels 1 to 4, the bottom, decoder
+// levels 4 to 1) and random weights: odd counts, so that tasks get one to four output blocks
+// (the kernels' two-vector, one-vector and lone-block tiles) and joins padded blocks.
+UNet randomNet(Rng& rng, int inputs) {
+    const int enc[4] = {12, 20, 36, 40}, bottom = 28, dec[4] = {44, 24, 16, 8};
+    TzaTensors t;
+    auto conv = [&](const std::string& name, int in, int out) {
+        TzaTensor w{{out, in, 3, 3}, "oihw", {}}, b{{out}, "x", {}};
+        const double scale = std::sqrt(2.0 / (9 * in));
+        for (int i = 0; i < out * in * 9; ++i)
+            w.values.push_back(static_cast<float>(scale * (2 * rng.uniform() - 1) * 1.7));
+        for (int o = 0; o < out; ++o)
+            b.values.push_back(static_cast<float>(0.1 * (rng.uniform() - 0.5)));
+        t[name + ".weight"] = w;
+        t[name + ".bias"] = b;
+    };
+    conv("enc_conv0", inputs, enc[0]);
+    conv("enc_conv1", enc[0], enc[0]);
+    conv("enc_conv2", enc[0], enc[1]);
+    conv("enc_conv3", enc[1], enc[2]);
+    conv("enc_conv4", enc[2], enc[3]);
+    conv("enc_conv5a", enc[3], bottom);
+    conv("enc_conv5b", bottom, bottom);
+    conv("dec_conv4a", bottom + enc[2], dec[0]);
+    conv("dec_conv4b", dec[0], dec[0]);
+    conv("dec_conv3a", dec[0] + enc[1], dec[1]);
+    conv("dec_conv3b", dec[1], dec[1]);
+    conv("dec_conv2a", dec[1] + enc[0], dec[2]);
+    conv("dec_conv2b", dec[2], dec[2]);
+    conv("dec_conv1a", dec[2] + inputs, dec[3]);
+    conv("dec_conv1b", dec[3], dec[3]);
+    conv("dec_conv0", dec[3], 3);
+    return UNet::fromTensors(t);
+}
+
+std::vector<unet::KernelIsa> kernelsHere() {
+    std::vector<unet::KernelIsa> out;
+    for (unet::KernelIsa isa : {unet::KernelIsa::Portable, unet::KernelIsa::Avx2,
+                                unet::KernelIsa::Avx512, unet::KernelIsa::Simd128})
+        if (unet::runs(isa)) out.push_back(isa);
+    return out;
+}
+
+float largestValue(const FeatureMap& m) {
+    float top = 0;
+    for (float v : m.values) top = std::max(top, std::fabs(v));
+    return top;
+}
+
+TEST(UNetKernels, EveryKernelSetMatchesTheOracleOnOddSizes) {
+    Rng rng(11);
+    for (int inputs : {3, 9}) {
+        const UNet net = randomNet(rng, inputs);
+        // 80 wide: full-size rows end in partial tiles (12- and 6-pixel tiles), the bottom is 5.
+        const FeatureMap in = randomMap(inputs, 48, 80, rng, 0, 1);
+        ThreadPool pool(2);
+        const FeatureMap expected = net.runReference(in, pool);
+        const float scale = largestValue(expected);
+        ASSERT_GT(scale, 0.f);
+        for (unet::KernelIsa isa : kernelsHere()) {
+            const FeatureMap out = net.run(in, pool, isa);
+            ASSERT_EQ(out.values.size(), expected.values.size());
+            float worst = 0;
+            for (size_t i = 0; i < out.values.size(); ++i)
+                worst = std::max(worst, std::fabs(out.values[i] - expected.values[i]));
+            EXPECT_LT(worst / scale, 1e-5f) << unet::kernelIsaName(isa) << " with " << inputs;
+        }
+    }
+}
+
+TEST(UNetKernels, ResultsDoNotDependOnTheThreadsAndFusedMultiplyAddSetsAgree) {
+    Rng rng(5);
+    const UNet net = randomNet(rng, 9);
+    const FeatureMap in = randomMap(9, 64, 48, rng, 0, 1);
+    for (unet::KernelIsa isa : kernelsHere()) {
+        ThreadPool one(1);
+        const FeatureMap first = net.run(in, one, isa);
+        for (int threads : {2, 3, 5}) {
+            ThreadPool pool(threads);
+            EXPECT_EQ(net.run(in, pool, isa).values, first.values)
+                << unet::kernelIsaName(isa) << " on " << threads << " threads";
+        }
+    }
+    // AVX2 and AVX-512 sum the same products in the same order, each fused: the same bits.
+    if (unet::runs(unet::KernelIsa::Avx2) && unet::runs(unet::KernelIsa::Avx512)) {
+        ThreadPool pool(2);
+        EXPECT_EQ(net.run(in, pool, unet::KernelIsa::Avx2).values,
+                  net.run(in, pool, unet::KernelIsa::Avx512).values);
+    }
+}
+
+TEST(UNetKernels, KernelsAreNamedAndAnUnknownNameIsRefused) {
+    for (unet::KernelIsa isa : kernelsHere())
+        EXPECT_EQ(unet::kernelIsaNamed(unet::kernelIsaName(isa)), isa);
+    EXPECT_TRUE(unet::runs(unet::bestKernelIsa()));
+    EXPECT_THROW(unet::kernelIsaNamed("sse9"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,6 +1,7 @@
 #include "glint/denoise/unet/unet.h"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 namespace glint {
@@ -64,6 +65,21 @@ UNet UNet::fromTensors(const TzaTensors& tensors) {
             chain(net.decoder_[0],
                   {"dec_conv1a", "dec_conv1b", large ? "dec_conv1c" : "dec_conv0"});
     }
+    // Packed: every layer reads the one before it, but the decoder's first, which reads the
+    // upsampled layer before it and the skip.
+    auto pack = [](const std::vector<Conv3x3>& convs, std::vector<unet::PackedConv>& out,
+                   int joined) {
+        for (const Conv3x3& c : convs) {
+            const bool join = &c == &convs.front() && joined > 0;
+            const int sources[2] = {join ? c.in - joined : c.in, joined};
+            out.push_back(unet::packConv(c, std::span<const int>(sources, join ? 2 : 1)));
+        }
+    };
+    for (int level = 0; level < 4; ++level) {
+        pack(net.encoder_[level], net.packedEncoder_[level], 0);
+        pack(net.decoder_[level], net.packedDecoder_[level], level == 0 ? input : skip[level - 1]);
+    }
+    pack(net.bottom_, net.packedBottom_, 0);
     return net;
 }
 
@@ -93,12 +109,112 @@ double UNet::multiplyAddsPerPixel() const {
     return perPixel;
 }
 
-FeatureMap UNet::run(const FeatureMap& input, ThreadPool& pool) const {
-    if (input.channels != inputChannels() || input.height % kAlignment != 0 ||
-        input.width % kAlignment != 0)
+namespace {
+
+void checkInput(const UNet& net, const FeatureMap& input) {
+    if (input.channels != net.inputChannels() || input.height % UNet::kAlignment != 0 ||
+        input.width % UNet::kAlignment != 0 || input.height <= 0 || input.width <= 0)
         throw std::invalid_argument("UNet::run: the input has " + std::to_string(input.channels) +
                                     " channels of " + std::to_string(input.width) + "x" +
                                     std::to_string(input.height));
+}
+
+/// `conv` on `sources` (whose size, upsampled or not, is height x width), pooled or not: the
+/// rows cut into bands, each band and pair of output blocks a task.
+unet::BlockedMap convolve(const unet::PackedConv& conv, std::span<const unet::ConvSource> sources,
+                          int height, int width, bool pooled, ThreadPool& pool,
+                          unet::KernelIsa isa) {
+    unet::BlockedMap out(conv.outChannels, pooled ? height / 2 : height,
+                         pooled ? width / 2 : width);
+    const int perTask = unet::taskBlocks(isa);
+    const int groups = (conv.outBlocks + perTask - 1) / perTask;
+    // About eight tasks per thread; bands of an even number of rows (pooling takes two).
+    const int wanted = (8 * pool.threads() + groups - 1) / groups;
+    const int bands = std::clamp(wanted, 1, std::max(1, height / 2));
+    const int band = ((height + bands - 1) / bands + 1) / 2 * 2;
+    const int tasks = (height + band - 1) / band * groups;
+    parallelFor(pool, 0, static_cast<size_t>(tasks), 1, [&](size_t first, size_t last) {
+        unet::AlignedFloats scratch(pooled ? static_cast<size_t>(2) * width * perTask * unet::kBlock
+                                           : 0);
+        for (size_t i = first; i < last; ++i) {
+            unet::ConvRows t;
+            t.conv = &conv;
+            t.sources = sources;
+            t.height = height;
+            t.width = width;
+            t.block = static_cast<int>(i % groups) * perTask;
+            t.blocks = std::min(perTask, conv.outBlocks - t.block);
+            t.y0 = static_cast<int>(i / groups) * band;
+            t.y1 = std::min(height, t.y0 + band);
+            t.pool = pooled;
+            t.out = &out;
+            t.scratch = scratch.data();
+            unet::convolveRows(isa, t);
+        }
+    });
+    return out;
+}
+
+}  // namespace
+
+FeatureMap UNet::run(const FeatureMap& input, ThreadPool& pool, unet::KernelIsa isa,
+                     std::vector<UNetLayerTime>* times) const {
+    if (isa == unet::KernelIsa::Reference) return runReference(input, pool);
+    checkInput(*this, input);
+    if (!unet::runs(isa))
+        throw std::invalid_argument("UNet::run: this machine does not run the " +
+                                    std::string(unet::kernelIsaName(isa)) + " kernels");
+    using unet::BlockedMap, unet::ConvSource;
+    BlockedMap x(input.channels, input.height, input.width);
+    for (int c = 0; c < input.channels; ++c)
+        for (int y = 0; y < input.height; ++y)
+            for (int px = 0; px < input.width; ++px)
+                x.at(c / unet::kBlock, y, px)[c % unet::kBlock] = input.at(c, y, px);
+    // Runs `convs` in turn, the first reading `sources` (of size height x width), each after it
+    // the one before; the last one pooled if `poolLast`.
+    auto layers = [&](const std::vector<unet::PackedConv>& convs,
+                      std::span<const ConvSource> sources, int height, int width, bool poolLast) {
+        BlockedMap y;
+        for (size_t i = 0; i < convs.size(); ++i) {
+            const ConvSource previous{&y, false};
+            const auto start = std::chrono::steady_clock::now();
+            BlockedMap next = convolve(convs[i], i == 0 ? sources : std::span(&previous, 1), height,
+                                       width, poolLast && i + 1 == convs.size(), pool, isa);
+            if (times)
+                times->push_back(
+                    {convs[i].name, width, height,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                         .count(),
+                     9.0 * convs[i].inChannels * convs[i].outChannels * width * height});
+            y = std::move(next);
+        }
+        return y;
+    };
+    std::array<BlockedMap, 4> pooled;
+    for (int level = 0; level < 4; ++level) {
+        const BlockedMap& from = level == 0 ? x : pooled[level - 1];
+        const ConvSource source{&from, false};
+        pooled[level] =
+            layers(packedEncoder_[level], std::span(&source, 1), from.height, from.width, true);
+    }
+    const ConvSource bottom{&pooled[3], false};
+    BlockedMap current =
+        layers(packedBottom_, std::span(&bottom, 1), pooled[3].height, pooled[3].width, false);
+    for (int level = 3; level >= 0; --level) {
+        const BlockedMap& skip = level == 0 ? x : pooled[level - 1];
+        const ConvSource join[2] = {{&current, true}, {&skip, false}};
+        current = layers(packedDecoder_[level], join, skip.height, skip.width, false);
+    }
+    FeatureMap out(outputChannels(), input.height, input.width);
+    for (int c = 0; c < out.channels; ++c)
+        for (int y = 0; y < out.height; ++y)
+            for (int px = 0; px < out.width; ++px)
+                out.at(c, y, px) = current.at(c / unet::kBlock, y, px)[c % unet::kBlock];
+    return out;
+}
+
+FeatureMap UNet::runReference(const FeatureMap& input, ThreadPool& pool) const {
+    checkInput(*this, input);
     std::array<FeatureMap, 4> pooled;
     const FeatureMap* x = &input;
     FeatureMap current;

@@ -15,15 +15,17 @@
 /// dec_conv0; its "high" weights have two layers per encoder level (enc_convNa/b) and end in
 /// dec_conv1c. The input and output sizes must be multiples of 16 (kAlignment).
 ///
-/// This file is the portable inference, the oracle for faster kernels: plain loops over
-/// channel-major planes, in float, each output channel computed on its own (so the result does
-/// not depend on the threads).
+/// run() runs the fast kernels (blocked.h: channels in blocks of 8, joins, upsampling and
+/// pooling fused into the convolutions, AVX2 where the machine has it). runReference() is the
+/// oracle they are checked against: plain loops over channel-major planes, in float, each output
+/// channel computed on its own. Neither result depends on the threads.
 
 #include <array>
 #include <string>
 #include <vector>
 
 #include "glint/core/parallel.h"
+#include "glint/denoise/unet/blocked.h"
 #include "glint/denoise/unet/tza.h"
 
 namespace glint {
@@ -51,6 +53,13 @@ struct Conv3x3 {
     std::vector<float> weights, bias;
 };
 
+/// How long one layer took in a run (UNet::run's `times`).
+struct UNetLayerTime {
+    std::string name;
+    int width = 0, height = 0;
+    double seconds = 0, multiplyAdds = 0;
+};
+
 class UNet {
   public:
     /// Pooled four times: inputs are padded to a multiple of this on each side.
@@ -68,14 +77,23 @@ class UNet {
     double multiplyAddsPerPixel() const;
 
     /// The network's output for `input` (inputChannels() planes, sides multiples of
-    /// kAlignment): outputChannels() planes of the same size.
-    FeatureMap run(const FeatureMap& input, ThreadPool& pool) const;
+    /// kAlignment): outputChannels() planes of the same size, by the kernels of `isa` (which must
+    /// run here).
+    /// With `times`, each layer's time is appended to it (the blocked kernels only).
+    FeatureMap run(const FeatureMap& input, ThreadPool& pool,
+                   unet::KernelIsa isa = unet::bestKernelIsa(),
+                   std::vector<UNetLayerTime>* times = nullptr) const;
+    /// The same by the portable oracle (equal to rounding).
+    FeatureMap runReference(const FeatureMap& input, ThreadPool& pool) const;
 
   private:
     /// Encoder levels 1 to 4 (each followed by pooling), the bottom (followed by upsampling),
     /// decoder levels 1 to 4 (each after the join; all but level 1 followed by upsampling).
     std::array<std::vector<Conv3x3>, 4> encoder_, decoder_;
     std::vector<Conv3x3> bottom_;
+    /// The same layers packed for the kernels (the decoder's first layers for two sources).
+    std::array<std::vector<unet::PackedConv>, 4> packedEncoder_, packedDecoder_;
+    std::vector<unet::PackedConv> packedBottom_;
 };
 
 /// `conv` on `in`, then ReLU: the portable kernel (unet.cpp).

@@ -102,11 +102,12 @@ FeatureMap unetInput(const UNet& net, const UNetImages& in, float exposure) {
     return x;
 }
 
-std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& in, ThreadPool& pool) {
+std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& in, ThreadPool& pool,
+                              unet::KernelIsa isa) {
     if (in.width <= 0 || in.height <= 0 || !in.color)
         throw std::invalid_argument("unetDenoise: no image");
     const float exposure = autoexposure(in.color, in.width, in.height);
-    const FeatureMap out = net.run(unetInput(net, in, exposure), pool);
+    const FeatureMap out = net.run(unetInput(net, in, exposure), pool, isa);
     std::vector<Vec3> result(static_cast<size_t>(in.width) * in.height);
     const float unexpose = exposure != 0.f ? 1.f / exposure : 0.f;
     for (int y = 0; y < in.height; ++y)

@@ -41,6 +41,7 @@ float puInverse(float value);
 FeatureMap unetInput(const UNet& net, const UNetImages& images, float exposure);
 
 /// Denoises `images.color` with `net` (OIDN's HDR weights): width * height pixels.
-std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& images, ThreadPool& pool);
+std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& images, ThreadPool& pool,
+                              unet::KernelIsa isa = unet::bestKernelIsa());
 
 }  // namespace glint
