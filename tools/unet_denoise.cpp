@@ -7,7 +7,8 @@
 //
 // --list-kernels alone lists the kernels this machine runs. Options: --kernels
 // reference|portable|avx2|avx512|simd128 (default: the best), --threads N,
-// --time (the network's time), --layers (with --raw: each layer's time and speed too).
+// --time (the network's time), --layers (with --raw: each layer's time and speed too), --tile N
+// (tiles of N pixels).
 //
 // With --raw, the network's own output planes (before the transfer function's inverse) are
 // written, and the input is taken as the network's input planes (no exposure, no transfer).
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     unet::KernelIsa isa = unet::bestKernelIsa();
     int threads = 0;
     bool layers = false, timed = false;
+    int tile = 0;
     for (size_t i = 0; i < args.size();) {
         if (args[i] == "--raw") {
             raw = true;
@@ -47,6 +49,9 @@ int main(int argc, char** argv) {
             args.erase(args.begin() + static_cast<long>(i));
         } else if (args[i] == "--layers") {
             layers = true;
+        } else if (args[i] == "--tile" && i + 1 < args.size()) {
+            tile = std::stoi(args[i + 1]);
+            args.erase(args.begin() + static_cast<long>(i));
         } else if (args[i] == "--time") {
             timed = true;
         } else if (args[i] == "--threads" && i + 1 < args.size()) {
@@ -103,7 +108,10 @@ int main(int argc, char** argv) {
             UNetImages images{w, h, inputs[0].pixels().data()};
             if (inputs.size() > 1) images.albedo = inputs[1].pixels().data();
             if (inputs.size() > 2) images.normal = inputs[2].pixels().data();
-            const std::vector<Vec3> result = unetDenoise(net, images, pool, isa);
+            UNetOptions options;
+            options.isa = isa;
+            options.tileSize = tile;
+            const std::vector<Vec3> result = unetDenoise(net, images, pool, options);
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) out.at(x, y) = result[static_cast<size_t>(y) * w + x];
         }

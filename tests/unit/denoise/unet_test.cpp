@@ -427,3 +427,65 @@ TEST(UNetKernels, KernelsAreNamedAndAnUnknownNameIsRefused) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+struct NoisyImages {
+    int width, height;
+    std::vector<Vec3> color, albedo, normal;
+    UNetImages images() const {
+        return {width, height, color.data(), albedo.data(), normal.data()};
+    }
+};
+
+NoisyImages noisyImages(int width, int height, Rng& rng) {
+    NoisyImages n{width, height, {}, {}, {}};
+    for (int i = 0; i < width * height; ++i) {
+        n.color.emplace_back(std::exp(4 * rng.uniform() - 2), rng.uniform(), 3 * rng.uniform());
+        n.albedo.emplace_back(rng.uniform(), rng.uniform(), rng.uniform());
+        n.normal.emplace_back(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, rng.uniform());
+    }
+    return n;
+}
+
+TEST(UNetFilter, TilesGiveTheWholeImagesResultBitForBit) {
+    Rng rng(17);
+    const UNet net = randomNet(rng, 9);
+    // 330 x 40: padded to 336 x 48; tiles of 240 overlap by 112 and give 16 columns each.
+    const NoisyImages in = noisyImages(330, 40, rng);
+    ThreadPool pool(2);
+    const std::vector<Vec3> whole = unetDenoise(net, in.images(), pool);
+    ASSERT_EQ(unetTiles(net, 330, 40, {}).size(), 1u);
+    UNetOptions tiled;
+    tiled.tileSize = 240;
+    EXPECT_EQ(unetTiles(net, 330, 40, tiled).size(), 21u);
+    EXPECT_EQ(unetDenoise(net, in.images(), pool, tiled), whole);
+    // Tiles from a memory limit (the least tile, 2 x 112 + 64 wide, giving 64 columns): the
+    // same.
+    UNetOptions small;
+    small.maxMemoryBytes = 1;
+    EXPECT_EQ(unetTiles(net, 330, 40, small).size(), 6u);
+    EXPECT_EQ(unetDenoise(net, in.images(), pool, small), whole);
+    // And the oracle agrees to rounding.
+    UNetOptions reference;
+    reference.isa = unet::KernelIsa::Reference;
+    const std::vector<Vec3> expected = unetDenoise(net, in.images(), pool, reference);
+    for (size_t i = 0; i < whole.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(whole[i][c], expected[i][c], 1e-3 * (1 + expected[i][c]));
+    tiled.tileSize = 200;  // not more than twice the overlap
+    EXPECT_THROW(unetDenoise(net, in.images(), pool, tiled), std::invalid_argument);
+}
+
+TEST(UNetFilter, ReceptiveRadiusCoversEveryLayerAndBytesGrowWithTheNetwork) {
+    Rng rng(1);
+    const UNet net = randomNet(rng, 9);
+    // Base shape: 3 + (1 + 2*2) + (2 + 2*4) + (4 + 2*8) + (8 + 2*16) + (8 + 8) + (4 + 4) +
+    // (2 + 2) + (1 + 2) = 109.
+    EXPECT_EQ(net.receptiveRadius(), 109);
+    EXPECT_GT(net.bytesPerPixel(), 4.0 * 16);  // the input's two blocks at least
+}
+
+}  // namespace
+}  // namespace glint

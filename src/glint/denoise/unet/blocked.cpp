@@ -10,10 +10,10 @@
 
 namespace glint::unet {
 
-AlignedFloats::AlignedFloats(size_t count)
+AlignedFloats::AlignedFloats(size_t count, bool zeroed)
     : data_(static_cast<float*>(::operator new[](count * sizeof(float), std::align_val_t(64)))),
       size_(count) {
-    std::fill(data_.get(), data_.get() + count, 0.f);
+    if (zeroed) std::fill(data_.get(), data_.get() + count, 0.f);
 }
 
 void AlignedFloats::Free::operator()(float* p) const {
@@ -23,6 +23,49 @@ void AlignedFloats::Free::operator()(float* p) const {
 BlockedMap::BlockedMap(int c, int h, int w)
     : channels(c), blocks((c + kBlock - 1) / kBlock), height(h), width(w) {
     values = AlignedFloats(static_cast<size_t>(blocks) * blockStride());
+}
+
+BlockedMap::BlockedMap(int c, int h, int w, AlignedFloats storage)
+    : channels(c), blocks((c + kBlock - 1) / kBlock), height(h), width(w) {
+    if (storage.size() < floatsFor(c, h, w))
+        throw std::invalid_argument("BlockedMap: storage too small");
+    values = std::move(storage);
+    for (int b = 0; b < blocks; ++b) {
+        std::fill(at(b, -1, -1), at(b, -1, w + 1), 0.f);
+        std::fill(at(b, h, -1), at(b, h, w + 1), 0.f);
+        for (int y = 0; y < h; ++y) {
+            std::fill(at(b, y, -1), at(b, y, 0), 0.f);
+            std::fill(at(b, y, w), at(b, y, w + 1), 0.f);
+        }
+    }
+}
+
+BlockedMap MapPool::take(int channels, int height, int width) {
+    const size_t n = BlockedMap::floatsFor(channels, height, width);
+    std::unique_lock hold(lock_);
+    auto best = free_.end();
+    for (auto it = free_.begin(); it != free_.end(); ++it)
+        if (it->size() >= n && (best == free_.end() || it->size() < best->size())) best = it;
+    AlignedFloats storage;
+    if (best != free_.end()) {
+        storage = std::move(*best);
+        free_.erase(best);
+        held_ += storage.size();
+    } else {
+        held_ += n;
+        hold.unlock();  // the system's pages are slow to come: let others go on meanwhile
+        storage = AlignedFloats(n, /*zeroed=*/false);
+        hold.lock();
+    }
+    peak_ = std::max(peak_, held_);
+    hold.unlock();
+    return BlockedMap(channels, height, width, std::move(storage));
+}
+
+void MapPool::give(BlockedMap map) {
+    const std::lock_guard hold(lock_);
+    held_ -= map.values.size();
+    free_.push_back(std::move(map.values));
 }
 
 PackedConv packConv(const Conv3x3& conv, std::span<const int> sourceChannels) {

@@ -19,10 +19,12 @@
 
 #include <cstddef>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace glint {
 
@@ -33,11 +35,11 @@ namespace unet {
 /// Channels per block.
 constexpr int kBlock = 8;
 
-/// Floats on 64-byte boundaries, zero at first; moved, never copied.
+/// Floats on 64-byte boundaries, zero at first unless asked not to be; moved, never copied.
 class AlignedFloats {
   public:
     AlignedFloats() = default;
-    explicit AlignedFloats(size_t count);
+    explicit AlignedFloats(size_t count, bool zeroed = true);
     float* data() { return data_.get(); }
     const float* data() const { return data_.get(); }
     size_t size() const { return size_; }
@@ -56,7 +58,15 @@ struct BlockedMap {
     AlignedFloats values;
 
     BlockedMap() = default;
+    /// All zero.
     BlockedMap(int channels, int height, int width);
+    /// In `storage` (at least floatsFor() floats, whatever they hold): the border set to zero,
+    /// the rest left for its writer, which must write every pixel of every block.
+    BlockedMap(int channels, int height, int width, AlignedFloats storage);
+    static size_t floatsFor(int channels, int height, int width) {
+        return static_cast<size_t>((channels + kBlock - 1) / kBlock) * (height + 2) * (width + 2) *
+               kBlock;
+    }
     /// Floats from one row of a block to the next, and from one block to the next.
     size_t rowStride() const { return static_cast<size_t>(width + 2) * kBlock; }
     size_t blockStride() const { return static_cast<size_t>(height + 2) * rowStride(); }
@@ -67,6 +77,23 @@ struct BlockedMap {
     const float* at(int b, int y, int x) const {
         return values.data() + b * blockStride() + (y + 1) * rowStride() + (x + 1) * kBlock;
     }
+};
+
+/// Storage for maps, kept when a map is given back so that the next map takes it rather than
+/// fresh memory (which the system zeroes page by page: a third of a large image's time). Any
+/// thread may take and give.
+class MapPool {
+  public:
+    /// A map whose storage is the smallest free one large enough, or new.
+    BlockedMap take(int channels, int height, int width);
+    void give(BlockedMap map);
+    /// The most bytes that maps taken and not given back have held at once.
+    size_t peakBytes() const { return peak_ * sizeof(float); }
+
+  private:
+    std::mutex lock_;
+    std::vector<AlignedFloats> free_;
+    size_t held_ = 0, peak_ = 0;  // floats in maps taken and not given back
 };
 
 /// A convolution's weights as the kernels read them. Its input channels are those of its
@@ -90,16 +117,20 @@ struct PackedConv {
 /// `conv` packed for sources of `sourceChannels` channels (their sum is conv.in).
 PackedConv packConv(const Conv3x3& conv, std::span<const int> sourceChannels);
 
-/// A map a convolution reads, at its size or (upsampled) at half of it.
+/// A map a convolution reads, at its size or (upsampled) at half of it. A map of its size may
+/// hold a band of its rows: row y is the map's row y - firstRow (rows past the band are not
+/// read, but for the image's edges, which the map's border stands for).
 struct ConvSource {
     const BlockedMap* map = nullptr;
     bool upsampled = false;
+    int firstRow = 0;
 };
 
 /// One task of a convolution: its output rows [y0, y1) (of its own size, height x width) for
 /// output blocks [block, block + blocks) (block even, blocks at most kMaxTaskBlocks), written
 /// into `out` as they are or (pool: y0 and y1 even) pooled, as out's rows y0 / 2 to y1 / 2.
-/// `scratch`, with pool: 2 * width * blocks * kBlock floats.
+/// `scratch`, with pool: 2 * width * blocks * kBlock floats. `out` may hold a band of rows,
+/// from outFirstRow (of its own: pooled rows if pooled).
 constexpr int kMaxTaskBlocks = 4;
 struct ConvRows {
     const PackedConv* conv = nullptr;
@@ -109,6 +140,7 @@ struct ConvRows {
     int y0 = 0, y1 = 0;
     bool pool = false;
     BlockedMap* out = nullptr;
+    int outFirstRow = 0;
     float* scratch = nullptr;
 };
 

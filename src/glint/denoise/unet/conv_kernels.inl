@@ -71,7 +71,7 @@ inline void tile(const ConvRows& t, int block, int y, int x, float* const* dst) 
             for (int ky = 0; ky < 3; ++ky) {
                 if (!s.upsampled) {
                     // Tap (ky, kx) reads pixel (x + p + kx - 1, y + ky - 1).
-                    const float* src = m.at(b, y - 1, x - 1) + ky * rows;
+                    const float* src = m.at(b, y - 1 - s.firstRow, x - 1) + ky * rows;
                     for (int kx = 0; kx < 3; ++kx, next())
                         tap<O, P, NV, 0>(acc, w, width, src + kx * kBlock);
                 } else {
@@ -137,7 +137,8 @@ void rows(const ConvRows& t) {
     float* dst[kMaxBlocks];
     if (!t.pool) {
         for (int y = t.y0; y < t.y1; ++y) {
-            for (int i = 0; i < t.blocks; ++i) dst[i] = t.out->at(t.block + i, y, 0);
+            for (int i = 0; i < t.blocks; ++i)
+                dst[i] = t.out->at(t.block + i, y - t.outFirstRow, 0);
             rowOfBlocks<O>(t, y, dst);
         }
         return;
@@ -153,7 +154,7 @@ void rows(const ConvRows& t) {
         for (int i = 0; i < t.blocks; ++i) {
             const float* top = t.scratch + 2 * i * rowFloats;
             const float* bottom = top + rowFloats;
-            float* out = t.out->at(t.block + i, y / 2, 0);
+            float* out = t.out->at(t.block + i, y / 2 - t.outFirstRow, 0);
             for (int x = 0; x < t.width / 2; ++x) {
                 const int at = 2 * x * kBlock;
                 const typename Block::B m =

@@ -109,6 +109,49 @@ double UNet::multiplyAddsPerPixel() const {
     return perPixel;
 }
 
+int UNet::receptiveRadius() const {
+    // In input pixels: a 3x3 layer at scale s (pixels s apart) reaches s further; pooling into
+    // and upsampling from scale 2s at most s. Backwards from the output through the bottom,
+    // the longest way (every other way is part of it).
+    int r = 0;
+    for (int level = 0; level < 4; ++level) {
+        const int s = 1 << level;
+        if (level > 0) r += s / 2;  // the upsampling into this level
+        r += static_cast<int>(decoder_[level].size()) * s;
+    }
+    r += 8 + static_cast<int>(bottom_.size()) * 16;
+    for (int level = 3; level >= 0; --level) {
+        const int s = 1 << level;
+        r += s + static_cast<int>(encoder_[level].size()) * s;
+    }
+    return r;
+}
+
+double UNet::bytesPerPixel() const {
+    // Floats per input pixel of a map of `channels` (whole blocks) at `level` (halved that often).
+    auto floats = [](int channels, int level) {
+        return static_cast<double>((channels + unet::kBlock - 1) / unet::kBlock * unet::kBlock) /
+               (1 << (2 * level));
+    };
+    // Held throughout: the input and each level's pooled map; besides them, at most one
+    // layer's input and output (the decoder's first layers read a half-size map).
+    double held = floats(inputChannels(), 0), layer = 0;
+    auto chain = [&](const std::vector<Conv3x3>& convs, int level, double in) {
+        for (const Conv3x3& c : convs) {
+            const double out = floats(c.out, level);
+            layer = std::max(layer, in + out);
+            in = out;
+        }
+    };
+    for (int level = 0; level < 4; ++level) {
+        held += floats(encoder_[level].back().out, level + 1);
+        chain(encoder_[level], level, 0);
+        chain(decoder_[level], level, floats(decoder_[level].front().in, level + 1));
+    }
+    chain(bottom_, 4, 0);
+    return sizeof(float) * (held + layer);
+}
+
 namespace {
 
 void checkInput(const UNet& net, const FeatureMap& input) {
@@ -119,80 +162,99 @@ void checkInput(const UNet& net, const FeatureMap& input) {
                                     std::to_string(input.height));
 }
 
-/// `conv` on `sources` (whose size, upsampled or not, is height x width), pooled or not: the
-/// rows cut into bands, each band and pair of output blocks a task.
-unet::BlockedMap convolve(const unet::PackedConv& conv, std::span<const unet::ConvSource> sources,
-                          int height, int width, bool pooled, ThreadPool& pool,
-                          unet::KernelIsa isa) {
-    unet::BlockedMap out(conv.outChannels, pooled ? height / 2 : height,
-                         pooled ? width / 2 : width);
+/// `convs` in turn, the first reading `sources` (of size height x width), each after it the one
+/// before, the last pooled if `poolLast`, into a map from `maps`. In bands of rows, each band a
+/// task that runs every layer on the rows it needs (the band and, for each layer before the
+/// last, a row more either way for each layer after it) into maps of its own, and the last
+/// layer into the result: so only the result is a whole map (a sixth of the memory the layers'
+/// whole maps would take) and the bands stay in the caches. The rows a band computes twice
+/// (with its neighbours) cost a few percent.
+unet::BlockedMap chain(const std::vector<unet::PackedConv>& convs,
+                       std::span<const unet::ConvSource> sources, int height, int width,
+                       bool poolLast, unet::MapPool& maps, ThreadPool& pool, unet::KernelIsa isa) {
+    using unet::BlockedMap;
+    const int layers = static_cast<int>(convs.size());
+    BlockedMap out = maps.take(convs.back().outChannels, poolLast ? height / 2 : height,
+                               poolLast ? width / 2 : width);
+    // Bands of 8 to 64 rows (even: pooling takes two), about four per thread.
+    const int band = std::clamp(height / (4 * pool.threads()), 8, 64) / 2 * 2;
+    const int bands = (height + band - 1) / band;
     const int perTask = unet::taskBlocks(isa);
-    const int groups = (conv.outBlocks + perTask - 1) / perTask;
-    // About eight tasks per thread; bands of an even number of rows (pooling takes two).
-    const int wanted = (8 * pool.threads() + groups - 1) / groups;
-    const int bands = std::clamp(wanted, 1, std::max(1, height / 2));
-    const int band = ((height + bands - 1) / bands + 1) / 2 * 2;
-    const int tasks = (height + band - 1) / band * groups;
-    parallelFor(pool, 0, static_cast<size_t>(tasks), 1, [&](size_t first, size_t last) {
-        unet::AlignedFloats scratch(pooled ? static_cast<size_t>(2) * width * perTask * unet::kBlock
-                                           : 0);
+    parallelFor(pool, 0, static_cast<size_t>(bands), 1, [&](size_t first, size_t last) {
+        unet::AlignedFloats scratch(
+            poolLast ? static_cast<size_t>(2) * width * perTask * unet::kBlock : 0, false);
         for (size_t i = first; i < last; ++i) {
-            unet::ConvRows t;
-            t.conv = &conv;
-            t.sources = sources;
-            t.height = height;
-            t.width = width;
-            t.block = static_cast<int>(i % groups) * perTask;
-            t.blocks = std::min(perTask, conv.outBlocks - t.block);
-            t.y0 = static_cast<int>(i / groups) * band;
-            t.y1 = std::min(height, t.y0 + band);
-            t.pool = pooled;
-            t.out = &out;
-            t.scratch = scratch.data();
-            unet::convolveRows(isa, t);
+            const int y0 = static_cast<int>(i) * band, y1 = std::min(height, y0 + band);
+            BlockedMap before;  // the layer before's rows, from beforeRow
+            int beforeRow = 0;
+            for (int j = 0; j < layers; ++j) {
+                const unet::PackedConv& conv = convs[static_cast<size_t>(j)];
+                const int margin = layers - 1 - j;
+                const int r0 = std::max(0, y0 - margin), r1 = std::min(height, y1 + margin);
+                const bool isLast = j == layers - 1;
+                BlockedMap rows =
+                    isLast ? BlockedMap() : maps.take(conv.outChannels, r1 - r0, width);
+                const unet::ConvSource previous{&before, false, beforeRow};
+                unet::ConvRows t;
+                t.conv = &conv;
+                t.sources = j == 0 ? sources : std::span(&previous, 1);
+                t.height = height;
+                t.width = width;
+                t.y0 = r0;
+                t.y1 = r1;
+                t.pool = isLast && poolLast;
+                t.out = isLast ? &out : &rows;
+                t.outFirstRow = isLast ? 0 : r0;
+                t.scratch = scratch.data();
+                for (t.block = 0; t.block < conv.outBlocks; t.block += perTask) {
+                    t.blocks = std::min(perTask, conv.outBlocks - t.block);
+                    unet::convolveRows(isa, t);
+                }
+                if (j > 0) maps.give(std::move(before));
+                before = std::move(rows);
+                beforeRow = r0;
+            }
         }
     });
     return out;
 }
 
+double multiplyAdds(const std::vector<unet::PackedConv>& convs, int height, int width) {
+    double n = 0;
+    for (const unet::PackedConv& c : convs)
+        n += 9.0 * c.inChannels * c.outChannels * width * height;
+    return n;
+}
+
 }  // namespace
 
-FeatureMap UNet::run(const FeatureMap& input, ThreadPool& pool, unet::KernelIsa isa,
-                     std::vector<UNetLayerTime>* times) const {
-    if (isa == unet::KernelIsa::Reference) return runReference(input, pool);
-    checkInput(*this, input);
-    if (!unet::runs(isa))
+unet::BlockedMap UNet::run(const unet::BlockedMap& input, unet::MapPool& maps, ThreadPool& pool,
+                           unet::KernelIsa isa, std::vector<UNetLayerTime>* times) const {
+    if (input.channels != inputChannels() || input.height % kAlignment != 0 ||
+        input.width % kAlignment != 0 || input.height <= 0 || input.width <= 0)
+        throw std::invalid_argument("UNet::run: the input has " + std::to_string(input.channels) +
+                                    " channels of " + std::to_string(input.width) + "x" +
+                                    std::to_string(input.height));
+    if (isa == unet::KernelIsa::Reference || !unet::runs(isa))
         throw std::invalid_argument("UNet::run: this machine does not run the " +
                                     std::string(unet::kernelIsaName(isa)) + " kernels");
     using unet::BlockedMap, unet::ConvSource;
-    BlockedMap x(input.channels, input.height, input.width);
-    for (int c = 0; c < input.channels; ++c)
-        for (int y = 0; y < input.height; ++y)
-            for (int px = 0; px < input.width; ++px)
-                x.at(c / unet::kBlock, y, px)[c % unet::kBlock] = input.at(c, y, px);
-    // Runs `convs` in turn, the first reading `sources` (of size height x width), each after it
-    // the one before; the last one pooled if `poolLast`.
+    // Each level's layers as one chain (chain() above), timed as one.
     auto layers = [&](const std::vector<unet::PackedConv>& convs,
                       std::span<const ConvSource> sources, int height, int width, bool poolLast) {
-        BlockedMap y;
-        for (size_t i = 0; i < convs.size(); ++i) {
-            const ConvSource previous{&y, false};
-            const auto start = std::chrono::steady_clock::now();
-            BlockedMap next = convolve(convs[i], i == 0 ? sources : std::span(&previous, 1), height,
-                                       width, poolLast && i + 1 == convs.size(), pool, isa);
-            if (times)
-                times->push_back(
-                    {convs[i].name, width, height,
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                         .count(),
-                     9.0 * convs[i].inChannels * convs[i].outChannels * width * height});
-            y = std::move(next);
-        }
-        return y;
+        const auto start = std::chrono::steady_clock::now();
+        BlockedMap out = chain(convs, sources, height, width, poolLast, maps, pool, isa);
+        if (times)
+            times->push_back(
+                {convs.front().name + (convs.size() > 1 ? ".." + convs.back().name : ""), width,
+                 height,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                 multiplyAdds(convs, height, width)});
+        return out;
     };
     std::array<BlockedMap, 4> pooled;
     for (int level = 0; level < 4; ++level) {
-        const BlockedMap& from = level == 0 ? x : pooled[level - 1];
+        const BlockedMap& from = level == 0 ? input : pooled[level - 1];
         const ConvSource source{&from, false};
         pooled[level] =
             layers(packedEncoder_[level], std::span(&source, 1), from.height, from.width, true);
@@ -200,16 +262,34 @@ FeatureMap UNet::run(const FeatureMap& input, ThreadPool& pool, unet::KernelIsa 
     const ConvSource bottom{&pooled[3], false};
     BlockedMap current =
         layers(packedBottom_, std::span(&bottom, 1), pooled[3].height, pooled[3].width, false);
+    maps.give(std::move(pooled[3]));
     for (int level = 3; level >= 0; --level) {
-        const BlockedMap& skip = level == 0 ? x : pooled[level - 1];
+        const BlockedMap& skip = level == 0 ? input : pooled[level - 1];
         const ConvSource join[2] = {{&current, true}, {&skip, false}};
-        current = layers(packedDecoder_[level], join, skip.height, skip.width, false);
+        BlockedMap next = layers(packedDecoder_[level], join, skip.height, skip.width, false);
+        maps.give(std::move(current));
+        if (level > 0) maps.give(std::move(pooled[level - 1]));
+        current = std::move(next);
     }
+    return current;
+}
+
+FeatureMap UNet::run(const FeatureMap& input, ThreadPool& pool, unet::KernelIsa isa,
+                     std::vector<UNetLayerTime>* times) const {
+    if (isa == unet::KernelIsa::Reference) return runReference(input, pool);
+    checkInput(*this, input);
+    unet::MapPool maps;
+    unet::BlockedMap x(input.channels, input.height, input.width);
+    for (int c = 0; c < input.channels; ++c)
+        for (int y = 0; y < input.height; ++y)
+            for (int px = 0; px < input.width; ++px)
+                x.at(c / unet::kBlock, y, px)[c % unet::kBlock] = input.at(c, y, px);
+    const unet::BlockedMap result = run(x, maps, pool, isa, times);
     FeatureMap out(outputChannels(), input.height, input.width);
     for (int c = 0; c < out.channels; ++c)
         for (int y = 0; y < out.height; ++y)
             for (int px = 0; px < out.width; ++px)
-                out.at(c, y, px) = current.at(c / unet::kBlock, y, px)[c % unet::kBlock];
+                out.at(c, y, px) = result.at(c / unet::kBlock, y, px)[c % unet::kBlock];
     return out;
 }
 

@@ -85,6 +85,18 @@ class UNet {
                    std::vector<UNetLayerTime>* times = nullptr) const;
     /// The same by the portable oracle (equal to rounding).
     FeatureMap runReference(const FeatureMap& input, ThreadPool& pool) const;
+    /// The network on `input` (inputChannels() channels, sides multiples of kAlignment) by the
+    /// blocked kernels of `isa`, its maps taken from `maps` and all but the result given back.
+    unet::BlockedMap run(const unet::BlockedMap& input, unet::MapPool& maps, ThreadPool& pool,
+                         unet::KernelIsa isa = unet::bestKernelIsa(),
+                         std::vector<UNetLayerTime>* times = nullptr) const;
+
+    /// How far (in pixels, either way) an output pixel's value reaches into the input, at
+    /// most: a tile's output is the whole image's where it is this far from the tile's edges
+    /// (those inside the image).
+    int receptiveRadius() const;
+    /// The bytes run() holds per pixel of its input, at most (its maps' padding aside).
+    double bytesPerPixel() const;
 
   private:
     /// Encoder levels 1 to 4 (each followed by pooling), the bottom (followed by upsampling),

@@ -75,47 +75,160 @@ float autoexposure(const Vec3* color, int width, int height) {
     return count > 0 ? 0.18f / std::exp2(logSum / static_cast<float>(count)) : 1.f;
 }
 
-FeatureMap unetInput(const UNet& net, const UNetImages& in, float exposure) {
+namespace {
+
+/// Input pixel i's channels for `net`, as unetInput() maps them, into `out` (9 floats: colour,
+/// albedo, normal; those the network does not read zero).
+void inputPixel(const UNetImages& in, size_t i, float exposure, int channels, float* out) {
+    for (int c = 0; c < 3; ++c) {
+        out[c] = puForward(sanitize(toFloat(in.color[i][c]) * exposure, 0.f, kMaxFloat));
+        out[3 + c] = channels >= 6 ? sanitize(toFloat(in.albedo[i][c]), 0.f, 1.f) : 0.f;
+        out[6 + c] =
+            channels == 9 ? sanitize(toFloat(in.normal[i][c]), -1.f, 1.f) * 0.5f + 0.5f : 0.f;
+    }
+}
+
+void checkImages(const UNet& net, const UNetImages& in) {
+    if (in.width <= 0 || in.height <= 0 || !in.color)
+        throw std::invalid_argument("unetDenoise: no image");
     const int channels = net.inputChannels();
     if (channels != 3 && channels != 6 && channels != 9)
         throw std::runtime_error("the network reads " + std::to_string(channels) +
                                  " channels: not colour, albedo and normal");
     if ((channels >= 6 && !in.albedo) || (channels == 9 && !in.normal))
         throw std::invalid_argument("the network needs the albedo and normal passes");
-    auto aligned = [](int n) {
-        return (n + UNet::kAlignment - 1) / UNet::kAlignment * UNet::kAlignment;
-    };
-    FeatureMap x(channels, aligned(in.height), aligned(in.width));
+}
+
+int roundUp(int n, int to) { return (n + to - 1) / to * to; }
+
+/// The windows along one side of `extent` pixels (`padded` with the padding): (start, size)
+/// and the pixels [first, last) whose output each gives.
+struct Span {
+    int start, size, first, last;
+};
+std::vector<Span> spans(int extent, int padded, int tile, int overlap) {
+    if (padded <= tile) return {{0, padded, 0, extent}};
+    // Each window gives the `step` pixels `overlap` from its edges; the last ones are moved in
+    // to end at the image's edge, and still reach `overlap` past what they give (16 > padding).
+    const int step = tile - 2 * overlap;
+    std::vector<Span> out;
+    for (int first = 0; first < extent; first += step)
+        out.push_back({std::clamp(first - overlap, 0, padded - tile), tile, first,
+                       std::min(first + step, extent)});
+    return out;
+}
+
+/// The tiles' width and height for an image padded to `width` x `height`: the whole image if
+/// it fits the memory, else the widest rows of tiles that do (square ones where neither side
+/// fits), never less than the overlap needs.
+std::array<int, 2> tileSize(const UNet& net, const UNetOptions& options, int overlap, int width,
+                            int height) {
+    const int least = 2 * overlap + 4 * UNet::kAlignment;
+    if (options.tileSize > 0) {
+        if (options.tileSize % UNet::kAlignment != 0 || options.tileSize <= 2 * overlap)
+            throw std::invalid_argument(
+                "unetDenoise: tiles of " + std::to_string(options.tileSize) +
+                " pixels: not a multiple of 16 more than " + std::to_string(2 * overlap));
+        return {options.tileSize, options.tileSize};
+    }
+    const double pixels = std::max(options.maxMemoryBytes / net.bytesPerPixel(), 0.0);
+    const int side = std::max(static_cast<int>(std::sqrt(pixels)) / 16 * 16, least);
+    const int tall = std::min(height, side);
+    const int wide = std::max(static_cast<int>(pixels / tall) / 16 * 16, side);
+    return {std::min(width, wide), tall};
+}
+
+/// The tiles of an image of width x height, as spans along x and y.
+std::vector<std::pair<Span, Span>> tiling(const UNet& net, int width, int height,
+                                          const UNetOptions& options) {
+    const int overlap = roundUp(net.receptiveRadius(), UNet::kAlignment);
+    const int paddedWidth = roundUp(width, UNet::kAlignment);
+    const int paddedHeight = roundUp(height, UNet::kAlignment);
+    const auto [w, h] = tileSize(net, options, overlap, paddedWidth, paddedHeight);
+    std::vector<std::pair<Span, Span>> out;
+    for (const Span& y : spans(height, paddedHeight, h, overlap))
+        for (const Span& x : spans(width, paddedWidth, w, overlap)) out.emplace_back(x, y);
+    return out;
+}
+
+}  // namespace
+
+FeatureMap unetInput(const UNet& net, const UNetImages& in, float exposure) {
+    checkImages(net, in);
+    const int channels = net.inputChannels();
+    FeatureMap x(channels, roundUp(in.height, UNet::kAlignment),
+                 roundUp(in.width, UNet::kAlignment));
+    float v[9];
     for (int y = 0; y < in.height; ++y)
         for (int px = 0; px < in.width; ++px) {
-            const size_t i = static_cast<size_t>(y) * in.width + px;
+            inputPixel(in, static_cast<size_t>(y) * in.width + px, exposure, channels, v);
             for (int c = 0; c < 3; ++c) {
-                const float v = sanitize(toFloat(in.color[i][c]) * exposure, 0.f, kMaxFloat);
-                x.at(c, y, px) = puForward(v);
-                if (channels >= 6)
-                    x.at(3 + c, y, px) = sanitize(toFloat(in.albedo[i][c]), 0.f, 1.f);
-                if (channels == 9)
-                    x.at(6 + c, y, px) =
-                        sanitize(toFloat(in.normal[i][c]), -1.f, 1.f) * 0.5f + 0.5f;
+                x.at(c, y, px) = v[c];
+                if (channels >= 6) x.at(3 + c, y, px) = v[3 + c];
+                if (channels == 9) x.at(6 + c, y, px) = v[6 + c];
             }
         }
     return x;
 }
 
+std::vector<std::array<int, 4>> unetTiles(const UNet& net, int width, int height,
+                                          const UNetOptions& options) {
+    std::vector<std::array<int, 4>> out;
+    for (const auto& [x, y] : tiling(net, width, height, options))
+        out.push_back({x.start, y.start, x.size, y.size});
+    return out;
+}
+
 std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& in, ThreadPool& pool,
-                              unet::KernelIsa isa) {
-    if (in.width <= 0 || in.height <= 0 || !in.color)
-        throw std::invalid_argument("unetDenoise: no image");
+                              const UNetOptions& options) {
+    checkImages(net, in);
     const float exposure = autoexposure(in.color, in.width, in.height);
-    const FeatureMap out = net.run(unetInput(net, in, exposure), pool, isa);
-    std::vector<Vec3> result(static_cast<size_t>(in.width) * in.height);
     const float unexpose = exposure != 0.f ? 1.f / exposure : 0.f;
-    for (int y = 0; y < in.height; ++y)
-        for (int x = 0; x < in.width; ++x) {
-            Vec3& r = result[static_cast<size_t>(y) * in.width + x];
-            for (int c = 0; c < 3; ++c)
-                r[c] = puInverse(sanitize(out.at(c, y, x), 0.f, kMaxFloat)) * unexpose;
-        }
+    std::vector<Vec3> result(static_cast<size_t>(in.width) * in.height);
+    auto output = [&](float value) {
+        return puInverse(sanitize(value, 0.f, kMaxFloat)) * unexpose;
+    };
+    if (options.isa == unet::KernelIsa::Reference) {
+        const FeatureMap out = net.runReference(unetInput(net, in, exposure), pool);
+        for (int y = 0; y < in.height; ++y)
+            for (int x = 0; x < in.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    result[static_cast<size_t>(y) * in.width + x][c] = output(out.at(c, y, x));
+        return result;
+    }
+    const int channels = net.inputChannels();
+    unet::MapPool maps;  // every tile the same size: each takes the last one's maps
+    for (const auto& [tx, ty] : tiling(net, in.width, in.height, options)) {
+        unet::BlockedMap x = maps.take(channels, ty.size, tx.size);
+        parallelFor(pool, 0, static_cast<size_t>(ty.size), 16, [&](size_t y0, size_t y1) {
+            float v[2 * unet::kBlock] = {};
+            for (int y = static_cast<int>(y0); y < static_cast<int>(y1); ++y)
+                for (int px = 0; px < tx.size; ++px) {
+                    const int iy = ty.start + y, ix = tx.start + px;
+                    if (iy < in.height && ix < in.width)
+                        inputPixel(in, static_cast<size_t>(iy) * in.width + ix, exposure, channels,
+                                   v);
+                    else
+                        std::fill(v, v + 9, 0.f);
+                    // Colour, albedo and normal in the blocks' first channels, zeros after.
+                    for (int b = 0; b < x.blocks; ++b)
+                        std::copy(v + b * unet::kBlock, v + (b + 1) * unet::kBlock, x.at(b, y, px));
+                }
+        });
+        unet::BlockedMap out = net.run(x, maps, pool, options.isa, options.times);
+        parallelFor(pool, static_cast<size_t>(ty.first), static_cast<size_t>(ty.last), 16,
+                    [&](size_t y0, size_t y1) {
+                        for (size_t y = y0; y < y1; ++y)
+                            for (int ix = tx.first; ix < tx.last; ++ix) {
+                                const float* o =
+                                    out.at(0, static_cast<int>(y) - ty.start, ix - tx.start);
+                                Vec3& r = result[y * in.width + ix];
+                                for (int c = 0; c < 3; ++c) r[c] = output(o[c]);
+                            }
+                    });
+        maps.give(std::move(x));
+        maps.give(std::move(out));
+    }
     return result;
 }
 

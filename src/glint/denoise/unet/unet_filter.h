@@ -11,6 +11,7 @@
 ///  - the output is clamped below at 0 in the network's space, mapped back through the
 ///    transfer function's inverse and divided by the exposure.
 
+#include <array>
 #include <vector>
 
 #include "glint/core/parallel.h"
@@ -40,8 +41,28 @@ float puInverse(float value);
 /// The network's input planes for `images` at `exposure`, padded to multiples of 16.
 FeatureMap unetInput(const UNet& net, const UNetImages& images, float exposure);
 
+/// How unetDenoise() runs (its result never depends on these, but for the kernels' rounding).
+struct UNetOptions {
+    /// The kernels; Reference: the oracle, on the whole image at once.
+    unet::KernelIsa isa = unet::bestKernelIsa();
+    /// The most memory the network's maps may hold (UNet::bytesPerPixel()): a larger image is
+    /// denoised in tiles, overlapping by the network's receptive radius so that each tile's
+    /// output is the whole image's.
+    double maxMemoryBytes = 1024.0 * 1024 * 1024;
+    /// Tiles of this size (a multiple of 16 more than twice the overlap); 0: the largest
+    /// within maxMemoryBytes.
+    int tileSize = 0;
+    /// With this, each layer's time in each tile is appended to it.
+    std::vector<UNetLayerTime>* times = nullptr;
+};
+
+/// The tiles unetDenoise() cuts an image of `width` x `height` into for `net` and `options`,
+/// as (x, y, size x, size y) windows of the image padded to multiples of 16.
+std::vector<std::array<int, 4>> unetTiles(const UNet& net, int width, int height,
+                                          const UNetOptions& options);
+
 /// Denoises `images.color` with `net` (OIDN's HDR weights): width * height pixels.
 std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& images, ThreadPool& pool,
-                              unet::KernelIsa isa = unet::bestKernelIsa());
+                              const UNetOptions& options = {});
 
 }  // namespace glint
