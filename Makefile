@@ -1,6 +1,7 @@
 # Glint: a thin wrapper over CMake. `make demo` and `make test` work on a fresh Debian 12 machine.
 #
 #   make deps    install the Debian packages the build needs (apt-get; root or sudo)
+#   make weights fetch Open Image Denoise's weights for the network denoiser (denoise-weights/)
 #   make build   configure and build (Release); the binary is build/glint
 #   make demo    what the glint program needs, built alone, then render the built-in scene to glint.png
 #   make test    deps + build + run every test (ctest)
@@ -22,7 +23,8 @@ JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 # tests (python3-pytest), then what the other tests run: Open MPI (openmpi-bin, libopenmpi-dev)
 # for glint-mpi and its tests, slurm-wlm and munge for a private single-node Slurm on localhost
 # that runs contrib/slurm's scripts (tests/slurm/cluster_test.sh, about 9 s; docs/scale-out.md).
-DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+# curl and ca-certificates fetch the denoiser's weights (make weights: 95 MB, about 2 s).
+DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libopenexr-dev \
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
         libopenvdb-dev libboost-iostreams-dev pybind11-dev python3-dev python3-numpy \
         libgtest-dev libgmock-dev python3-pytest openmpi-bin libopenmpi-dev slurm-wlm munge
@@ -30,7 +32,7 @@ DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-
 # `make demo`: only what the glint program needs, and only it is built (no test libraries, no
 # MPI or Slurm, OpenVDB if it is there already): a first picture in minutes on a fresh machine.
 # Tests, glint-mpi and VDB files are built when their packages are installed (`make test`).
-DEMO_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+DEMO_DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libopenexr-dev \
              libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev
 installed = $(if $(shell for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
   grep -q 'ok installed' || echo no; done),OFF,ON)
@@ -42,7 +44,7 @@ installed = $(if $(shell for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2
 # Assimp for the PLY and STL readers against it, bench/mesh_load_stats.sh; python3-numpy for
 # Blender's glTF importer, bench/cycles/gltf/).
 BENCH_DIR  ?= build-bench
-BENCH_DEPS := g++ cmake make pkg-config libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+BENCH_DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libopenexr-dev \
               libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
               libmeshoptimizer-dev libopenvdb-dev libboost-iostreams-dev libembree-dev povray bc \
               blender draco gltfpack libassimp-dev python3-numpy
@@ -65,7 +67,7 @@ FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-
              libmeshoptimizer-dev libopenvdb-dev libboost-iostreams-dev
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps build demo test test-sanitize fuzz clean bench web web-deps serve
+.PHONY: deps weights build demo test test-sanitize fuzz clean bench web web-deps serve
 
 deps:
 	@missing=""; \
@@ -77,17 +79,23 @@ deps:
 	  { $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q --no-install-recommends $$missing; }; \
 	fi
 
+# Open Image Denoise's published weights, which the build embeds (denoise-weights/README.md):
+# fetched once, checked against denoise-weights/SHA256SUMS.
+weights:
+	@denoise-weights/fetch.sh
+
 $(BUILD_DIR)/CMakeCache.txt:
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DGLINT_WERROR=$(GLINT_WERROR)
 
 # Everything: the tests, glint-mpi and OpenVDB (after `make deps`).
-build: $(BUILD_DIR)/CMakeCache.txt
+build: weights $(BUILD_DIR)/CMakeCache.txt
 	cmake -S . -B $(BUILD_DIR) -DGLINT_WERROR=$(GLINT_WERROR) -DGLINT_BUILD_TESTS=ON \
 	  -DGLINT_MPI=ON -DGLINT_OPENVDB=ON >/dev/null
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 demo:
 	@$(MAKE) --no-print-directory deps DEPS="$(DEMO_DEPS)"
+	@$(MAKE) --no-print-directory weights
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DGLINT_WERROR=$(GLINT_WERROR) \
 	  -DGLINT_BUILD_TESTS=$(call installed,libgtest-dev libgmock-dev) \
 	  -DGLINT_MPI=$(call installed,libopenmpi-dev) \
@@ -109,7 +117,7 @@ test: deps web-deps
 # Each test binary runs as two shards rather than one process per test case (tests/CMakeLists.txt).
 # The integration tests (Slurm, MPI, the web page) are left to `make test`: they run the same
 # code through other processes (Open MPI's own allocations would also trip the leak checker).
-test-sanitize: deps
+test-sanitize: deps weights
 	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DGLINT_TEST_SHARDS=2 \
 	  -DGLINT_SANITIZE=address,undefined,float-cast-overflow -DGLINT_WERROR=$(GLINT_WERROR) \
@@ -165,6 +173,7 @@ serve:
 
 bench:
 	@$(MAKE) --no-print-directory deps DEPS="$(BENCH_DEPS)"
+	@$(MAKE) --no-print-directory weights
 	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DGLINT_BUILD_BENCH=ON \
 	  -DGLINT_BUILD_TESTS=OFF -DGLINT_WERROR=$(GLINT_WERROR)
 	cmake --build $(BENCH_DIR) -j $(JOBS)

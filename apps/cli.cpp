@@ -97,10 +97,24 @@ Rendered renderPlanned(const Options& opt, Prepared& prepared, const SamplingPla
         auto t = Clock::now();
         std::optional<ThreadPool> own;
         ThreadPool& pool = ro.pool ? *ro.pool : own.emplace(ro.threads);
-        out.result.film = denoiseFilm(out.result.film, out.result.aovs, pool);
+        out.result.film =
+            denoiseFilm(out.result.film, out.result.aovs, pool,
+                        filmDenoiseOptions(opt.denoiser, opt.denoiseQuality), &out.denoised);
         out.denoiseSeconds = secondsSince(t);
     }
     return out;
+}
+
+FilmDenoiseOptions filmDenoiseOptions(const std::string& denoiser, const std::string& quality) {
+    return {denoiserNamed(denoiser), denoiseQualityNamed(quality)};
+}
+
+void warnNonFinite(const char* program, const FilmDenoiseReport& report) {
+    if (report.nonFinite > 0)
+        std::fprintf(stderr,
+                     "%s: warning: %zu pixels held values that are not finite (NaN or infinity): "
+                     "the denoiser took them as 0\n",
+                     program, report.nonFinite);
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t) {

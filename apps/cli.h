@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "glint/accel/bvh.h"
+#include "glint/denoise/film_denoise.h"
 #include "glint/io/registry.h"
 #include "glint/render/film/display.h"
 #include "glint/render/renderer.h"
@@ -76,6 +77,8 @@ struct Options {
     // Clean images (docs/clean-images.md).
     std::string aov;            ///< --aov: passes to write as layers of the EXR output.
     int denoise = 0;            ///< 1 --denoise, -1 --no-denoise, 0 the default (on for models).
+    std::string denoiser = "auto";          ///< --denoiser: auto, oidn or nlm.
+    std::string denoiseQuality = "balanced";  ///< --denoise-quality: fast, balanced or high.
     double noiseThreshold = 0;  ///< --noise-threshold; 0: a fixed number of samples.
     int minSpp = 0;             ///< --min-spp; 0: the default.
     // Time (docs/animation.md).
@@ -180,7 +183,15 @@ struct Rendered {
     RenderResult result;
     double buildSeconds = 0;    ///< Building the BVHs (0 for a scene prepared before).
     double denoiseSeconds = 0;  ///< 0: not denoised.
+    FilmDenoiseReport denoised;  ///< What the denoiser did, if it ran.
 };
+
+/// The denoiser that --denoiser and --denoise-quality name (checked when parsed).
+FilmDenoiseOptions filmDenoiseOptions(const std::string& denoiser, const std::string& quality);
+
+/// "glint: warning: ..." (with `program`'s name) if the denoiser met values that were not
+/// finite; nothing otherwise.
+void warnNonFinite(const char* program, const FilmDenoiseReport& report);
 
 /// Renders the prepared scene as `plan` says: builds its BVHs unless it is prepared already
 /// (refitting `accel`'s where they fit), then samples adaptively, to a time budget or a fixed

@@ -62,12 +62,16 @@ int denoiseMain(int argc, char** argv) {
                          "estimated from the image\n",
                          opt.input.c_str());
         ThreadPool pool(opt.threads);
-        const Film out = denoiseFilm(in.color, in.aovs, pool);
+        FilmDenoiseReport report;
+        const Film out = denoiseFilm(in.color, in.aovs, pool,
+                                     filmDenoiseOptions(opt.denoiser, opt.quality), &report);
+        warnNonFinite("glint denoise", report);
         writeImage(opt.output, out, opt.shown.over({}), &in.aovs,
                    *format == ImageFormat::Exr ? in.found : AovSelection{});
         if (!opt.quiet)
-            std::fprintf(stderr, "glint denoise: wrote %s (%dx%d, %.2f s)\n", opt.output.c_str(),
-                         out.width(), out.height(), secondsSince(t0));
+            std::fprintf(stderr, "glint denoise: wrote %s (%dx%d, %s, %.2f s)\n",
+                         opt.output.c_str(), out.width(), out.height(), report.method.c_str(),
+                         secondsSince(t0));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint denoise: error: %s\n", e.what());
         return kExitSceneError;

@@ -179,10 +179,12 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
     }
 
     if (rendered.denoiseSeconds > 0 && !opt.quiet)
-        std::fprintf(stderr, "glint: denoised in %.2f s%s\n", rendered.denoiseSeconds,
+        std::fprintf(stderr, "glint: denoised in %.2f s (%s%s)\n", rendered.denoiseSeconds,
+                     rendered.denoised.method.c_str(),
                      studio && opt.denoise == 0
-                         ? " (a model's default; --no-denoise for the raw image)"
+                         ? "; a model's default; --no-denoise for the raw image"
                          : "");
+    if (rendered.denoiseSeconds > 0) warnNonFinite("glint", rendered.denoised);
 
     // Write.
     auto t2 = Clock::now();

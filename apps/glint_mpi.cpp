@@ -163,8 +163,13 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job, glint::AssetCach
     if (plan.denoise) {
         auto t = Clock::now();
         glint::ThreadPool pool(job.threads);
-        film = glint::denoiseFilm(film, passes, pool);
-        if (!opt.quiet) std::fprintf(stderr, "glint-mpi: denoised in %.2f s\n", secondsSince(t));
+        glint::FilmDenoiseReport report;
+        film = glint::denoiseFilm(film, passes, pool,
+                                  filmDenoiseOptions(opt.denoiser, opt.denoiseQuality), &report);
+        if (!opt.quiet)
+            std::fprintf(stderr, "glint-mpi: denoised in %.2f s (%s)\n", secondsSince(t),
+                         report.method.c_str());
+        warnNonFinite("glint-mpi", report);
     }
     auto t1 = Clock::now();
     try {

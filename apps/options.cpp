@@ -193,6 +193,24 @@ CLI::Validator numberIn(double lo, double hi) {
 
 /// Registers --exposure, --srgb, --no-srgb and --tonemap on `app`; `unchanged` says what an
 /// option not given leaves ("the pieces'").
+/// --denoiser and --denoise-quality (glint and glint denoise).
+void addDenoiserOptions(CLI::App& app, std::string& denoiser, std::string& quality,
+                        const std::string& group) {
+    app.add_option("--denoiser", denoiser,
+                   "The denoiser: oidn, Open Image Denoise's network (its published weights, run "
+                   "by Glint); nlm, Glint's non-local-means filter; auto, oidn where this build "
+                   "has its weights (default)")
+        ->group(group)
+        ->check(CLI::IsMember({"auto", "oidn", "nlm"}))
+        ->type_name("NAME");
+    app.add_option("--denoise-quality", quality,
+                   "The network's quality: fast, balanced (default) or high (cleans the albedo "
+                   "and normal passes first with networks of their own: about 7x balanced's time)")
+        ->group(group)
+        ->check(CLI::IsMember({"fast", "balanced", "high"}))
+        ->type_name("NAME");
+}
+
 void addDisplayOptions(CLI::App& app, DisplayOptions& d, const std::string& unchanged) {
     app.add_option_function<double>(
            "--exposure", [&d](double ev) { d.exposure = ev; },
@@ -403,12 +421,13 @@ void addOptions(CLI::App& app, Options& opt) {
         ->type_name("LIST");
     app.add_flag_callback(
            "--denoise", [&opt] { opt.denoise = 1; },
-           "Denoise the image with Glint's feature-guided denoiser (default for models)")
+           "Denoise the image (default for models; --denoiser says with what)")
         ->group(clean);
     app.add_flag_callback(
            "--no-denoise", [&opt] { opt.denoise = -1; },
            "Write the image as rendered, with its noise (default for scenes)")
         ->group(clean);
+    addDenoiserOptions(app, opt.denoiser, opt.denoiseQuality, clean);
     app.add_option("--noise-threshold", opt.noiseThreshold,
                    "Adaptive sampling: stop sampling a pixel once its relative error is below "
                    "T, 0.0001 to 1 (Cycles' meaning), with --spp as the most and --time as the "
@@ -535,6 +554,7 @@ int parseDenoiseOptions(int argc, char** argv, DenoiseOptions& opt) {
                    "Threads, 1 to 4096 (default: all hardware threads)")
         ->check(integerIn(1, 4096))
         ->type_name("N");
+    addDenoiserOptions(app, opt.denoiser, opt.quality, "Options");
     addDisplayOptions(app, opt.shown, "off");
     app.add_flag("-q,--quiet", opt.quiet, "No messages; errors only");
     app.set_help_flag("-h,--help", "Print this help and exit");

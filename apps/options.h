@@ -36,6 +36,7 @@ int parseMergeOptions(int argc, char** argv, MergeOptions& opt);
 /// The command line of `glint denoise IN.exr -o OUT` (apps/denoise.h).
 struct DenoiseOptions {
     std::string input, output;
+    std::string denoiser = "auto", quality = "balanced";
     int threads = 0;  ///< 0: all hardware threads.
     DisplayOptions shown;
     bool quiet = false;

@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
             UNetOptions options;
             options.isa = isa;
             options.tileSize = tile;
-            const std::vector<Vec3> result = unetDenoise(net, images, pool, options);
+            const std::vector<Vec3> result = unetDenoise(net, images, pool, options).pixels;
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) out.at(x, y) = result[static_cast<size_t>(y) * w + x];
         }

@@ -3,17 +3,22 @@
 # 4, 16, 64 and 512 samples per pixel with every render pass (glint --aov all --no-denoise), and
 # a 4096-spp reference, then splits each EXR into PFM files for bench/denoise/run.sh:
 #   OUT/NAME_SPP.pfm, .albedo.pfm, .normal.pfm, .depth.pfm, .variance.pfm; OUT/NAME_ref.pfm
-# Scenes: the three course-format scenes beside this script, and two Khronos sample models from
-# ../shared/real-world/gltf in Glint's model mode (the studio), all at 320x240.
-# Usage: bench/denoise/make_data.sh BUILD_DIR OUT_DIR [REF_SPP]
+# Scenes: the three course-format scenes beside this script, two Khronos sample models from
+# ../shared/real-world/gltf and five from ../shared/real-world/gltf-ext (glass and flowers, a
+# toy car, a velvet chair, a cloth, a lamp) in Glint's model mode (the studio), all at 320x240.
+# Usage: bench/denoise/make_data.sh BUILD_DIR OUT_DIR [REF_SPP [NAME...]]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:?build dir}
 out=${2:?output dir}
 ref=${3:-4096}
+shift $(($# < 3 ? $# : 3))
+names=("$@")
+[ ${#names[@]} -gt 0 ] || names=(glass room lamps helmet bottle vase toycar chair cloth lamp)
 glint=$build/glint
 split=$build/bench/glint_aov_split
 models=$here/../../../shared/real-world/gltf
+ext=$here/../../../shared/real-world/gltf-ext
 mkdir -p "$out"
 declare -A input=(
     [glass]="$here/glass.test"
@@ -21,8 +26,13 @@ declare -A input=(
     [lamps]="$here/lamps.test"
     [helmet]="$models/DamagedHelmet/glTF-Binary/DamagedHelmet.glb"
     [bottle]="$models/WaterBottle/glTF/WaterBottle.gltf"
+    [vase]="$ext/GlassVaseFlowers/glTF/GlassVaseFlowers.gltf"
+    [toycar]="$ext/ToyCar/glTF/ToyCar.gltf"
+    [chair]="$ext/SheenChair/glTF/SheenChair.gltf"
+    [cloth]="$ext/SheenCloth/glTF/SheenCloth.gltf"
+    [lamp]="$ext/IridescenceLamp/glTF/IridescenceLamp.gltf"
 )
-for name in glass room lamps helmet bottle; do
+for name in "${names[@]}"; do
     scene=${input[$name]}
     [ -f "$scene" ] || { echo "make_data: $scene is missing" >&2; exit 1; }
     for spp in 4 16 64 512 ref; do

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -10,7 +11,32 @@
 
 namespace glint {
 
-Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool) {
+std::string_view denoiserName(DenoiserKind kind) {
+    switch (kind) {
+        case DenoiserKind::Auto:
+            return "auto";
+        case DenoiserKind::Oidn:
+            return "oidn";
+        case DenoiserKind::Nlm:
+            return "nlm";
+    }
+    return "?";
+}
+
+DenoiserKind denoiserNamed(std::string_view name) {
+    for (DenoiserKind k : {DenoiserKind::Auto, DenoiserKind::Oidn, DenoiserKind::Nlm})
+        if (denoiserName(k) == name) return k;
+    throw std::invalid_argument("no denoiser '" + std::string(name) + "' (auto, oidn, nlm)");
+}
+
+DenoiserKind resolveDenoiser(DenoiserKind kind) {
+    if (kind != DenoiserKind::Auto) return kind;
+    static const bool network = networkDenoiserAvailable();
+    return network ? DenoiserKind::Oidn : DenoiserKind::Nlm;
+}
+
+Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool,
+                 const FilmDenoiseOptions& options, FilmDenoiseReport* report) {
     const int w = film.width(), h = film.height();
     const size_t n = static_cast<size_t>(w) * h;
     if (!aovs.empty() && (aovs.width != w || aovs.height != h))
@@ -27,6 +53,13 @@ Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool) {
     in.depth = pass(aovs.depth);
     in.variance = pass(aovs.variance);
     in.albedoVariance = pass(aovs.albedoVariance);
+    if (resolveDenoiser(options.denoiser) == DenoiserKind::Oidn) {
+        NetworkDenoised out = networkDenoise(in, options.quality, pool);
+        if (report)
+            *report = {"oidn " + std::string(denoiseQualityName(options.quality)), out.nonFinite};
+        return Film(w, h, std::move(out.color));
+    }
+    if (report) *report = {"nlm", 0};
     return Film(w, h, denoise(in, {&pool, 0}));
 }
 
@@ -58,7 +91,7 @@ Film denoiseFilmRows(const Film& film, const RenderPasses& aovs, int y0, int y1,
         bandPasses.albedoVariance = rows(aovs.albedoVariance);
         bandPasses.depth = rows(aovs.depth);
     }
-    const Film denoised = denoiseFilm(band, bandPasses, pool);
+    const Film denoised = denoiseFilm(band, bandPasses, pool, {DenoiserKind::Nlm});
     Film out(w, y1 - y0);
     for (int y = y0; y < y1; ++y)
         for (int x = 0; x < w; ++x) out.at(x, y - y0) = denoised.at(x, y - a0);

@@ -32,7 +32,7 @@ TEST(DenoiseFilmRows, BandsAreTheWholeImagesRows) {
             passes.variance[i] = Vec3(0.02 + 0.01 * rng.uniform());
         }
     ThreadPool pool(2);
-    const Film whole = denoiseFilm(film, passes, pool);
+    const Film whole = denoiseFilm(film, passes, pool, {DenoiserKind::Nlm});
     int bands = 0;
     for (int y0 = 0; y0 < h; y0 += 16, ++bands) {
         const int y1 = std::min(h, y0 + 16);

@@ -455,22 +455,22 @@ TEST(UNetFilter, TilesGiveTheWholeImagesResultBitForBit) {
     // 330 x 40: padded to 336 x 48; tiles of 240 overlap by 112 and give 16 columns each.
     const NoisyImages in = noisyImages(330, 40, rng);
     ThreadPool pool(2);
-    const std::vector<Vec3> whole = unetDenoise(net, in.images(), pool);
+    const std::vector<Vec3> whole = unetDenoise(net, in.images(), pool).pixels;
     ASSERT_EQ(unetTiles(net, 330, 40, {}).size(), 1u);
     UNetOptions tiled;
     tiled.tileSize = 240;
     EXPECT_EQ(unetTiles(net, 330, 40, tiled).size(), 21u);
-    EXPECT_EQ(unetDenoise(net, in.images(), pool, tiled), whole);
+    EXPECT_EQ(unetDenoise(net, in.images(), pool, tiled).pixels, whole);
     // Tiles from a memory limit (the least tile, 2 x 112 + 64 wide, giving 64 columns): the
     // same.
     UNetOptions small;
     small.maxMemoryBytes = 1;
     EXPECT_EQ(unetTiles(net, 330, 40, small).size(), 6u);
-    EXPECT_EQ(unetDenoise(net, in.images(), pool, small), whole);
+    EXPECT_EQ(unetDenoise(net, in.images(), pool, small).pixels, whole);
     // And the oracle agrees to rounding.
     UNetOptions reference;
     reference.isa = unet::KernelIsa::Reference;
-    const std::vector<Vec3> expected = unetDenoise(net, in.images(), pool, reference);
+    const std::vector<Vec3> expected = unetDenoise(net, in.images(), pool, reference).pixels;
     for (size_t i = 0; i < whole.size(); ++i)
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(whole[i][c], expected[i][c], 1e-3 * (1 + expected[i][c]));

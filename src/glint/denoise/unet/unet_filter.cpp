@@ -80,22 +80,67 @@ namespace {
 /// Input pixel i's channels for `net`, as unetInput() maps them, into `out` (9 floats: colour,
 /// albedo, normal; those the network does not read zero).
 void inputPixel(const UNetImages& in, size_t i, float exposure, int channels, float* out) {
+    std::fill(out, out + 9, 0.f);
     for (int c = 0; c < 3; ++c) {
-        out[c] = puForward(sanitize(toFloat(in.color[i][c]) * exposure, 0.f, kMaxFloat));
-        out[3 + c] = channels >= 6 ? sanitize(toFloat(in.albedo[i][c]), 0.f, 1.f) : 0.f;
-        out[6 + c] =
-            channels == 9 ? sanitize(toFloat(in.normal[i][c]), -1.f, 1.f) * 0.5f + 0.5f : 0.f;
+        const float v = toFloat(in.color[i][c]);
+        switch (in.role) {
+            case UNetRole::HdrColor:
+                out[c] = puForward(sanitize(v * exposure, 0.f, kMaxFloat));
+                if (channels >= 6) out[3 + c] = sanitize(toFloat(in.albedo[i][c]), 0.f, 1.f);
+                if (channels == 9)
+                    out[6 + c] = sanitize(toFloat(in.normal[i][c]), -1.f, 1.f) * 0.5f + 0.5f;
+                break;
+            case UNetRole::Albedo:
+                out[c] = sanitize(v, 0.f, 1.f);
+                break;
+            case UNetRole::Normal:
+                out[c] = sanitize(v, -1.f, 1.f) * 0.5f + 0.5f;
+                break;
+        }
     }
+}
+
+/// The network's output `value` (one channel) as the image's: clamped at 0 (OIDN's outputs may
+/// be negative), then colour through the transfer function's inverse and the exposure, an
+/// albedo clamped to 1, a normal mapped back to [-1, 1].
+float outputValue(UNetRole role, float value, float unexpose) {
+    value = sanitize(value, 0.f, kMaxFloat);
+    switch (role) {
+        case UNetRole::HdrColor:
+            return puInverse(value) * unexpose;
+        case UNetRole::Albedo:
+            return std::min(value, 1.f);
+        case UNetRole::Normal:
+            return std::min(value * 2.f - 1.f, 1.f);
+    }
+    return value;
+}
+
+/// Pixels with a value that is not finite in an image the network reads.
+size_t nonFinitePixels(const UNetImages& in, int channels) {
+    const size_t n = static_cast<size_t>(in.width) * in.height;
+    auto bad = [](const Vec3* image, size_t i) {
+        return image && !(std::isfinite(image[i].x) && std::isfinite(image[i].y) &&
+                          std::isfinite(image[i].z));
+    };
+    size_t count = 0;
+    const bool aux = in.role == UNetRole::HdrColor;
+    for (size_t i = 0; i < n; ++i)
+        count += bad(in.color, i) || (aux && channels >= 6 && bad(in.albedo, i)) ||
+                 (aux && channels == 9 && bad(in.normal, i));
+    return count;
 }
 
 void checkImages(const UNet& net, const UNetImages& in) {
     if (in.width <= 0 || in.height <= 0 || !in.color)
         throw std::invalid_argument("unetDenoise: no image");
     const int channels = net.inputChannels();
-    if (channels != 3 && channels != 6 && channels != 9)
+    if (in.role != UNetRole::HdrColor ? channels != 3
+                                      : channels != 3 && channels != 6 && channels != 9)
         throw std::runtime_error("the network reads " + std::to_string(channels) +
                                  " channels: not colour, albedo and normal");
-    if ((channels >= 6 && !in.albedo) || (channels == 9 && !in.normal))
+    if (in.role == UNetRole::HdrColor &&
+        ((channels >= 6 && !in.albedo) || (channels == 9 && !in.normal)))
         throw std::invalid_argument("the network needs the albedo and normal passes");
 }
 
@@ -162,11 +207,7 @@ FeatureMap unetInput(const UNet& net, const UNetImages& in, float exposure) {
     for (int y = 0; y < in.height; ++y)
         for (int px = 0; px < in.width; ++px) {
             inputPixel(in, static_cast<size_t>(y) * in.width + px, exposure, channels, v);
-            for (int c = 0; c < 3; ++c) {
-                x.at(c, y, px) = v[c];
-                if (channels >= 6) x.at(3 + c, y, px) = v[3 + c];
-                if (channels == 9) x.at(6 + c, y, px) = v[6 + c];
-            }
+            for (int c = 0; c < channels; ++c) x.at(c, y, px) = v[c];
         }
     return x;
 }
@@ -179,22 +220,24 @@ std::vector<std::array<int, 4>> unetTiles(const UNet& net, int width, int height
     return out;
 }
 
-std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& in, ThreadPool& pool,
-                              const UNetOptions& options) {
+UNetResult unetDenoise(const UNet& net, const UNetImages& in, ThreadPool& pool,
+                       const UNetOptions& options) {
     checkImages(net, in);
-    const float exposure = autoexposure(in.color, in.width, in.height);
+    const float exposure =
+        in.role == UNetRole::HdrColor ? autoexposure(in.color, in.width, in.height) : 1.f;
     const float unexpose = exposure != 0.f ? 1.f / exposure : 0.f;
-    std::vector<Vec3> result(static_cast<size_t>(in.width) * in.height);
-    auto output = [&](float value) {
-        return puInverse(sanitize(value, 0.f, kMaxFloat)) * unexpose;
-    };
+    UNetResult done;
+    done.nonFinite = nonFinitePixels(in, net.inputChannels());
+    std::vector<Vec3>& result = done.pixels;
+    result.resize(static_cast<size_t>(in.width) * in.height);
+    auto output = [&](float value) { return outputValue(in.role, value, unexpose); };
     if (options.isa == unet::KernelIsa::Reference) {
         const FeatureMap out = net.runReference(unetInput(net, in, exposure), pool);
         for (int y = 0; y < in.height; ++y)
             for (int x = 0; x < in.width; ++x)
                 for (int c = 0; c < 3; ++c)
                     result[static_cast<size_t>(y) * in.width + x][c] = output(out.at(c, y, x));
-        return result;
+        return done;
     }
     const int channels = net.inputChannels();
     unet::MapPool maps;  // every tile the same size: each takes the last one's maps
@@ -229,7 +272,7 @@ std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& in, ThreadPool&
         maps.give(std::move(x));
         maps.give(std::move(out));
     }
-    return result;
+    return done;
 }
 
 }  // namespace glint

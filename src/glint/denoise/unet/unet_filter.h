@@ -20,13 +20,21 @@
 
 namespace glint {
 
-/// The images the network reads, each width * height pixels in rows, row 0 at the top. `albedo`
-/// and `normal` are needed by networks that read them (9 input channels: both; 6: albedo only).
+/// What a network denoises, as OIDN's filters have it: HDR colour (guided by the albedo and
+/// normal if it reads them), or an albedo or a normal pass alone (to clean the passes that then
+/// guide a network trained on clean ones: OIDN's "cleanAux"). An albedo goes in and comes out
+/// clamped to [0, 1]; a normal is clamped to [-1, 1] and mapped to [0, 1] for the network.
+enum class UNetRole { HdrColor, Albedo, Normal };
+
+/// The images the network reads, each width * height pixels in rows, row 0 at the top: `color`
+/// is the image to denoise (colour, or the albedo or normal pass for those roles). `albedo` and
+/// `normal` guide colour for networks that read them (9 input channels: both; 6: albedo only).
 struct UNetImages {
     int width = 0, height = 0;
     const Vec3* color = nullptr;
     const Vec3* albedo = nullptr;
     const Vec3* normal = nullptr;
+    UNetRole role = UNetRole::HdrColor;
 };
 
 /// OIDN's exposure for HDR colour `color` (width * height pixels): 0.18 over the geometric mean
@@ -38,7 +46,8 @@ float autoexposure(const Vec3* color, int width, int height);
 float puForward(float radiance);
 float puInverse(float value);
 
-/// The network's input planes for `images` at `exposure`, padded to multiples of 16.
+/// The network's input planes for `images` at `exposure` (colour; 1 for the other roles), padded
+/// to multiples of 16.
 FeatureMap unetInput(const UNet& net, const UNetImages& images, float exposure);
 
 /// How unetDenoise() runs (its result never depends on these, but for the kernels' rounding).
@@ -61,8 +70,15 @@ struct UNetOptions {
 std::vector<std::array<int, 4>> unetTiles(const UNet& net, int width, int height,
                                           const UNetOptions& options);
 
-/// Denoises `images.color` with `net` (OIDN's HDR weights): width * height pixels.
-std::vector<Vec3> unetDenoise(const UNet& net, const UNetImages& images, ThreadPool& pool,
-                              const UNetOptions& options = {});
+struct UNetResult {
+    std::vector<Vec3> pixels;  ///< width * height
+    /// Pixels with a value that was not finite (NaN, infinity) in an image the network read: each
+    /// such value was taken as 0.
+    size_t nonFinite = 0;
+};
+
+/// Denoises `images.color` with `net` (OIDN's weights for the role).
+UNetResult unetDenoise(const UNet& net, const UNetImages& images, ThreadPool& pool,
+                       const UNetOptions& options = {});
 
 }  // namespace glint
