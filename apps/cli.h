@@ -75,12 +75,12 @@ struct Options {
     std::string samples;  ///< --samples A:B
     std::string part;     ///< --part K/N
     // Clean images (docs/clean-images.md).
-    std::string aov;            ///< --aov: passes to write as layers of the EXR output.
-    int denoise = 0;            ///< 1 --denoise, -1 --no-denoise, 0 the default (on for models).
-    std::string denoiser = "auto";          ///< --denoiser: auto, oidn or nlm.
+    std::string aov;  ///< --aov: passes to write as layers of the EXR output.
+    int denoise = 0;  ///< 1 --denoise, -1 --no-denoise, 0 the default (on for models).
+    std::string denoiser = "auto";            ///< --denoiser: auto, oidn or nlm.
     std::string denoiseQuality = "balanced";  ///< --denoise-quality: fast, balanced or high.
-    double noiseThreshold = 0;  ///< --noise-threshold; 0: a fixed number of samples.
-    int minSpp = 0;             ///< --min-spp; 0: the default.
+    double noiseThreshold = 0;                ///< --noise-threshold; 0: a fixed number of samples.
+    int minSpp = 0;                           ///< --min-spp; 0: the default.
     // Time (docs/animation.md).
     std::string animation;           ///< --animation: its index or name; empty for the first.
     std::optional<double> timeAt;    ///< --time-at SECONDS
@@ -181,8 +181,8 @@ SamplingPlan planSampling(const Options& opt, const Prepared& prepared, bool pie
 /// A render as a SamplingPlan asks, and what it cost.
 struct Rendered {
     RenderResult result;
-    double buildSeconds = 0;    ///< Building the BVHs (0 for a scene prepared before).
-    double denoiseSeconds = 0;  ///< 0: not denoised.
+    double buildSeconds = 0;     ///< Building the BVHs (0 for a scene prepared before).
+    double denoiseSeconds = 0;   ///< 0: not denoised.
     FilmDenoiseReport denoised;  ///< What the denoiser did, if it ran.
 };
 

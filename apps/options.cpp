@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "glint/accel/bvh.h"
+#include "glint/denoise/film_denoise.h"
+#include "glint/denoise/unet/blocked.h"
 #include "glint/render/film/film.h"
 #include "glint/render/film/piece.h"
 #include "glint/render/integrators/integrator.h"
@@ -193,6 +195,14 @@ CLI::Validator numberIn(double lo, double hi) {
 
 /// Registers --exposure, --srgb, --no-srgb and --tonemap on `app`; `unchanged` says what an
 /// option not given leaves ("the pieces'").
+/// What --version says of the denoiser: the network's kernels and weights, or that it has none.
+std::string denoiserSummary() {
+    if (resolveDenoiser(DenoiserKind::Auto) == DenoiserKind::Nlm)
+        return "nlm (no network weights: denoise-weights/README.md)";
+    return "oidn, OIDN 2.3's weights, " + std::string(unet::kernelIsaName(unet::bestKernelIsa())) +
+           " kernels";
+}
+
 /// --denoiser and --denoise-quality (glint and glint denoise).
 void addDenoiserOptions(CLI::App& app, std::string& denoiser, std::string& quality,
                         const std::string& group) {
@@ -473,7 +483,8 @@ void addOptions(CLI::App& app, Options& opt) {
     app.add_flag("-q,--quiet", opt.quiet, "No progress or messages; warnings and errors only")
         ->group(info);
     app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION +
-                                          " (traversal kernels: " + Bvh::isa() + ")")
+                                          " (traversal kernels: " + Bvh::isa() +
+                                          "; denoiser: " + denoiserSummary() + ")")
         ->group(info);
     app.set_help_flag("-h,--help", "Print this help and exit")->group(info);
 }

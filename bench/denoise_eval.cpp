@@ -9,14 +9,16 @@
 //       heavy-tailed per-sample noise; also prints the raw error at 32x the samples.
 //
 // Keys: ref=PATH (another reference), threads=N (2), runs=N (timing runs, the median is printed;
-// 1), out=PATH|none, and the parameters of denoise_detail::DenoiseTuning: r1 p1 k1 al1 n1 a1 d1
-// fo1 ridge1 (first pass: radius, patch, k, alpha, normal, albedo, depth weights, first order
-// 0/1, its ridge), r2 ... ridge2 (second; r2=0: one pass), gvs (second guide's variance scale),
-// sov (second guide's outlier variance), vr (variance smoothing radius), ov (outlier variance
-// ratio), evs (estimated variance scale), af (albedo floor), ra ... ridgea (the albedo's filter;
-// ra=0: none), fire=P (synthetic: the probability of a firefly sample, 0.001), and noalbedo=1
-// nonormal=1 nodepth=1 novariance=1 noalbedovariance=1 to leave a buffer out. relMSE = mean over
-// pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
+// 1), out=PATH|none, denoiser=nlm|oidn (nlm: the parameters below apply; oidn: the network,
+// quality=fast|balanced|high; its output NAME_SPP.oidn-QUALITY.pfm), and the parameters of
+// denoise_detail::DenoiseTuning: r1 p1 k1 al1 n1 a1 d1 fo1 ridge1 (first pass: radius, patch, k,
+// alpha, normal, albedo, depth weights, first order 0/1, its ridge), r2 ... ridge2 (second; r2=0:
+// one pass), gvs (second guide's variance scale), sov (second guide's outlier variance), vr
+// (variance smoothing radius), ov (outlier variance ratio), evs (estimated variance scale), af
+// (albedo floor), ra ... ridgea (the albedo's filter; ra=0: none), fire=P (synthetic: the
+// probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1
+// noalbedovariance=1 to leave a buffer out. relMSE = mean over pixels and channels of (x - ref)^2 /
+// (ref^2 + 0.01).
 
 #include <algorithm>
 #include <chrono>
@@ -31,6 +33,7 @@
 #include "glint/core/error.h"
 #include "glint/denoise/denoise.h"
 #include "glint/denoise/metrics.h"
+#include "glint/denoise/network_denoise.h"
 #include "glint/denoise/tuning.h"
 #include "glint/io/image/image_io.h"
 #include "glint/math/rng.h"
@@ -263,16 +266,26 @@ int main(int argc, char** argv) {
     options.pool = &pool;
     std::vector<Vec3> result;
     std::vector<double> seconds;
+    const bool network = keys.count("denoiser") && keys["denoiser"] == "oidn";
+    const DenoiseQuality quality =
+        denoiseQualityNamed(keys.count("quality") ? keys["quality"] : "balanced");
+    if (network && !synth && !keys.count("out"))
+        out = std::string(argv[1]) + "/" + argv[2] + "_" + argv[3] + ".oidn-" +
+              std::string(denoiseQualityName(quality)) + ".pfm";
     for (int run = 0; run < std::max(1, static_cast<int>(num("runs", 1))); ++run) {
         const auto start = std::chrono::steady_clock::now();
-        result = denoise_detail::denoiseTuned(in, options, t);
+        result = network ? networkDenoise(in, quality, pool).color
+                         : denoise_detail::denoiseTuned(in, options, t);
         seconds.push_back(
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     std::sort(seconds.begin(), seconds.end());
     const double raw = relMse(b.color, b.reference), den = relMse(result, b.reference);
-    std::printf("%dx%d  relMSE raw %.5f  denoised %.5f  gain %.1fx", b.width, b.height, raw, den,
-                raw / den);
+    std::printf(
+        "%dx%d  relMSE raw %.5f  denoised %.5f  gain %.1fx  trimmed raw %.5f  "
+        "denoised %.5f",
+        b.width, b.height, raw, den, raw / den, relMseTrimmed(b.color, b.reference),
+        relMseTrimmed(result, b.reference));
     if (!b.reference32.empty())
         std::printf("  (raw at 32x spp %.5f: goal gain %.1fx)", relMse(b.reference32, b.reference),
                     raw / relMse(b.reference32, b.reference));

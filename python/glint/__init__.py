@@ -54,8 +54,9 @@ _COMMAND_LINE_ONLY = frozenset(
 # What may change from one render of a loaded scene to the next; the rest is given to load().
 _RENDER_OPTIONS = frozenset(
     [
-        "spp", "integrator", "threads", "seed", "aov", "denoise", "noise-threshold", "min-spp",
-        "time", "maxdepth", "clamp-indirect", "caustics", "exposure", "srgb", "tonemap",
+        "spp", "integrator", "threads", "seed", "aov", "denoise", "denoiser", "denoise-quality",
+        "noise-threshold", "min-spp", "time", "maxdepth", "clamp-indirect", "caustics",
+        "exposure", "srgb", "tonemap",
     ]
 )
 # One name per option: the command line's, underscores for dashes (maxdepth, aov, tonemap, as
@@ -111,7 +112,8 @@ class Image(np.ndarray):
       passes   the render passes asked for (``aov=``), by name: albedo, normal and variance
                (rows x columns x 3) and depth (rows x columns); with albedo and variance also
                albedoVariance, the albedo's (what the denoiser reads)
-      info     spp, mean_spp, seconds, build_seconds, denoised, denoise_seconds, rays, ...
+      info     spp, mean_spp, seconds, build_seconds, denoised, denoiser ("oidn balanced",
+               "nlm"), denoise_seconds, rays, ...
       display  how an 8-bit file shows it: exposure, srgb, tonemap (the scene's way, as the
                glint command writes it)
     In a notebook it shows itself as a PNG.
@@ -552,10 +554,11 @@ class Scene:
         """Renders the scene and returns the image (glint.Image, float32 rows x columns x 3).
 
         `options` are the command line's rendering options: spp, integrator, threads, seed,
-        aov (a list of albedo, normal, depth, variance: Image.passes), denoise,
-        noise_threshold, min_spp, time, maxdepth, clamp_indirect, caustics, and exposure, srgb
-        and tonemap for how it is shown. A model (and nothing else) is sampled until clean and
-        denoised unless told otherwise, as by the glint command. The interpreter's lock is
+        aov (a list of albedo, normal, depth, variance: Image.passes), denoise, denoiser
+        ("oidn", the network, where this build has its weights; "nlm"), denoise_quality
+        ("fast", "balanced", "high"), noise_threshold, min_spp, time, maxdepth, clamp_indirect,
+        caustics, and exposure, srgb and tonemap for how it is shown. A model (and nothing else)
+        is sampled until clean and denoised unless told otherwise, as by the glint command. The interpreter's lock is
         released while it renders; Ctrl-C stops it (KeyboardInterrupt) within a fraction of a
         second. `progress(fraction, seconds)` is called about ten times a second."""
         args = _option_args(options, "render", _RENDER_OPTIONS)

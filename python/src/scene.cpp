@@ -180,6 +180,7 @@ py::tuple LoadedScene::render(const std::vector<std::string>& args, const py::ob
     info["build_seconds"] = r.buildSeconds;
     info["denoise_seconds"] = r.denoiseSeconds;
     info["denoised"] = r.denoiseSeconds > 0;
+    info["denoiser"] = r.denoiseSeconds > 0 ? py::object(py::str(r.denoised.method)) : py::none();
     info["rays"] = res.rays.total();
     info["display"] = displayDict(display);
     auto frame = std::make_shared<Frame>();

@@ -1,5 +1,8 @@
 """Rendering through Python gives the glint program's images, bit for bit."""
 
+import os
+import subprocess
+
 import numpy as np
 import pytest
 
@@ -48,6 +51,31 @@ def test_a_gltf_model_equals_the_command_line_denoised_as_it_is(cli, tmp_path):
     assert (tmp_path / "py.png").read_bytes() == png
     raw = glint.load(model, size=(96, 72)).render(spp=4, denoise=False)
     assert not raw.info["denoised"] and not np.array_equal(raw, image)
+    assert raw.info["denoiser"] is None
+
+
+def test_the_denoiser_and_its_quality_are_chosen_as_on_the_command_line(cli, tmp_path):
+    model = data("gltf", "blender-monkey.gltf")
+    scene = glint.load(model, size=(96, 72))
+    net = scene.render(spp=4, threads=2)
+    assert net.info["denoiser"] == ("oidn balanced" if glint_has_oidn() else "nlm")
+    nlm = scene.render(spp=4, threads=2, denoiser="nlm")
+    assert nlm.info["denoiser"] == "nlm"
+    if glint_has_oidn():
+        assert not np.array_equal(nlm, net)
+        fast = scene.render(spp=4, threads=2, denoise_quality="fast")
+        assert fast.info["denoiser"] == "oidn fast"
+        png = cli("fast.png", model, "--size", "96x72", "--spp", "4", "--denoise-quality", "fast")
+        glint.write(tmp_path / "py.png", fast)
+        assert (tmp_path / "py.png").read_bytes() == png
+    with pytest.raises(ValueError, match="denoiser"):
+        scene.render(denoiser="optix")
+
+
+def glint_has_oidn():
+    """Whether this build embeds OIDN's weights (make weights; denoise-weights/README.md)."""
+    return "denoiser: oidn" in subprocess.run([os.environ["GLINT_BIN"], "--version"],
+                                              capture_output=True, text=True).stdout
 
 
 def test_render_options_override_the_load_options_for_one_render(course_scene6):

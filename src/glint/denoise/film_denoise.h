@@ -45,10 +45,10 @@ Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool,
 /// 14 rows).
 constexpr int kDenoiseBandMargin = 24;
 
-/// Rows [y0, y1) of denoiseFilm(film, aovs, pool) with the non-local-means filter, as a film of the image's width and y1 - y0
-/// rows, computed from those rows and kDenoiseBandMargin more on either side: the same pixels
-/// as the whole image's, so that a large image can be denoised a band at a time (the web page,
-/// between which it hears Cancel).
+/// Rows [y0, y1) of denoiseFilm(film, aovs, pool) with the non-local-means filter, as a film of the
+/// image's width and y1 - y0 rows, computed from those rows and kDenoiseBandMargin more on either
+/// side: the same pixels as the whole image's, so that a large image can be denoised a band at a
+/// time (the web page, between which it hears Cancel).
 Film denoiseFilmRows(const Film& film, const RenderPasses& aovs, int y0, int y1, ThreadPool& pool);
 
 }  // namespace glint

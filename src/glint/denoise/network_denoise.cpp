@@ -69,8 +69,8 @@ std::shared_ptr<const UNet> denoiserNetwork(std::string_view name) {
 NetworkDenoised networkDenoise(const DenoiseInput& in, DenoiseQuality quality, ThreadPool& pool) {
     if (in.width <= 0 || in.height <= 0 || !in.color)
         throw std::invalid_argument("networkDenoise: no image");
-    const NetworkChoice choice = networkChoice(quality, in.albedo != nullptr,
-                                               in.albedo && in.normal);
+    const NetworkChoice choice =
+        networkChoice(quality, in.albedo != nullptr, in.albedo && in.normal);
     NetworkDenoised out;
     // Clean passes first, where the colour's network was trained on clean ones.
     auto clean = [&](const std::string& name, const Vec3* pass, UNetRole role) {
@@ -82,9 +82,12 @@ NetworkDenoised networkDenoise(const DenoiseInput& in, DenoiseQuality quality, T
     std::vector<Vec3> albedo, normal;
     if (!choice.albedo.empty()) albedo = clean(choice.albedo, in.albedo, UNetRole::Albedo);
     if (!choice.normal.empty()) normal = clean(choice.normal, in.normal, UNetRole::Normal);
-    UNetImages images{in.width, in.height, in.color,
+    UNetImages images{in.width,
+                      in.height,
+                      in.color,
                       albedo.empty() ? in.albedo : albedo.data(),
-                      normal.empty() ? in.normal : normal.data(), UNetRole::HdrColor};
+                      normal.empty() ? in.normal : normal.data(),
+                      UNetRole::HdrColor};
     UNetResult r = unetDenoise(*denoiserNetwork(choice.color), images, pool);
     out.nonFinite = std::max(out.nonFinite, r.nonFinite);
     out.color = std::move(r.pixels);

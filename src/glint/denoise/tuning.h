@@ -26,13 +26,13 @@ struct DenoiseTuning {
     /// against -1.5%; glass unchanged).
     float outlierVariance = 2.0f;
     /// The first pass, guided by the noisy colour itself: a small window, whose result only
-    /// guides the second pass's weights. Measured on the five renders at 16 spp (docs/denoiser-method.md):
-    /// one first-order pass of radius 8 gave glass 6.8x, room 82.7x, lamps 33.5x, helmet 3.6x,
-    /// bottle 9.0x, its weights tied to the noise (room's mean -1.0%, -2.6% at 4 spp); these two
-    /// passes give 7.4x, 68.8x, 31.1x, 3.8x, 13.3x, means within 0.2% (-1.4% on room at 4 spp),
-    /// in the time of the old single zero-order pass of radius 8 (radius 3 and 6; a second
-    /// radius of 7 gives glass 7.5x, room 77.4x, lamps 32.3x, bottle 13.6x, helmet the same, in
-    /// 1.2 times the time, too near 1080p's 2 s).
+    /// guides the second pass's weights. Measured on the five renders at 16 spp
+    /// (docs/denoiser-method.md): one first-order pass of radius 8 gave glass 6.8x, room 82.7x,
+    /// lamps 33.5x, helmet 3.6x, bottle 9.0x, its weights tied to the noise (room's mean -1.0%,
+    /// -2.6% at 4 spp); these two passes give 7.4x, 68.8x, 31.1x, 3.8x, 13.3x, means within 0.2%
+    /// (-1.4% on room at 4 spp), in the time of the old single zero-order pass of radius 8 (radius
+    /// 3 and 6; a second radius of 7 gives glass 7.5x, room 77.4x, lamps 32.3x, bottle 13.6x,
+    /// helmet the same, in 1.2 times the time, too near 1080p's 2 s).
     NlMeansParams first{.radius = 3,
                         .patch = 1,
                         .k = 0.8f,
