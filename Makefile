@@ -154,7 +154,7 @@ web-deps:
 # Two builds of the module, with threads (glint-mt) and without (glint-st), then the page:
 # web/tools/build.mjs bundles it with the page's npm packages (npm ci, once per lock file) and
 # assembles $(WEB_DIR)/site. NODE_PATH: Debian's Emscripten finds its JavaScript modules there.
-web: web-deps
+web: web-deps weights
 	web/tools/debian-sources.sh $(WEB_DIR)/debian
 	@for v in mt st; do \
 	  t=$$([ $$v = mt ] && echo ON || echo OFF); \

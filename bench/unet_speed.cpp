@@ -127,7 +127,8 @@ int main(int argc, char** argv) {
     std::printf("FMA peak on %d threads: %.0f GFLOPS with 256-bit vectors, %.0f with 512-bit\n",
                 threads, p256, p512);
 #endif
-    if (!networkDenoiserAvailable()) {
+    if (!networkDenoiserAvailable(DenoiseQuality::Fast) ||
+        !networkDenoiserAvailable(DenoiseQuality::High)) {
         std::printf("no network weights in this build (denoise-weights/README.md)\n");
         return 1;
     }

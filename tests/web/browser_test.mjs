@@ -252,6 +252,11 @@ try {
     await page.click('#render');
     g = await waitFor('done', (p) => p.rendersDone > doneBefore8);
     check(g.last.denoiseSeconds > 0, `the image was denoised (${(g.last.denoiseSeconds || 0).toFixed(3)} s in all)`);
+    // The last pass by the network where the site has its weights (make web copies them when
+    // denoise-weights/fetch.sh fetched them), the others by the filter.
+    const weights = fs.existsSync(path.join(args.site, 'denoise', 'rt_hdr_alb_nrm.tza'));
+    check(g.denoiser === (weights ? 'oidn' : 'nlm'), `the page's denoiser: ${g.denoiser}`);
+    check(g.last.denoiser === (weights ? 'oidn balanced' : 'nlm'), `the last pass's: ${g.last.denoiser}`);
     const denoised = await canvasPng('cornell-denoised.png');
     doneBefore8 = g.rendersDone;
     await page.uncheck('#denoise');  // renders again, raw

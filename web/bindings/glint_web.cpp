@@ -23,6 +23,9 @@
 #include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/denoise/film_denoise.h"
+#include "glint/denoise/network_denoise.h"
+#include "glint/denoise/unet/tza.h"
+#include "glint/denoise/unet/weights.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/image_io.h"
 #include "glint/io/registry.h"
@@ -250,8 +253,8 @@ class Session {
         s.height = std::clamp(intOr(o, "height", loaded_.height), 1, 16384);
         s.maxDepth = std::max(0, intOr(o, "maxDepth", loaded_.maxDepth));
         s.integrator = loaded_.integrator;
-        // No light pass (the path tracer's caustics, render/integrators/caustics.h): it traces a whole
-        // pass's light paths before the pass's first tiles, longer than a step may take (the
+        // No light pass (the path tracer's caustics, render/integrators/caustics.h): it traces a
+        // whole pass's light paths before the pass's first tiles, longer than a step may take (the
         // page must stay responsive and cancel within a step). The camera's paths find
         // caustics alone, as `--caustics off` does.
         s.caustics = false;
@@ -267,6 +270,8 @@ class Session {
         seed_ = static_cast<uint64_t>(std::max(0, intOr(o, "seed", 0)));
         progressive_ = o["passes"].isTrue();
         denoise_ = o["denoise"].isTrue();
+        denoiser_ = o["denoiser"].isString() ? denoiserNamed(o["denoiser"].as<std::string>())
+                                             : DenoiserKind::Auto;
         film_ = Film(s.width, s.height);
         sums_ = FilmSums(s.width, s.height);
         if (denoise_) sums_.keepPasses();
@@ -372,6 +377,7 @@ class Session {
         r.set("rays", static_cast<double>(rays_));
         r.set("seconds", seconds_);
         r.set("denoiseSeconds", denoiseSeconds_);
+        r.set("denoiser", denoisedWith_);
         r.set("x0", x0), r.set("y0", y0), r.set("x1", std::max(x0, x1)),
             r.set("y1", std::max(y0, y1));
         return r;
@@ -411,7 +417,11 @@ class Session {
     /// Denoises the image of the passes so far, guided by their render passes, and shows it.
     /// Below two samples a pixel's variance is unknown: the denoiser then estimates the noise
     /// from the image.
-    /// Starts denoising the image of the passes so far (denoiseBand() does it).
+    /// Starts denoising the image of the passes so far (denoiseBand() does it). The last
+    /// pass's image goes through the network denoiser where its weights are registered
+    /// (registerDenoiserWeights(); the page fetches them), whole: it is not cut into bands,
+    /// so Cancel is heard after it. Earlier passes, and the last without the weights, take the
+    /// non-local-means filter, a band at a time.
     void beginDenoising() {
         auto start = Clock::now();
         toDenoise_ = sums_.resolve();
@@ -420,6 +430,22 @@ class Session {
             toDenoisePasses_.variance.clear();
             toDenoisePasses_.albedoVariance.clear();
         }
+        if (samples_ >= spp_ &&
+            resolveDenoiser(denoiser_, DenoiseQuality::Balanced, !toDenoisePasses_.albedo.empty(),
+                            !toDenoisePasses_.normal.empty()) == DenoiserKind::Oidn) {
+            FilmDenoiseReport report;
+            film_ = denoiseFilm(toDenoise_, toDenoisePasses_, pool_,
+                                {DenoiserKind::Oidn, DenoiseQuality::Balanced}, &report);
+            denoiser_ = DenoiserKind::Oidn;
+            denoisedWith_ = report.method;
+            showTile(film_, 0, 0, film_.width(), film_.height());
+            toDenoise_ = Film();
+            toDenoisePasses_ = RenderPasses();
+            denoiseRow_ = -1;
+            denoiseSeconds_ += std::chrono::duration<double>(Clock::now() - start).count();
+            return;
+        }
+        denoisedWith_ = "nlm";
         denoised_ = Film(toDenoise_.width(), toDenoise_.height());
         denoiseRow_ = 0;
         denoiseSeconds_ += std::chrono::duration<double>(Clock::now() - start).count();
@@ -475,6 +501,8 @@ class Session {
     DisplayTransform display_;
     int spp_ = 1, tiles_ = 0, tilesX_ = 0, next_ = 0, batch_ = 1, pass_ = 0, samples_ = 0;
     bool progressive_ = false, denoise_ = false;
+    DenoiserKind denoiser_ = DenoiserKind::Auto;
+    std::string denoisedWith_;  // the last denoise's method: "oidn balanced", "nlm"
     uint64_t seed_ = 0, rays_ = 0;
     double seconds_ = 0, denoiseSeconds_ = 0;
     // A finished pass's image being denoised a band at a time: its next row (-1: none), the
@@ -504,6 +532,25 @@ std::string renderFile(const std::string& path, const std::string& output, int t
         return e.what();
     }
 }
+
+/// Makes `bytes` (a Uint8Array of an OIDN weights file) the network denoiser's weights `name`
+/// ("rt_hdr_alb_nrm"): the page fetches them beside itself. Returns an error message, or "".
+std::string registerWeights(const std::string& name, const val& bytes) {
+    try {
+        // Copied in by the typed array's own set(), not element by element.
+        std::vector<uint8_t> data(bytes["length"].as<size_t>());
+        val(emscripten::typed_memory_view(data.size(), data.data())).call<void>("set", bytes);
+        parseTza(data, name);  // refused now rather than at the first denoise
+        registerDenoiserWeights(name, std::move(data));
+        return {};
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+}
+
+/// The denoiser a render's last pass gets: "oidn" once the page has registered the network's
+/// weights, else "nlm".
+std::string denoiser() { return std::string(denoiserName(resolveDenoiser(DenoiserKind::Auto))); }
 
 /// The default traversal kernels ("simd128"), as `glint --help` names them natively.
 std::string kernels() { return Bvh::isa(); }
@@ -535,6 +582,8 @@ EMSCRIPTEN_BINDINGS(glint) {
         .function("save", &Session::save);
     emscripten::function("renderFile", &renderFile);
     emscripten::function("kernels", &kernels);
+    emscripten::function("registerWeights", &registerWeights);
+    emscripten::function("denoiser", &denoiser);
     emscripten::function("integratorNames", &integratorNames);
     emscripten::function("commandNames", &commandNames);
 }

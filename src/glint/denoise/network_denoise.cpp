@@ -39,13 +39,15 @@ NetworkChoice networkChoice(DenoiseQuality quality, bool albedo, bool normal) {
     return {(albedo ? "rt_hdr_alb" : "rt_hdr") + suffix, "", ""};
 }
 
-bool networkDenoiserAvailable() {
-    for (DenoiseQuality q : {DenoiseQuality::Fast, DenoiseQuality::Balanced, DenoiseQuality::High})
-        for (int passes = 0; passes < 3; ++passes) {
-            const NetworkChoice c = networkChoice(q, passes > 0, passes > 1);
-            for (const std::string* name : {&c.color, &c.albedo, &c.normal})
-                if (!name->empty() && denoiserWeights(*name).empty()) return false;
-        }
+bool networkWeightsHere(const NetworkChoice& choice) {
+    for (const std::string* name : {&choice.color, &choice.albedo, &choice.normal})
+        if (!name->empty() && denoiserWeights(*name).empty()) return false;
+    return true;
+}
+
+bool networkDenoiserAvailable(DenoiseQuality quality) {
+    for (int passes = 0; passes < 3; ++passes)
+        if (!networkWeightsHere(networkChoice(quality, passes > 0, passes > 1))) return false;
     return true;
 }
 

@@ -37,8 +37,10 @@ struct NetworkChoice {
 };
 NetworkChoice networkChoice(DenoiseQuality quality, bool albedo, bool normal);
 
-/// Whether the weights every choice needs are here (built in or registered).
-bool networkDenoiserAvailable();
+/// Whether the weights `choice` names are here (built in or registered).
+bool networkWeightsHere(const NetworkChoice& choice);
+/// Whether the weights of `quality` are here for every set of passes.
+bool networkDenoiserAvailable(DenoiseQuality quality = DenoiseQuality::Balanced);
 
 /// The network of the weights `name`, read and packed once per process (any thread). Throws
 /// std::runtime_error if they are not here, saying how to get them.

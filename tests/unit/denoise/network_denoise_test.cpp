@@ -68,8 +68,10 @@ TEST(NetworkDenoise, WeightsRegisteredAtRunTimeAreFound) {
 
 // The tests below run OIDN's own weights: a build without them (denoise-weights/README.md)
 // skips them.
-#define REQUIRE_WEIGHTS() \
-    if (!networkDenoiserAvailable()) GTEST_SKIP() << "no OIDN weights in this build"
+#define REQUIRE_WEIGHTS()                                  \
+    if (!networkDenoiserAvailable(DenoiseQuality::Fast) || \
+        !networkDenoiserAvailable(DenoiseQuality::High))   \
+    GTEST_SKIP() << "no OIDN weights in this build"
 
 struct Scene {
     int width, height;

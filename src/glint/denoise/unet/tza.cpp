@@ -1,6 +1,5 @@
 #include "glint/denoise/unet/tza.h"
 
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -103,7 +102,8 @@ TzaTensors parseTza(std::span<const uint8_t> bytes, const std::string& name) {
                 const uint32_t v = uint32_t(data[4 * i]) | uint32_t(data[4 * i + 1]) << 8 |
                                    uint32_t(data[4 * i + 2]) << 16 |
                                    uint32_t(data[4 * i + 3]) << 24;
-                tensor.values[i] = std::bit_cast<float>(v);
+                std::memcpy(&tensor.values[i], &v, sizeof v);  // (std::bit_cast: not in the
+                                                               // web build's libc++)
             }
             if (!std::isfinite(tensor.values[i]))
                 r.fail("tensor '" + tensorName + "' holds a value that is not finite");

@@ -241,7 +241,9 @@ UNetResult unetDenoise(const UNet& net, const UNetImages& in, ThreadPool& pool,
     }
     const int channels = net.inputChannels();
     unet::MapPool maps;  // every tile the same size: each takes the last one's maps
-    for (const auto& [tx, ty] : tiling(net, in.width, in.height, options)) {
+    for (const auto& tile : tiling(net, in.width, in.height, options)) {
+        // (Not a structured binding: the web build's clang 14 cannot capture one in a lambda.)
+        const Span &tx = tile.first, &ty = tile.second;
         unet::BlockedMap x = maps.take(channels, ty.size, tx.size);
         parallelFor(pool, 0, static_cast<size_t>(ty.size), 16, [&](size_t y0, size_t y1) {
             float v[2 * unet::kBlock] = {};
