@@ -437,9 +437,10 @@ TEST(Cli, VersionPrintsTheVersionAndTraversalKernelsAndExitsZero) {
     EXPECT_EQ(r.exitCode, 0);
     EXPECT_TRUE(std::regex_match(
         r.out,
-        std::regex("glint [0-9]+\\.[0-9]+\\.[0-9]+ \\(traversal kernels: (avx2|portable); denoiser: "
-                   "(oidn, OIDN 2\\.3's weights, (avx512|avx2|portable) kernels|nlm \\(no network "
-                   "weights: denoise-weights/README\\.md\\))\\)\n")))
+        std::regex(
+            "glint [0-9]+\\.[0-9]+\\.[0-9]+ \\(traversal kernels: (avx2|portable); denoiser: "
+            "(oidn, OIDN 2\\.3's weights, (avx512|avx2|portable) kernels|nlm \\(no network "
+            "weights: denoise-weights/README\\.md\\))\\)\n")))
         << r.out;
 }
 
