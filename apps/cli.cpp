@@ -14,6 +14,7 @@
 #include "glint/core/error.h"
 #include "glint/core/parallel.h"
 #include "glint/denoise/film_denoise.h"
+#include "glint/denoise/network_denoise.h"
 #include "glint/io/course/course_loader.h"
 #include "glint/io/image/environment_io.h"
 #include "glint/io/image/image_io.h"
@@ -107,6 +108,12 @@ Rendered renderPlanned(const Options& opt, Prepared& prepared, const SamplingPla
 
 FilmDenoiseOptions filmDenoiseOptions(const std::string& denoiser, const std::string& quality) {
     return {denoiserNamed(denoiser), denoiseQualityNamed(quality)};
+}
+
+std::string denoiserProblem(const std::string& denoiser, const std::string& quality) {
+    if (denoiser != "oidn" || networkDenoiserAvailable(denoiseQualityNamed(quality))) return "";
+    return "--denoiser oidn: this build of glint has no weights for the network "
+           "(denoise-weights/fetch.sh fetches them; then build again); use --denoiser nlm or auto";
 }
 
 void warnNonFinite(const char* program, const FilmDenoiseReport& report) {
@@ -308,6 +315,8 @@ void prepareScene(const Options& opt, Prepared& out, std::vector<Diagnostic>& wa
         if (std::string problem = parseSize(opt.size, width, height); !problem.empty())
             throw UsageError(problem);
     }
+    if (std::string problem = denoiserProblem(opt.denoiser, opt.denoiseQuality); !problem.empty())
+        throw UsageError(problem);
     Isa kernels = Bvh::named(opt.kernels);
     if (kernels == Isa::Avx2 && Bvh::bestIsa() != Isa::Avx2)
         throw UsageError(

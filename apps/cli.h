@@ -188,6 +188,9 @@ struct Rendered {
 
 /// The denoiser that --denoiser and --denoise-quality name (checked when parsed).
 FilmDenoiseOptions filmDenoiseOptions(const std::string& denoiser, const std::string& quality);
+/// Why --denoiser cannot be had in this build ("--denoiser oidn" without the network's
+/// weights), or "" (a usage error, exit 2, before anything is rendered).
+std::string denoiserProblem(const std::string& denoiser, const std::string& quality);
 
 /// "glint: warning: ..." (with `program`'s name) if the denoiser met values that were not
 /// finite; nothing otherwise.

@@ -38,6 +38,11 @@ int denoiseMain(int argc, char** argv) {
                      opt.output.c_str(), kImageExtensions);
         return kExitUsage;
     }
+    if (std::string problem = denoiserProblem(opt.denoiser, opt.quality); !problem.empty()) {
+        std::fprintf(stderr, "glint denoise: error: %s\nRun 'glint denoise --help' for usage.\n",
+                     problem.c_str());
+        return kExitUsage;
+    }
     // OpenEXR alone keeps the float values and the passes the denoiser needs: say so, and how
     // to make one, rather than OpenEXR's "File is not an image file."
     const std::string head = readHead(opt.input, 4);
@@ -56,15 +61,17 @@ int denoiseMain(int argc, char** argv) {
                          "glint denoise: warning: %s has no albedo pass: texture may be blurred "
                          "(render with --aov all)\n",
                          opt.input.c_str());
-        if (!in.found.variance && !opt.quiet)
+        const FilmDenoiseOptions denoiser = filmDenoiseOptions(opt.denoiser, opt.quality);
+        const bool filter = resolveDenoiser(denoiser.denoiser, denoiser.quality, in.found.albedo,
+                                            in.found.normal) == DenoiserKind::Nlm;
+        if (filter && !in.found.variance && !opt.quiet)
             std::fprintf(stderr,
                          "glint denoise: warning: %s has no variance pass: the noise is "
                          "estimated from the image\n",
                          opt.input.c_str());
         ThreadPool pool(opt.threads);
         FilmDenoiseReport report;
-        const Film out = denoiseFilm(in.color, in.aovs, pool,
-                                     filmDenoiseOptions(opt.denoiser, opt.quality), &report);
+        const Film out = denoiseFilm(in.color, in.aovs, pool, denoiser, &report);
         warnNonFinite("glint denoise", report);
         writeImage(opt.output, out, opt.shown.over({}), &in.aovs,
                    *format == ImageFormat::Exr ? in.found : AovSelection{});

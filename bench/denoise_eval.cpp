@@ -289,6 +289,9 @@ int main(int argc, char** argv) {
     if (!b.reference32.empty())
         std::printf("  (raw at 32x spp %.5f: goal gain %.1fx)", relMse(b.reference32, b.reference),
                     raw / relMse(b.reference32, b.reference));
+    std::printf("  detail raw %.3f  denoised %.3f",
+                detailKept(b.color, b.reference, b.width, b.height),
+                detailKept(result, b.reference, b.width, b.height));
     std::printf("  mean/input %.4f  mean/ref %.4f  time %.3f s (%d threads)\n",
                 meanValue(result) / meanValue(b.color), meanValue(result) / meanValue(b.reference),
                 seconds[seconds.size() / 2], pool.threads());

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders the denoising benchmark's inputs (docs/clean-images.md, "Benchmark"): each scene at
-# 4, 16, 64 and 512 samples per pixel with every render pass (glint --aov all --no-denoise), and
+# 4, 16, 64, 128 and 512 samples per pixel with every render pass (glint --aov all --no-denoise), and
 # a 4096-spp reference, then splits each EXR into PFM files for bench/denoise/run.sh:
 #   OUT/NAME_SPP.pfm, .albedo.pfm, .normal.pfm, .depth.pfm, .variance.pfm; OUT/NAME_ref.pfm
 # Scenes: the three course-format scenes beside this script, two Khronos sample models from
@@ -35,7 +35,7 @@ declare -A input=(
 for name in "${names[@]}"; do
     scene=${input[$name]}
     [ -f "$scene" ] || { echo "make_data: $scene is missing" >&2; exit 1; }
-    for spp in 4 16 64 512 ref; do
+    for spp in 4 16 64 128 512 ref; do
         n=$spp; [ "$spp" = ref ] && n=$ref
         [ -f "$out/${name}_$spp.pfm" ] && continue
         "$glint" "$scene" --size 320x240 --spp "$n" --no-denoise --aov all -q \

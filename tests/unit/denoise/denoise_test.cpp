@@ -325,4 +325,25 @@ TEST(Denoise, RejectsAMissingColourBufferAndNegativeSizes) {
 }
 
 }  // namespace
+// The benchmark's measure of detail (metrics.h): the reference itself keeps all of it, a blur
+// of it much less, the reference plus noise about all (noise is not detail), and a flat image none.
+TEST(Metrics, DetailKeptTellsABlurFromNoise) {
+    Scene s = shadedScene(96, 80);
+    addNoise(s, 4);
+    std::vector<Vec3> blurred(s.size()), flat(s.size(), Vec3(0.3));
+    for (int y = 0; y < s.height; ++y)
+        for (int x = 0; x < s.width; ++x) {
+            Vec3 sum(0);
+            int n = 0;
+            for (int v = std::max(0, y - 2); v <= std::min(s.height - 1, y + 2); ++v)
+                for (int u = std::max(0, x - 2); u <= std::min(s.width - 1, x + 2); ++u, ++n)
+                    sum += s.truth[s.index(u, v)];
+            blurred[s.index(x, y)] = sum * (1.0 / n);
+        }
+    EXPECT_DOUBLE_EQ(detailKept(s.truth, s.truth, s.width, s.height), 1.0);
+    EXPECT_LT(detailKept(blurred, s.truth, s.width, s.height), 0.5);
+    EXPECT_NEAR(detailKept(s.color, s.truth, s.width, s.height), 1.0, 0.15);
+    EXPECT_NEAR(detailKept(flat, s.truth, s.width, s.height), 0.0, 1e-12);
+}
+
 }  // namespace glint
