@@ -49,8 +49,8 @@ inline double detailKept(const std::vector<Vec3>& x, const std::vector<Vec3>& re
     auto luminance = [&](const std::vector<Vec3>& image) {
         std::vector<double> l(image.size());
         for (size_t i = 0; i < image.size(); ++i) {
-            const double v = std::max(
-                0.0, 0.2126 * image[i].x + 0.7152 * image[i].y + 0.0722 * image[i].z);
+            const double v =
+                std::max(0.0, 0.2126 * image[i].x + 0.7152 * image[i].y + 0.0722 * image[i].z);
             l[i] = v / (1 + v);
         }
         return l;
