@@ -24,7 +24,9 @@ py=$(command -v /usr/bin/python3 || command -v python3)
 out=${KEEP:-$(mktemp -d)}
 mkdir -p "$out"
 [ -n "${KEEP:-}" ] || trap 'rm -rf "$out"' EXIT
-for f in "$unet" "$weights" "$base"; do [ -f "$f" ] || { echo "evaluate: $f is missing" >&2; exit 1; }; done
+for f in "$unet" "$weights" "$base"; do
+    [ -f "$f" ] || { echo "evaluate: $f is missing" >&2; exit 1; }
+done
 
 printf '%-8s %4s %12s %12s %7s\n' scene spp relMSE-base relMSE-new ratio
 declare -A sum_base sum_new sum_log count
@@ -49,6 +51,7 @@ for spp in "${spps[@]}"; do
     [ "$c" -gt 0 ] || continue
     printf '%-8s %4s %12.6f %12.6f %7.3f   geometric mean of the ratios %.3f (%d scenes)\n' \
         mean "$spp" "$(echo "${sum_base[$spp]} / $c" | bc -l)" \
-        "$(echo "${sum_new[$spp]} / $c" | bc -l)" "$(echo "${sum_new[$spp]} / ${sum_base[$spp]}" | bc -l)" \
+        "$(echo "${sum_new[$spp]} / $c" | bc -l)" \
+        "$(echo "${sum_new[$spp]} / ${sum_base[$spp]}" | bc -l)" \
         "$(echo "e(${sum_log[$spp]} / $c)" | bc -l)" "$c"
 done

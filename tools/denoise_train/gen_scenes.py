@@ -85,7 +85,8 @@ def scene(rng):
         sky = colour(rng, 0.1, 0.5) + colour(rng, 0.3, 1.2)
         lines.append(f"background {fmt(sky)}")
         sun = [rng.uniform(-1, 1), rng.uniform(0.15, 1), rng.uniform(-1, 1)]
-        lines.append(f"directional {fmt(sun)} {fmt([c * rng.uniform(1, 4) for c in colour(rng, 0.6, 1)])}")
+        light = [c * rng.uniform(1, 4) for c in colour(rng, 0.6, 1)]
+        lines.append(f"directional {fmt(sun)} {fmt(light)}")
     elif lighting == "lamps":
         lines.append(f"background {fmt(colour(rng, 0, 0.03))}")
         for _ in range(rng.randint(1, 3)):
@@ -105,7 +106,8 @@ def scene(rng):
         lines.append(f"background {fmt(colour(rng, 0.2, 0.5) + colour(rng, 0.4, 1.2))}")
         s, top = spread, rng.uniform(2.5, 4)
         lines.append(f"diffuse {fmt(colour(rng, 0.4, 0.85))}")
-        lines += [f"box {-s - 0.2:.3f} {top:.3f} {-s - 0.2:.3f} {s + 0.2:.3f} {top + 0.2:.3f} {s + 0.2:.3f}",
+        lines += [f"box {-s - 0.2:.3f} {top:.3f} {-s - 0.2:.3f} "
+                  f"{s + 0.2:.3f} {top + 0.2:.3f} {s + 0.2:.3f}",
                   f"box {-s - 0.2:.3f} 0 {-s - 0.2:.3f} {s + 0.2:.3f} {top:.3f} {-s:.3f}",
                   f"box {s:.3f} 0 {-s:.3f} {s + 0.2:.3f} {top:.3f} {s:.3f}",
                   f"box {-s - 0.2:.3f} 0 {s:.3f} {s + 0.2:.3f} {top:.3f} {s + 0.2:.3f}"]
@@ -118,11 +120,13 @@ def scene(rng):
                       f"box {x0:.3f} {y0:.3f} {-s:.3f} {x1:.3f} {y1:.3f} {w0:.3f}",
                       f"box {x0:.3f} {y0:.3f} {w1:.3f} {x1:.3f} {y1:.3f} {s:.3f}"]
             sun = [-1, rng.uniform(0.3, 1.2), rng.uniform(-0.6, 0.6)]
-            lines.append(f"directional {fmt(sun)} {fmt([c * rng.uniform(3, 8) for c in colour(rng, 0.7, 1)])}")
+            light = [c * rng.uniform(3, 8) for c in colour(rng, 0.7, 1)]
+            lines.append(f"directional {fmt(sun)} {fmt(light)}")
         else:
             lines.append(f"box {-s - 0.2:.3f} 0 {-s:.3f} {-s:.3f} {top:.3f} {s:.3f}")
             w = rng.uniform(0.3, 1.2)
-            lines.append(f"quadLight {-w:.3f} {top - 0.01:.3f} {-w:.3f} {2 * w:.3f} 0 0 0 0 {2 * w:.3f} "
+            lines.append(f"quadLight {-w:.3f} {top - 0.01:.3f} {-w:.3f} "
+                         f"{2 * w:.3f} 0 0 0 0 {2 * w:.3f} "
                          f"{fmt([c * rng.uniform(4, 15) for c in colour(rng, 0.6, 1)])}")
     # The objects, spread over the floor without much overlap.
     placed = []

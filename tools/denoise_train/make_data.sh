@@ -13,7 +13,8 @@
 #   SIZE WxH, default 256x192; NAME... keeps the views whose ID contains one of the words.
 # Environment: VIEWS (views per scene, default 3), GENERATED (random scenes, default 40),
 #   THREADS (glint's threads, default 2), LIMIT (seconds per render, default 900: a scene
-#   slower than that is skipped with a message), KEEP_EXR=1 to keep the EXRs.
+#   slower than that is skipped with a message), KEEP_EXR=1 to keep the EXRs, LIST_ONLY=1 to
+#   write OUT/views.tsv (and the generated scenes) and stop.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
@@ -43,6 +44,7 @@ fi
 "$python" "$here/views.py" "$glint" "$shared" "$repo" "$out/scenes" "${VIEWS:-3}" "$size" \
     "${names[@]}" >"$out/views.tsv"
 echo "make_data: $(wc -l <"$out/views.tsv") views in $out/views.tsv"
+[ -z "${LIST_ONLY:-}" ] || exit 0
 
 render() {  # VIEW SCENE ARGS SPP SEED NAME
     local view=$1 scene=$2 args=$3 spp=$4 seed=$5 name=$6

@@ -14,8 +14,10 @@ albedo clamped to [0, 1]; normal mapped from [-1, 1] to [0, 1]. The loss is take
 network's output lives, in that transfer function's space: L1 between the output and the
 reference (scaled by the same exposure, through PU), plus L1 between their horizontal and
 vertical differences (edges). Adam; random crops (multiples of 16) of random views and sample
-counts, flipped and turned by multiples of 90 degrees; fixed seed. Views whose ID hashes into
-the last --val-percent are kept apart to measure a validation loss on fixed crops."""
+counts, flipped and turned by multiples of 90 degrees; fixed seed. Scenes whose name hashes
+into the first --val-percent are kept apart for validation; the loss on fixed centre crops of
+training and of validation pairs is printed before and after (and for the weights as written,
+in float16)."""
 
 import argparse
 import glob
@@ -106,15 +108,15 @@ NORM = float(ref.NORM)
 def pu(y):
     """The PU transfer function (linear radiance to perceptual units); differentiable."""
     y = torch.clamp(y, min=0)
-    return torch.where(y <= P["y0"], P["a"] * y,
-                       torch.where(y <= P["y1"], P["b"] * torch.pow(torch.clamp(y, min=1e-30), P["c"]) + P["d"],
-                                   P["e"] * torch.log(y + P["f"]) + P["g"]))
+    middle = P["b"] * torch.pow(torch.clamp(y, min=1e-30), P["c"]) + P["d"]
+    top = P["e"] * torch.log(y + P["f"]) + P["g"]
+    return torch.where(y <= P["y0"], P["a"] * y, torch.where(y <= P["y1"], middle, top))
 
 
 def pu_inverse(x):
-    return torch.where(x <= P["x0"], x / P["a"],
-                       torch.where(x <= P["x1"], torch.pow(torch.clamp((x - P["d"]) / P["b"], min=0), 1 / P["c"]),
-                                   torch.exp((x - P["g"]) / P["e"]) - P["f"]))
+    middle = torch.pow(torch.clamp((x - P["d"]) / P["b"], min=0), 1 / P["c"])
+    top = torch.exp((x - P["g"]) / P["e"]) - P["f"]
+    return torch.where(x <= P["x0"], x / P["a"], torch.where(x <= P["x1"], middle, top))
 
 
 def network_input(color, albedo, normal, scale):
@@ -129,7 +131,8 @@ def network_input(color, albedo, normal, scale):
 
 
 def input_channels(tensors):
-    return tensors["enc_conv1a.weight" if "enc_conv1a.weight" in tensors else "enc_conv0.weight"].shape[1]
+    first = "enc_conv1a.weight" if "enc_conv1a.weight" in tensors else "enc_conv0.weight"
+    return tensors[first].shape[1]
 
 
 def denoise(net, color, albedo=None, normal=None):
@@ -212,7 +215,8 @@ class Data:
         self.train, self.val = [], []
         for path in sorted(glob.glob(os.path.join(folder, "*_ref.pfm"))):
             view = os.path.basename(path)[:-len("_ref.pfm")]
-            held = zlib.crc32(view.encode()) % 100 < val_percent
+            scene = view.rsplit("_v", 1)[0]  # all views of a scene on the same side
+            held = zlib.crc32(scene.encode()) % 100 < val_percent
             for spp in spps:
                 stem = os.path.join(folder, f"{view}_{spp}")
                 if all(os.path.exists(stem + s) for s in (".pfm", ".albedo.pfm", ".normal.pfm")):
@@ -229,7 +233,8 @@ class Data:
         read = lambda p: ref.read_pfm(p).astype(np.float32)
         color = np.clip(np.nan_to_num(read(stem + ".pfm"), posinf=0), 0, None)
         albedo, normal = read(stem + ".albedo.pfm"), read(stem + ".normal.pfm")
-        target = np.clip(np.nan_to_num(read(os.path.join(self.folder, f"{view}_ref.pfm")), posinf=0), 0, None)
+        target = read(os.path.join(self.folder, f"{view}_ref.pfm"))
+        target = np.clip(np.nan_to_num(target, posinf=0), 0, None)
         if key not in self.scales:
             self.scales[key] = float(ref.exposure(color))
         out = (color, albedo, normal, target, self.scales[key])
@@ -272,17 +277,28 @@ def loss_of(output, target):
     return l1 + edges
 
 
-def validate(net, data, crop, limit=16):
-    """The loss on fixed centre crops of the first `limit` validation pairs (None if none)."""
-    if not data.val:
+def fixed_loss(net, data, keys, crop, limit=16):
+    """The loss on fixed centre crops (no augmentation) of up to `limit` of `keys`, spread
+    over them; None if there are none."""
+    if not keys:
         return None
-    keys = data.val[:: max(1, len(data.val) // limit)][:limit]
+    keys = keys[:: max(1, len(keys) // limit)][:limit]
     net.eval()
+    total = 0.0
     with torch.no_grad():
-        total = sum(float(loss_of(*((lambda x, y: (net(x), y))(*data.batch([k], crop, None, False)))))
-                    for k in keys)
+        for k in keys:
+            x, y = data.batch([k], crop, None, augment=False)
+            total += float(loss_of(net(x), y))
     net.train()
     return total / len(keys)
+
+
+def report(label, net, data, crop):
+    """Prints the fixed-crop loss of the training and of the validation pairs."""
+    parts = [f"{name} {value:.5f}" for name, value in
+             (("training", fixed_loss(net, data, data.train, crop)),
+              ("validation", fixed_loss(net, data, data.val, crop))) if value is not None]
+    print(f"train: loss on fixed crops {label}: " + ", ".join(parts), flush=True)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -303,10 +319,9 @@ def train(args):
     net.train()
     optimizer = torch.optim.Adam(net.parameters(), lr=args.lr)
     log = open(args.log, "a") if args.log else None
-    val = validate(net, data, args.crop)
-    if val is not None:
-        print(f"train: validation loss before: {val:.5f}")
+    report("before", net, data, args.crop)
     start, last_save, step, recent = time.time(), time.time(), 0, []
+    window = start
     budget = args.minutes * 60 if args.minutes else math.inf
     while step < (args.steps or math.inf) and time.time() - start < budget:
         # A short warm-up, then the learning rate decays on a cosine over the steps (when the
@@ -316,7 +331,6 @@ def train(args):
             lr *= 0.5 * (1 + math.cos(math.pi * step / args.steps))
         for g in optimizer.param_groups:
             g["lr"] = lr
-        t0 = time.time()
         x, y = data.batch([rng.choice(data.train) for _ in range(args.batch)], args.crop, rng)
         loss = loss_of(net(x), y)
         optimizer.zero_grad()
@@ -326,8 +340,10 @@ def train(args):
         recent.append(float(loss))
         if step % args.print_every == 0 or step == 1:
             mean = sum(recent) / len(recent)
-            line = (f"step {step} loss {mean:.5f} lr {lr:.2e} {time.time() - t0:.2f} s/step "
-                    f"elapsed {time.time() - start:.0f} s")
+            now = time.time()
+            line = (f"step {step} loss {mean:.5f} lr {lr:.2e} {(now - window) / len(recent):.2f} "
+                    f"s/step elapsed {now - start:.0f} s")
+            window = now
             print(line, flush=True)
             if log:
                 log.write(line + "\n")
@@ -338,13 +354,10 @@ def train(args):
             last_save = time.time()
     write_tza(args.out, net.tensors())
     elapsed = time.time() - start
-    print(f"train: {step} steps in {elapsed:.0f} s ({elapsed / max(step, 1):.2f} s/step); wrote {args.out}")
-    # The weights as written (float16) on the validation crops.
-    written = UNet(ref.read_tza(args.out))
-    for name, n in (("after", net), ("after, as written (float16)", written)):
-        val = validate(n, data, args.crop)
-        if val is not None:
-            print(f"train: validation loss {name}: {val:.5f}")
+    print(f"train: {step} steps in {elapsed:.0f} s ({elapsed / max(step, 1):.2f} s/step); "
+          f"wrote {args.out}")
+    report("after", net, data, args.crop)
+    report("after, as written (float16)", UNet(ref.read_tza(args.out)), data, args.crop)
 
 
 def main():
@@ -365,7 +378,8 @@ def main():
     p.add_argument("--warmup", type=int, default=50, help="steps of linear warm-up")
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--spp", default="1,4,16,64", help="the sample counts to train on")
-    p.add_argument("--val-percent", type=int, default=10, help="views kept for validation")
+    p.add_argument("--val-percent", type=int, default=10,
+                   help="percent of the scenes kept for validation")
     p.add_argument("--print-every", type=int, default=10)
     p.add_argument("--save-minutes", type=float, default=10, help="write the .tza this often")
     p.add_argument("--log", help="append the loss lines to this file")

@@ -6,13 +6,15 @@
     views.py GLINT SHARED_DIR REPO_DIR GENERATED_DIR [VIEWS [WxH [NAME_FILTER...]]]
 
 Scenes (the held-out benchmark scenes are left out, by name, whatever the folders hold):
-  model-*   glTF models of SHARED/real-world/gltf and gltf-ext, meshes of obj/ and misc/, in
-            Glint's model mode (studio environment), seen from VIEWS orbit cameras around the
-            framing Glint chooses (`--camera none --check` prints it): view 0 that framing,
-            the others at a random azimuth, elevation and distance, on a shadow or a grey floor;
-  course-*  the course-format scenes of SHARED/real-world/course-scenes, SHARED/scenes/cse167x
-            and the repository's scenes/ (the Cornell box among them), path traced: view 0 the
-            file's camera, the others orbits a little around it (where its up is near +y);
+  model-*   glTF models of SHARED/real-world/gltf and gltf-ext, meshes of obj/ (spot too) and
+            misc/, in Glint's model mode (studio environment), seen from VIEWS orbit cameras
+            around the framing Glint chooses (`--camera none --check` prints it): view 0 that
+            framing, the others at a random azimuth, elevation and distance, on a shadow or a
+            grey floor;
+  course-*, cse-*, repo-*  the course-format scenes of SHARED/real-world/course-scenes,
+            SHARED/scenes/cse167x and the repository's scenes/ (the Cornell box among them),
+            path traced: view 0 the file's camera, the others orbits a little around it (where
+            its up is near +y);
   gen-*     the scenes in GENERATED_DIR (gen_scenes.py and glint_bench_scenes), one view each.
 Views are random but reproducible: each scene's generator is seeded by its ID's name.
 NAME_FILTER keeps the IDs that contain one of the words.
@@ -56,7 +58,7 @@ def scenes(shared, repo, generated):
                 model_file(entry) if os.path.isdir(entry) else None)
             if path:
                 out.append(("model-" + os.path.splitext(name)[0], path, "model"))
-    for pattern in ("obj/*.obj", "obj/*.ply", "misc/*.ply"):
+    for pattern in ("obj/*.obj", "obj/*.ply", "obj/spot/spot/spot_triangulated.obj", "misc/*.ply"):
         for path in sorted(glob.glob(os.path.join(real, pattern))):
             out.append(("model-" + os.path.splitext(os.path.basename(path))[0], path, "model"))
     for pattern in (os.path.join(real, "course-scenes", "*.test"),
