@@ -34,7 +34,7 @@ for spp in "${spps[@]}"; do
     sum_base[$spp]=0 sum_new[$spp]=0 sum_log[$spp]=0 count[$spp]=0
     for name in glass room lamps helmet bottle vase toycar chair cloth lamp; do
         exr=$data/${name}_$spp.exr ref=$data/${name}_ref.pfm
-        [ -f "$exr" ] && [ -f "$ref" ] || continue
+        if [ ! -f "$exr" ] || [ ! -f "$ref" ]; then continue; fi
         "$unet" "$base" "$exr" "$out/${name}_${spp}_base.pfm" --threads "${THREADS:-2}"
         "$unet" "$weights" "$exr" "$out/${name}_${spp}_new.pfm" --threads "${THREADS:-2}"
         b=$("$py" "$relmse" "$out/${name}_${spp}_base.pfm" "$ref" --all | cut -d" " -f2)
