@@ -17,7 +17,8 @@
 // (variance smoothing radius), ov (outlier variance ratio), evs (estimated variance scale), af
 // (albedo floor), ra ... ridgea (the albedo's filter; ra=0: none), fire=P (synthetic: the
 // probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1
-// noalbedovariance=1 to leave a buffer out. relMSE = mean over pixels and channels of (x - ref)^2 /
+// noalbedovariance=1 to leave a buffer out; png=PATH writes raw | nlm | the network (quality) |
+// reference side by side, as the model mode shows them (crop=X,Y,W,H[,ZOOM]: that part, enlarged). relMSE = mean over pixels and channels of (x - ref)^2 /
 // (ref^2 + 0.01).
 
 #include <algorithm>
@@ -298,18 +299,26 @@ int main(int argc, char** argv) {
     if (out != "none") {
         writeImage(out, Film(b.width, b.height, result));
     }
-    if (keys.count("png")) {  // noisy | denoised | reference, side by side, for the eye
-        Film f(3 * b.width, b.height);
-        for (int y = 0; y < b.height; ++y)
-            for (int x = 0; x < b.width; ++x) {
-                const size_t i = static_cast<size_t>(y) * b.width + x;
-                f.at(x, y) = b.color[i];
-                f.at(b.width + x, y) = result[i];
-                f.at(2 * b.width + x, y) = b.reference[i];
-            }
-        DisplayTransform display;
-        display.srgb = true;
-        writeImage(keys["png"], f, display);
+    if (keys.count("png")) {
+        // raw | the filter | the network (at `quality`) | reference, side by side, as the model
+        // mode shows an image (PBR Neutral, sRGB): the docs' pictures.
+        const std::vector<Vec3> nlm =
+            network ? denoise_detail::denoiseTuned(in, options, t) : result;
+        const std::vector<Vec3> net = network ? result : networkDenoise(in, quality, pool).color;
+        const std::vector<Vec3>* panels[] = {&b.color, &nlm, &net, &b.reference};
+        int cx = 0, cy = 0, cw = b.width, ch = b.height, zoom = 1;  // crop=X,Y,W,H[,ZOOM]
+        if (keys.count("crop"))
+            std::sscanf(keys["crop"].c_str(), "%d,%d,%d,%d,%d", &cx, &cy, &cw, &ch, &zoom);
+        cx = std::clamp(cx, 0, b.width - 1), cy = std::clamp(cy, 0, b.height - 1);
+        cw = std::clamp(cw, 1, b.width - cx), ch = std::clamp(ch, 1, b.height - cy);
+        zoom = std::clamp(zoom, 1, 8);
+        Film f(4 * cw * zoom, ch * zoom);
+        for (int k = 0; k < 4; ++k)
+            for (int y = 0; y < ch * zoom; ++y)
+                for (int x = 0; x < cw * zoom; ++x)
+                    f.at((k * cw) * zoom + x, y) =
+                        (*panels[k])[static_cast<size_t>(cy + y / zoom) * b.width + cx + x / zoom];
+        writeImage(keys["png"], f, {0, true, ToneMap::PbrNeutral});
     }
     return 0;
 }

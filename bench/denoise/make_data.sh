@@ -5,7 +5,9 @@
 #   OUT/NAME_SPP.pfm, .albedo.pfm, .normal.pfm, .depth.pfm, .variance.pfm; OUT/NAME_ref.pfm
 # Scenes: the three course-format scenes beside this script, two Khronos sample models from
 # ../shared/real-world/gltf and five from ../shared/real-world/gltf-ext (glass and flowers, a
-# toy car, a velvet chair, a cloth, a lamp) in Glint's model mode (the studio), all at 320x240.
+# toy car, a velvet chair, a cloth, a lamp) in Glint's model mode (the studio), and the glass ball
+# of bench/caustics that focuses a small lamp onto the floor (with the caustic light pass), all at
+# 320x240.
 # Usage: bench/denoise/make_data.sh BUILD_DIR OUT_DIR [REF_SPP [NAME...]]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -14,7 +16,7 @@ out=${2:?output dir}
 ref=${3:-4096}
 shift $(($# < 3 ? $# : 3))
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(glass room lamps helmet bottle vase toycar chair cloth lamp)
+[ ${#names[@]} -gt 0 ] || names=(glass room lamps helmet bottle vase toycar chair cloth lamp caustic)
 glint=$build/glint
 split=$build/bench/glint_aov_split
 models=$here/../../../shared/real-world/gltf
@@ -31,6 +33,7 @@ declare -A input=(
     [chair]="$ext/SheenChair/glTF/SheenChair.gltf"
     [cloth]="$ext/SheenCloth/glTF/SheenCloth.gltf"
     [lamp]="$ext/IridescenceLamp/glTF/IridescenceLamp.gltf"
+    [caustic]="$here/../caustics/ball.test"
 )
 for name in "${names[@]}"; do
     scene=${input[$name]}

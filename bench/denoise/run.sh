@@ -15,7 +15,7 @@ build=${1:?build dir}
 data=${2:?data dir (bench/denoise/make_data.sh)}
 shift 2
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(glass room lamps helmet bottle vase toycar chair cloth lamp)
+[ ${#names[@]} -gt 0 ] || names=(glass room lamps helmet bottle vase toycar chair cloth lamp caustic)
 eval=$build/bench/denoise_eval
 field() { sed -n "s|.*$1 \([0-9.e-]*\).*|\1|p" <<<"$2"; }
 declare -A line
