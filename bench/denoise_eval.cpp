@@ -18,8 +18,8 @@
 // (albedo floor), ra ... ridgea (the albedo's filter; ra=0: none), fire=P (synthetic: the
 // probability of a firefly sample, 0.001), and noalbedo=1 nonormal=1 nodepth=1 novariance=1
 // noalbedovariance=1 to leave a buffer out; png=PATH writes raw | nlm | the network (quality) |
-// reference side by side, as the model mode shows them (crop=X,Y,W,H[,ZOOM]: that part, enlarged). relMSE = mean over pixels and channels of (x - ref)^2 /
-// (ref^2 + 0.01).
+// reference side by side, as the model mode shows them (crop=X,Y,W,H[,ZOOM]: that part, enlarged).
+// relMSE = mean over pixels and channels of (x - ref)^2 / (ref^2 + 0.01).
 
 #include <algorithm>
 #include <chrono>
