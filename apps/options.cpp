@@ -215,7 +215,7 @@ void addDenoiserOptions(CLI::App& app, std::string& denoiser, std::string& quali
         ->type_name("NAME");
     app.add_option("--denoise-quality", quality,
                    "The network's quality: fast, balanced (default) or high (cleans the albedo "
-                   "and normal passes first with networks of their own: about 7x balanced's time)")
+                   "and normal passes first with networks of their own: about 6x balanced's time)")
         ->group(group)
         ->check(CLI::IsMember({"fast", "balanced", "high"}))
         ->type_name("NAME");
