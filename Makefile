@@ -24,7 +24,7 @@ JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 # for glint-mpi and its tests, slurm-wlm and munge for a private single-node Slurm on localhost
 # that runs contrib/slurm's scripts (tests/slurm/cluster_test.sh, about 9 s; docs/scale-out.md).
 # curl and ca-certificates fetch the denoiser's weights (make weights: 95 MB, about 2 s).
-DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libwebp-dev libopenexr-dev \
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
         libopenvdb-dev libboost-iostreams-dev pybind11-dev python3-dev python3-numpy \
         libgtest-dev libgmock-dev python3-pytest openmpi-bin libopenmpi-dev slurm-wlm munge
@@ -32,7 +32,7 @@ DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev l
 # `make demo`: only what the glint program needs, and only it is built (no test libraries, no
 # MPI or Slurm, OpenVDB if it is there already): a first picture in minutes on a fresh machine.
 # Tests, glint-mpi and VDB files are built when their packages are installed (`make test`).
-DEMO_DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+DEMO_DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libwebp-dev libopenexr-dev \
              libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev
 installed = $(if $(shell for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
   grep -q 'ok installed' || echo no; done),OFF,ON)
@@ -44,7 +44,7 @@ installed = $(if $(shell for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2
 # Assimp for the PLY and STL readers against it, bench/mesh_load_stats.sh; python3-numpy for
 # Blender's glTF importer, bench/cycles/gltf/).
 BENCH_DIR  ?= build-bench
-BENCH_DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libopenexr-dev \
+BENCH_DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libwebp-dev libopenexr-dev \
               libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
               libmeshoptimizer-dev libopenvdb-dev libboost-iostreams-dev libembree-dev povray bc \
               blender draco gltfpack libassimp-dev python3-numpy
@@ -62,7 +62,7 @@ WEB_DEPS := emscripten:em++ dpkg-dev:dpkg-source nodejs:node npm:npm chromium:ch
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-dev libpng-dev \
+FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-dev libpng-dev libwebp-dev \
              libopenexr-dev libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev \
              libmeshoptimizer-dev libopenvdb-dev libboost-iostreams-dev
 FUZZ_SECONDS ?= 60

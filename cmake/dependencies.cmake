@@ -17,6 +17,10 @@ message(STATUS "OpenEXR ${OpenEXR_VERSION}: .exr output")
 # stb (libstb-dev): PNG/JPEG decoding in io/ (reference images, textures).
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 
+# libwebp 1.2 (libwebp-dev): WebP textures in io/ (glTF's EXT_texture_webp; texture_io.cpp).
+# The web build has none: it refuses WebP images with a message.
+pkg_check_modules(WEBP REQUIRED IMPORTED_TARGET libwebp)
+
 # tinyobjloader 2.0rc10 (libtinyobjloader-dev): Wavefront OBJ and MTL parsing in io/, in float
 # (Glint stores geometry in float anyway). Its header only: the implementation it carries is
 # compiled into glint_io (src/glint/io/obj/tinyobj_impl.cpp).

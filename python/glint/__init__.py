@@ -331,6 +331,13 @@ class Scene:
     def point_light(self, position: Vec3, color: Vec3) -> "Scene":
         return self.command("point", _vec(position, 3, "position"), _vec(color, 3, "color"))
 
+    def spot_light(self, position: Vec3, direction: Vec3, color: Vec3, inner: float,
+                   outer: float) -> "Scene":
+        """A point light shining along `direction`, fully within `inner` degrees of it, not at
+        all beyond `outer` (glTF's spot light)."""
+        return self.command("spot", _vec(position, 3, "position"), _vec(direction, 3, "direction"),
+                            _vec(color, 3, "color"), float(inner), float(outer))
+
     def directional_light(self, direction: Vec3, color: Vec3) -> "Scene":
         """A light infinitely far away; `direction` points towards it."""
         return self.command("directional", _vec(direction, 3, "direction"), _vec(color, 3, "color"))

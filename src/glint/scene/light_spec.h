@@ -24,6 +24,14 @@ inline Vec3 finiteRadiance(const Vec3& c) {
     return {clamp(c.x), clamp(c.y), clamp(c.z)};
 }
 
+/// glTF's window of a light of `range` at distance d (KHR_lights_punctual's recommendation):
+/// max(min(1 - (d / range)^4, 1), 0), 1 where range is 0 (none).
+inline double rangeWindow(double d, double range) {
+    if (!(range > 0)) return 1;
+    const double x = d / range, x2 = x * x;
+    return x2 * x2 >= 1 ? 0 : 1 - x2 * x2;
+}
+
 struct LightSpec {
     enum class Kind { Point, Spot, Directional, Quad };
 
@@ -32,6 +40,9 @@ struct LightSpec {
     Vec3 direction;             ///< Directional lights: unit vector towards the light.
     Vec3 color;                 ///< Point, spot, directional: intensity. Quad: emitted radiance.
     Vec3 attenuation{1, 0, 0};  ///< Constant, linear, quadratic; point and spot lights only.
+    /// Point and spot lights: glTF's range, beyond which they light nothing, reached smoothly
+    /// (rangeWindow); 0: no limit.
+    double range = 0;
     /// Spot lights: the unit axis they shine along (away from the light), and the cosines of
     /// the angles from it within which they shine fully (inner) and beyond which not at all
     /// (outer), as glTF's KHR_lights_punctual gives them.

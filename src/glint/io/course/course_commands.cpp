@@ -244,6 +244,30 @@ void Parser::cmdPoint() {
     if (pointLights_++ == 0) firstPointLine_ = line_;
 }
 
+// A point light within a cone (glTF's spot light): at x y z, shining along dx dy dz, fully
+// within `inner` degrees of that axis, not at all beyond `outer`, fading between; attenuated
+// as point lights are.
+void Parser::cmdSpot() {
+    LightSpec l;
+    l.kind = LightSpec::Kind::Spot;
+    l.position = transform().point(vec3(1));
+    const Vec3 axis = transform().vector(vec3(4));
+    const double len = length(axis);
+    if (!(len > 0) || !std::isfinite(len)) fail(4, "spot light direction must not be zero");
+    l.axis = axis / len;
+    l.color = colour(7);
+    const double inner = real(10), outer = real(11);
+    if (!(inner >= 0)) fail(10, "the inner cone angle must be 0 to 90 degrees");
+    if (!(outer > inner && outer <= 90))
+        fail(11, "the outer cone angle must be more than the inner one and at most 90 degrees");
+    constexpr double kDegree = 0.017453292519943295;
+    l.cosInner = std::cos(inner * kDegree);
+    l.cosOuter = std::cos(outer * kDegree);
+    l.attenuation = builder_.attenuation();
+    builder_.addLight(l);
+    if (pointLights_++ == 0) firstPointLine_ = line_;
+}
+
 void Parser::cmdAttenuation() {
     Vec3 a = vec3(1);
     for (int k = 0; k < 3; ++k)

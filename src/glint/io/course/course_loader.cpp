@@ -49,6 +49,7 @@ const std::vector<Command>& Parser::commands() {
         {"maxvertnorms", 1, 1, "count", &Parser::cmdMaxVertNorms},
         {"directional", 6, 6, "x y z r g b", &Parser::cmdDirectional},
         {"point", 6, 6, "x y z r g b", &Parser::cmdPoint},
+        {"spot", 11, 11, "x y z dx dy dz r g b inner outer", &Parser::cmdSpot},
         {"attenuation", 3, 3, "constant linear quadratic", &Parser::cmdAttenuation},
         {"background", 3, 6, "r g b [r2 g2 b2]", &Parser::cmdBackground},
         {"transmission", 3, 3, "r g b", &Parser::cmdTransmission},

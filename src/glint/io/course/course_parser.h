@@ -134,6 +134,7 @@ class Parser {
     void cmdPopTransform();
     void cmdDirectional();
     void cmdPoint();
+    void cmdSpot();
     void cmdAttenuation();
     void cmdAmbient() { builder_.editMaterial().ambient = colour(1); }
     void cmdDiffuse() { builder_.editMaterial().diffuse = colour(1); }

@@ -3,10 +3,17 @@
 #include <set>
 
 #include "glint/io/gltf/gltf_internal.h"
+#include "glint/io/image/texture_io.h"
 
 namespace glint {
 
 const GltfExtension* findGltfExtension(std::string_view name) {
+    // A build without a WebP decoder (the web page's) says so of EXT_texture_webp.
+    static constexpr GltfExtension kNoWebp{
+        "EXT_texture_webp", GltfSupport::Ignored,
+        "this build does not decode WebP images, so a texture shows its fallback image, or its "
+        "material's factors where it has none"};
+    if (name == kNoWebp.name && !decodesWebp()) return &kNoWebp;
     for (const GltfExtension& e : kGltfExtensions)
         if (e.name == name) return &e;
     return nullptr;

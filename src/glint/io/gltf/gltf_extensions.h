@@ -36,12 +36,9 @@ inline constexpr std::array kGltfExtensions = {
     GltfExtension{"EXT_texture_avif", GltfSupport::Ignored,
                   "AVIF images are not decoded, so a texture shows its fallback image, or its "
                   "material's factors where it has none"},
-    GltfExtension{"EXT_texture_webp", GltfSupport::Ignored,
-                  "WebP images are not decoded, so a texture shows its fallback image, or its "
-                  "material's factors where it has none"},
+    GltfExtension{"EXT_texture_webp", GltfSupport::Rendered, ""},  // not by the web build
     GltfExtension{"KHR_draco_mesh_compression", GltfSupport::Rendered, ""},
-    GltfExtension{"KHR_lights_punctual", GltfSupport::Partly,
-                  "spot lights shine in every direction, as point lights; range is ignored"},
+    GltfExtension{"KHR_lights_punctual", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_materials_anisotropy", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_materials_clearcoat", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_materials_diffuse_transmission", GltfSupport::Rendered, ""},

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -198,20 +199,43 @@ std::optional<LightSpec> nodeLight(Context& ctx, int index, const Mat4& world,
     if (!isFinite(colour) || colour.x < 0 || colour.y < 0 || colour.z < 0 ||
         !std::isfinite(l.intensity) || l.intensity < 0)
         ctx.fail(label + ": its color and intensity must be finite numbers, not negative");
-    if (l.range > 0)
-        ctx.warnOnce("range",
-                     "the range of lights is ignored: they fall off with the square of "
-                     "the distance, without a cut-off");
     LightSpec out;
     out.color = colour * (l.intensity * kGltfLightScale);
     if (l.type == "point" || l.type == "spot") {
-        if (l.type == "spot")
-            ctx.warnOnce("spot", label +
-                                     " is a spot light: Glint lights it as a point light, "
-                                     "in every direction");
         out.kind = LightSpec::Kind::Point;
         out.position = applyPoint(world, Vec3(0));
         out.attenuation = {0, 0, 1};
+        // The spec's range; 0 or none: unlimited (a negative or non-finite one too).
+        if (std::isfinite(l.range) && l.range > 0) out.range = l.range;
+        if (l.type == "spot") {
+            // It shines along its node's -z, fully within innerConeAngle, not at all beyond
+            // outerConeAngle (the spec asks 0 <= inner < outer <= pi/2: others are brought
+            // within that, with a warning).
+            out.kind = LightSpec::Kind::Spot;
+            const Vec3 along = applyVector(world, {0, 0, -1});
+            const double len = length(along);
+            if (!(len > 0) || !std::isfinite(len))
+                out.position = Vec3(1e300);  // ignored below
+            else
+                out.axis = along / len;
+            double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+            constexpr double kRight = 1.5707963267948966;
+            auto num = [](double v) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%g", v);
+                return std::string(text);
+            };
+            if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0 || outer <= 0 ||
+                outer > kRight || inner >= outer) {
+                ctx.warn(label + ": its cone angles (inner " + num(inner) + ", outer " +
+                         num(outer) +
+                         ") are not 0 <= inner < outer <= pi/2: taken within those bounds");
+                outer = std::isfinite(outer) ? std::clamp(outer, 1e-4, kRight) : kRight / 2;
+                inner = std::isfinite(inner) ? std::clamp(inner, 0.0, outer * 0.999) : 0;
+            }
+            out.cosInner = std::cos(inner);
+            out.cosOuter = std::cos(outer);
+        }
         if (isFinite(out.position) && withinCoordinateRange(out.position)) return out;
     } else if (l.type == "directional") {
         out.kind = LightSpec::Kind::Directional;

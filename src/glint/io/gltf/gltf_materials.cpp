@@ -240,14 +240,21 @@ TextureSlot Materials::slot(int index, int texCoord, const tinygltf::ExtensionMa
         return {};
     }
     out.texCoord = static_cast<uint8_t>(texCoord);
-    if (texture.source == -1) {
+    // EXT_texture_webp: its WebP image in place of `source` (a fallback, if there is one).
+    int source = texture.source;
+    if (auto it = texture.extensions.find("EXT_texture_webp");
+        it != texture.extensions.end() && it->second.IsObject() && decodesWebp()) {
+        const tinygltf::Value& webp = it->second.Get("source");
+        if (webp.IsInt()) source = webp.Get<int>();
+    }
+    if (source == -1) {
         ctx_.warn(material + ": " + describe("texture", static_cast<size_t>(index), "") +
                   " has no image Glint reads (no 'source'): " + instead);
         return {};
     }
     const auto& images = ctx_.model.images;
-    if (texture.source < 0 || static_cast<size_t>(texture.source) >= images.size())
-        missing(ctx_, "image", texture.source, images.size(), "texture " + std::to_string(index));
+    if (source < 0 || static_cast<size_t>(source) >= images.size())
+        missing(ctx_, "image", source, images.size(), "texture " + std::to_string(index));
     if (texture.sampler != -1) {
         const auto& samplers = ctx_.model.samplers;
         if (texture.sampler < 0 || static_cast<size_t>(texture.sampler) >= samplers.size())
@@ -263,7 +270,7 @@ TextureSlot Materials::slot(int index, int texCoord, const tinygltf::ExtensionMa
         out.wrapT = wrap(s.wrapT);
     }
     std::string problem;
-    out.image = image(texture.source, srgb, problem);
+    out.image = image(source, srgb, problem);
     if (!out.image) ctx_.warn(material + ": " + problem + "; " + instead);
     return out;
 }

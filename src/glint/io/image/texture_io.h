@@ -1,5 +1,6 @@
 #pragma once
-/// Reading texture images (PNG, JPEG and the other 8-bit formats stb_image decodes).
+/// Reading texture images (PNG, JPEG and the other 8-bit formats stb_image decodes; WebP through
+/// libwebp, natively).
 
 #include <memory>
 #include <string>
@@ -24,5 +25,8 @@ std::shared_ptr<TextureImage> loadTextureImage(const std::string& path, bool srg
 /// they came from, in messages and in TextureImage::name. Throws RenderError with the reason.
 std::shared_ptr<TextureImage> decodeTextureImage(std::string_view bytes, const std::string& name,
                                                  bool srgb = true, const LoadLimits& limits = {});
+
+/// Whether this build decodes WebP images (the native one does; the web build does not).
+bool decodesWebp();
 
 }  // namespace glint

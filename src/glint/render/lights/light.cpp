@@ -7,9 +7,10 @@ namespace glint {
 Light lightFromSpec(const LightSpec& s) {
     switch (s.kind) {
         case LightSpec::Kind::Point:
-            return PointLight{s.position, s.color, s.attenuation};
+            return PointLight{s.position, s.color, s.attenuation, s.range};
         case LightSpec::Kind::Spot:
-            return SpotLight{s.position, s.axis, s.color, s.attenuation, s.cosInner, s.cosOuter};
+            return SpotLight{s.position, s.axis,     s.color, s.attenuation,
+                             s.cosInner, s.cosOuter, s.range};
         case LightSpec::Kind::Directional:
             return DirectionalLight{s.direction, s.color};
         case LightSpec::Kind::Quad:

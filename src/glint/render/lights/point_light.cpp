@@ -40,8 +40,10 @@ std::optional<LightBounds> PointLight::bounds() const {
 }
 
 std::ostream& operator<<(std::ostream& out, const PointLight& l) {
-    return out << "PointLight{at " << l.position << ", intensity " << l.intensity
-               << ", attenuation " << l.attenuation << "}";
+    out << "PointLight{at " << l.position << ", intensity " << l.intensity << ", attenuation "
+        << l.attenuation;
+    if (l.range > 0) out << ", range " << l.range;
+    return out << "}";
 }
 
 }  // namespace glint

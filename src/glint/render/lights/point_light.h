@@ -18,15 +18,21 @@ struct PointLight {
     Vec3 position;
     Vec3 intensity;
     Vec3 attenuation{1, 0, 0};  ///< Constant, linear, quadratic.
+    double range = 0;           ///< glTF's range (rangeWindow); 0: none.
 
     /// The direction to the light and its intensity over the attenuation (the brightest finite
-    /// light where that rounds to 0); none at the light itself. Inline: the Whitted
-    /// integrator's inner loop.
+    /// light where that rounds to 0), times the range's window; none at the light itself or
+    /// beyond its range. Inline: the Whitted integrator's inner loop.
     std::optional<LightLiSample> sampleLi(const Vec3& p, Point2) const {
         Vec3 toLight = position - p;
         double d = length(toLight);
         if (!(d > 0)) return std::nullopt;
         double att = attenuation.x + attenuation.y * d + attenuation.z * d * d;
+        if (range > 0) {
+            const double w = rangeWindow(d, range);
+            if (!(w > 0)) return std::nullopt;
+            att /= w;
+        }
         return LightLiSample{toLight / d, finiteRadiance(intensity / att), 1, 1, d, true};
     }
     double pdfLi(const Vec3& from, const LightPoint& at, double choice = 1) const;

@@ -26,7 +26,9 @@ std::optional<LightLiSample> SpotLight::sampleLi(const Vec3& p, Point2) const {
     const double f = falloff(-wi);
     if (!(f > 0)) return std::nullopt;
     const double att = attenuation.x + attenuation.y * d + attenuation.z * d * d;
-    return LightLiSample{wi, finiteRadiance(intensity * (f / att)), 1, 1, d, true};
+    const double w = rangeWindow(d, range);
+    if (!(w > 0)) return std::nullopt;
+    return LightLiSample{wi, finiteRadiance(intensity * (f * w / att)), 1, 1, d, true};
 }
 
 double SpotLight::pdfLi(const Vec3&, const LightPoint&, double) const { return 0; }
@@ -60,9 +62,11 @@ std::optional<LightBounds> SpotLight::bounds() const {
 }
 
 std::ostream& operator<<(std::ostream& out, const SpotLight& l) {
-    return out << "SpotLight{at " << l.position << ", axis " << l.axis << ", intensity "
-               << l.intensity << ", attenuation " << l.attenuation << ", cos inner " << l.cosInner
-               << ", cos outer " << l.cosOuter << "}";
+    out << "SpotLight{at " << l.position << ", axis " << l.axis << ", intensity " << l.intensity
+        << ", attenuation " << l.attenuation << ", cos inner " << l.cosInner << ", cos outer "
+        << l.cosOuter;
+    if (l.range > 0) out << ", range " << l.range;
+    return out << "}";
 }
 
 }  // namespace glint

@@ -20,6 +20,7 @@ struct SpotLight {
     Vec3 intensity;
     Vec3 attenuation{1, 0, 0};  ///< Constant, linear, quadratic.
     double cosInner = 1, cosOuter = 0.70710678118654752;
+    double range = 0;  ///< glTF's range (rangeWindow); 0: none.
 
     /// The share of the intensity it sends in unit direction `w` (away from the light).
     double falloff(const Vec3& w) const;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <optional>
 
 #include "unit/io/course/course_test_support.h"
@@ -274,6 +275,25 @@ TEST(CourseLoader, PointLightPositionIsTransformed) {
     EXPECT_EQ(s->lights[0].kind, LightSpec::Kind::Point);
     expectNear(s->lights[0].position, {1, 3, 3});
     EXPECT_EQ(s->lights[0].color, Vec3(0.1, 0.2, 0.3));
+}
+
+TEST(CourseLoader, SpotLightIsTransformedWithItsConeInDegreesAndTheCurrentAttenuation) {
+    auto s = parseOk(
+        "attenuation 0 0 1\ntranslate 1 2 3\nrotate 0 0 1 90\n"
+        "spot 1 0 0  2 0 0  0.1 0.2 0.3  15 40\n");  // the axis +x, rotated to +y
+    ASSERT_EQ(s->lights.size(), 1u);
+    const LightSpec& l = s->lights[0];
+    EXPECT_EQ(l.kind, LightSpec::Kind::Spot);
+    expectNear(l.position, {1, 3, 3});
+    expectNear(l.axis, {0, 1, 0});
+    EXPECT_EQ(l.color, Vec3(0.1, 0.2, 0.3));
+    EXPECT_NEAR(l.cosInner, std::cos(15 * std::numbers::pi / 180), 1e-12);
+    EXPECT_NEAR(l.cosOuter, std::cos(40 * std::numbers::pi / 180), 1e-12);
+    EXPECT_EQ(l.attenuation, Vec3(0, 0, 1));
+    expectError("spot 0 0 0  0 0 0  1 1 1  10 20\n", 1, 13, "direction");
+    expectError("spot 0 0 0  0 -1 0  1 1 1  -5 20\n", 1, 28, "inner cone angle");
+    expectError("spot 0 0 0  0 -1 0  1 1 1  30 20\n", 1, 31, "outer cone angle");
+    expectError("spot 0 0 0  0 -1 0  1 1 1  30 95\n", 1, 31, "outer cone angle");
 }
 
 TEST(CourseLoader, AttenuationDefaultsToNoneAndIsCapturedWhenALightIsDeclared) {

@@ -9,6 +9,7 @@
 
 #include <set>
 
+#include "glint/io/image/texture_io.h"
 #include "unit/io/gltf/gltf_test_support.h"
 
 namespace glint::test {
@@ -50,11 +51,18 @@ TEST(GltfExtensions, TheTableNamesEachExtensionOnceWithANoteForWhatIsLeftOut) {
     }
     EXPECT_EQ(gltfSupportText("KHR_texture_transform"), "rendered");
     EXPECT_EQ(gltfSupportText("KHR_materials_clearcoat"), "rendered");
-    EXPECT_THAT(gltfSupportText("KHR_lights_punctual"), testing::StartsWith("partly: "));
+    EXPECT_EQ(gltfSupportText("KHR_lights_punctual"), "rendered");  // spot lights and range too
+    EXPECT_THAT(gltfSupportText("KHR_materials_dispersion"), testing::StartsWith("partly: "));
+    EXPECT_EQ(
+        gltfSupportText("EXT_texture_webp"),
+        decodesWebp()
+            ? "rendered"
+            : std::string(findGltfExtension("EXT_texture_webp")->note).insert(0, "ignored: "));
     EXPECT_THAT(gltfSupportText("KHR_materials_unlit"), testing::StartsWith("ignored: "));
     EXPECT_EQ(gltfSupportText("EXT_made_up"), "ignored: Glint does not know this extension");
     EXPECT_TRUE(rendersGltfExtension("KHR_materials_transmission"));
-    EXPECT_TRUE(rendersGltfExtension("KHR_lights_punctual"));  // in part
+    EXPECT_TRUE(rendersGltfExtension("KHR_lights_punctual"));
+    EXPECT_EQ(rendersGltfExtension("EXT_texture_webp"), decodesWebp());
     EXPECT_FALSE(rendersGltfExtension("KHR_materials_variants"));
     EXPECT_FALSE(rendersGltfExtension("EXT_made_up"));
 }

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "glint/io/course/course_loader.h"
+#include "glint/io/image/texture_io.h"
 #include "glint/io/obj/obj_loader.h"
 #include "glint/io/registry.h"
 #include "unit/io/gltf/gltf_test_support.h"
@@ -300,6 +301,35 @@ TEST(GltfMaterials, AMissingTextureIsAWarningAndTheFactorStays) {
     expectNear(m.material.specular, {0.2, 0.6, 0.2});
 }
 
+TEST(GltfMaterials, AWebpImageOfExtTextureWebpTakesThePlaceOfItsFallback) {
+    // Required, as a file whose textures are WebP alone would have it.
+    std::string text = gltfText(kTriangleScene + R"(,
+        "extensionsUsed": ["EXT_texture_webp"], "extensionsRequired": ["EXT_texture_webp"],
+        "images": [{"uri": "quadrants.png"}, {"uri": "quadrants_alpha.webp"}],
+        "textures": [{"source": 0, "extensions": {"EXT_texture_webp": {"source": 1}}}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}])",
+                                kTriangle);
+    text.replace(text.find(R"({"POSITION": 0})"), 15, R"({"POSITION": 0}, "material": 0)");
+    std::vector<Diagnostic> warnings;
+    if (!decodesWebp()) {
+        try {
+            parseGltf(text, dataPath("webp.gltf"), warnings);
+            ADD_FAILURE() << "a build without WebP accepted a file that requires it";
+        } catch (const SceneError& e) {
+            EXPECT_THAT(e.what(), HasSubstr("requires extension EXT_texture_webp"));
+        }
+        return;
+    }
+    Model model = parseGltf(text, dataPath("webp.gltf"), warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front().format("warning");
+    const MeshMaterial& m = materialOf(model, 0);
+    ASSERT_TRUE(m.texture);
+    ASSERT_TRUE(m.texture->image);
+    EXPECT_EQ(m.texture->image->width, 4);  // the WebP's 4 x 2, not the PNG's
+    EXPECT_EQ(m.texture->image->height, 2);
+    EXPECT_THAT(m.texture->image->name, HasSubstr("quadrants_alpha.webp"));
+}
+
 TEST(GltfMaterials, NoImageFileIsReadWhenReadingFilesIsOff) {
     GltfOptions options;
     options.limits.readFiles = false;
@@ -343,25 +373,48 @@ TEST(GltfLoader, TheCameraAndLightsAreImported) {
     EXPECT_GT(sun.direction.y, 0.5);
 }
 
-TEST(GltfLoader, SpotLightsAreLitAsPointLightsAndOrthographicCamerasIgnored) {
+TEST(GltfLoader, SpotLightsShineAlongTheirNodesMinusZWithinTheirConesAndOrthographicIsIgnored) {
     std::vector<Diagnostic> warnings;
+    // Light 0 turned 90 degrees about x (its -z to -y: down); light 1 with the spec's default
+    // cone; light 2 with cone angles out of the spec's bounds.
     Model model = parse(gltfText(kTriangleViews + R"(,
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
         "cameras": [{"type": "orthographic",
                      "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}}],
         "extensions": {"KHR_lights_punctual": {"lights": [
-            {"type": "spot", "intensity": 2, "spot": {"outerConeAngle": 0.5}}]}},
+            {"type": "spot", "intensity": 2, "range": 3,
+             "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}},
+            {"type": "spot", "color": [1, 0.5, 0.25], "spot": {}},
+            {"type": "spot", "spot": {"innerConeAngle": 0.9, "outerConeAngle": 0.4}}]}},
         "nodes": [{"mesh": 0, "camera": 0},
-                  {"translation": [0, 2, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}])",
+                  {"translation": [0, 2, 0], "rotation": [-0.70710678, 0, 0, 0.70710678],
+                   "extensions": {"KHR_lights_punctual": {"light": 0}}},
+                  {"extensions": {"KHR_lights_punctual": {"light": 1}}},
+                  {"extensions": {"KHR_lights_punctual": {"light": 2}}}])",
                                  kTriangle),
                         &warnings);
     EXPECT_FALSE(model.camera);
-    ASSERT_EQ(model.lights.size(), 1u);
-    EXPECT_EQ(model.lights[0].kind, LightSpec::Kind::Point);
-    expectNear(model.lights[0].position, {0, 2, 0});
+    ASSERT_EQ(model.lights.size(), 3u);
+    const LightSpec& down = model.lights[0];
+    EXPECT_EQ(down.kind, LightSpec::Kind::Spot);
+    expectNear(down.position, {0, 2, 0});
+    expectNear(down.axis, {0, -1, 0}, 1e-7);
+    expectNear(down.color, Vec3(2 * kGltfLightScale), 1e-12);
+    EXPECT_NEAR(down.cosInner, std::cos(0.2), 1e-12);
+    EXPECT_NEAR(down.cosOuter, std::cos(0.5), 1e-12);
+    EXPECT_EQ(down.range, 3);
+    const LightSpec& plain = model.lights[1];
+    EXPECT_EQ(plain.kind, LightSpec::Kind::Spot);
+    expectNear(plain.axis, {0, 0, -1});
+    EXPECT_NEAR(plain.cosInner, 1, 1e-12);
+    EXPECT_NEAR(plain.cosOuter, std::cos(std::numbers::pi / 4), 1e-9);
+    EXPECT_EQ(plain.range, 0);  // none: unlimited
+    const LightSpec& odd = model.lights[2];
+    EXPECT_GT(odd.cosInner, odd.cosOuter);
+    EXPECT_NEAR(odd.cosOuter, std::cos(0.4), 1e-12);
     ASSERT_EQ(warnings.size(), 2u);
     EXPECT_THAT(warnings[0].message, HasSubstr("camera 0 (node 0) is orthographic"));
-    EXPECT_THAT(warnings[1].message, HasSubstr("light 0 is a spot light"));
+    EXPECT_THAT(warnings[1].message, HasSubstr("light 2: its cone angles (inner 0.9, outer 0.4)"));
 }
 
 // ---- Integration: glint model.gltf and the mesh command ----

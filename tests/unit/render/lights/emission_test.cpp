@@ -287,5 +287,38 @@ TEST(LightPrinting, EachLightSaysWhatItIs) {
               "LightSpec{quad at (0, 0, 0), edges (1, 0, 0) and (0, 0, 1), radiance (2, 2, 2)}");
 }
 
+// glTF's range: a point or spot light's intensity over d^2 times max(min(1 - (d / r)^4, 1), 0),
+// nothing at or beyond the range, the same as without one where no range is given.
+TEST(LightRange, WindowsPointAndSpotLightsAsTheGltfSpecRecommends) {
+    LightSpec spec;
+    spec.position = {0, 4, 0};
+    spec.color = Vec3(8);
+    spec.attenuation = {0, 0, 1};
+    spec.axis = {0, -1, 0};
+    spec.cosInner = std::cos(0.6);
+    spec.cosOuter = std::cos(0.7);
+    for (LightSpec::Kind kind : {LightSpec::Kind::Point, LightSpec::Kind::Spot}) {
+        spec.kind = kind;
+        spec.range = 0;
+        const Light unlimited = lightFromSpec(spec);
+        spec.range = 5;
+        const Light ranged = lightFromSpec(spec);
+        for (double d : {0.5, 2.0, 3.0, 4.5, 4.99}) {
+            const Vec3 p(0, 4 - d, 0);  // straight below, on the spot's axis
+            const auto a = unlimited.sampleLi(p, {0.5, 0.5});
+            const auto b = ranged.sampleLi(p, {0.5, 0.5});
+            ASSERT_TRUE(a && b) << d;
+            const double x = d / 5, expected = 8 / (d * d) * (1 - x * x * x * x);
+            EXPECT_NEAR(a->L.y, 8 / (d * d), 1e-9 * a->L.y) << d;
+            EXPECT_NEAR(b->L.y, expected, 1e-9 * a->L.y) << d;
+        }
+        EXPECT_FALSE(ranged.sampleLi({0, -1, 0}, {0.5, 0.5}));  // 5 away: the window is 0
+        EXPECT_FALSE(ranged.sampleLi({0, -3, 0}, {0.5, 0.5}));  // beyond
+        EXPECT_TRUE(unlimited.sampleLi({0, -3, 0}, {0.5, 0.5}));
+    }
+    EXPECT_EQ(rangeWindow(3, 0), 1);
+    EXPECT_EQ(rangeWindow(0, 2), 1);
+}
+
 }  // namespace
 }  // namespace glint
