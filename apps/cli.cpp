@@ -116,6 +116,26 @@ std::string denoiserProblem(const std::string& denoiser, const std::string& qual
            "(denoise-weights/fetch.sh fetches them; then build again); use --denoiser nlm or auto";
 }
 
+std::string darkImageWarning(const Film& film, const DisplayTransform& display) {
+    const size_t n = static_cast<size_t>(film.width()) * film.height();
+    if (n == 0) return "";
+    double sum = 0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) {
+            const Vec3& c = film.at(x, y);
+            sum += std::max(0.0, 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z);
+        }
+    const double mean = sum / static_cast<double>(n) * display.scale();
+    if (!std::isfinite(mean) || mean >= 0.001) return "";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2g", mean);
+    return std::string("the image is almost black (its mean is ") + text +
+           " of white): little or no light reaches what the camera sees. Try --environment "
+           "studio (light from every side), --camera none (Glint's own framing: a camera inside "
+           "closed geometry, such as a sky dome, sees only its inside), lights of your own, or "
+           "--exposure EV";
+}
+
 void warnNonFinite(const char* program, const FilmDenoiseReport& report) {
     if (report.nonFinite > 0)
         std::fprintf(stderr,

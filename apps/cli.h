@@ -192,6 +192,11 @@ FilmDenoiseOptions filmDenoiseOptions(const std::string& denoiser, const std::st
 /// weights), or "" (a usage error, exit 2, before anything is rendered).
 std::string denoiserProblem(const std::string& denoiser, const std::string& quality);
 
+/// What to tell a user whose image came out almost black (the mean luminance, exposed, below
+/// 0.001 of white: a camera inside a closed sky dome, a file with no lights): why, and what to
+/// try; "" for any other image.
+std::string darkImageWarning(const Film& film, const DisplayTransform& display);
+
 /// "glint: warning: ..." (with `program`'s name) if the denoiser met values that were not
 /// finite; nothing otherwise.
 void warnNonFinite(const char* program, const FilmDenoiseReport& report);

@@ -185,6 +185,9 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
                          ? "; a model's default; --no-denoise for the raw image"
                          : "");
     if (rendered.denoiseSeconds > 0) warnNonFinite("glint", rendered.denoised);
+    if (prepared.model && !piece && result.complete)
+        if (std::string dark = darkImageWarning(result.film, display); !dark.empty())
+            std::fprintf(stderr, "glint: warning: %s\n", dark.c_str());
 
     // Write.
     auto t2 = Clock::now();

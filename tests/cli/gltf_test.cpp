@@ -54,6 +54,19 @@ TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     EXPECT_FALSE(contains(r.err, "showing")) << r.err;
 }
 
+TEST(CliGltf, AnAlmostBlackImageIsWarnedOfWithWhatToTry) {
+    // The file's camera inside a closed box, no lights: the studio cannot light the inside.
+    std::string dir = dirWith("gltf-dark", {"closed-room.gltf"});
+    CommandResult r = runGlint("closed-room.gltf --size 32x24 --spp 2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "glint: warning: the image is almost black")) << r.err;
+    EXPECT_TRUE(contains(r.err, "--camera none")) << r.err;
+    // Glint's framing, from outside the box, in the studio: lit, nothing said.
+    r = runGlint("closed-room.gltf --camera none --size 32x24 --spp 2", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_FALSE(contains(r.err, "almost black")) << r.err;
+}
+
 TEST(CliGltf, ABareModelIsFramedAndSaysSo) {
     std::string dir = dirWith("gltf-bare", {"quad.gltf", "quad.bin", "quadrants.png"});
     CommandResult r = runGlint("quad.gltf --size 80x60 --spp 4", dir);

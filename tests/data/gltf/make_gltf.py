@@ -436,3 +436,23 @@ a.add("materials", {"name": "painted", "pbrMetallicRoughness": {
 quad(a, material=0)
 a.add("nodes", {"mesh": 0})
 a.write_gltf("missing-texture.gltf")
+
+# closed-room.gltf: a closed box, its faces turned inwards, around the file's own camera, and
+# no lights: the studio's environment cannot reach the inside, so the image is black (glint
+# warns of it and says what to try).
+a = Asset()
+corners = [(x, y, z) for x in (-2, 2) for y in (-1, 3) for z in (-2, 2)]
+faces = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+idx = []
+for f in faces:
+    idx += [f[0], f[2], f[1], f[0], f[3], f[2]]  # wound to face inwards
+pos = a.vec(corners, "VEC3")
+a.add("materials", {"name": "wall", "pbrMetallicRoughness": {"metallicFactor": 0}})
+a.add("meshes", {"name": "room", "primitives": [{"attributes": {"POSITION": pos},
+                                                  "indices": a.indices(idx), "material": 0}]})
+a.add("cameras", {"type": "perspective", "perspective": {"yfov": 1.0, "znear": 0.05}})
+a.add("nodes", {"mesh": 0})
+a.add("nodes", {"camera": 0, "matrix": look_at((0, 1, 1.5), (0, 0.5, -1), (0, 1, 0))})
+a.add("scenes", {"nodes": [0, 1]})
+a.j["scene"] = 0
+a.write_gltf("closed-room.gltf")
