@@ -387,6 +387,7 @@ void prepareScene(const Options& opt, Prepared& out, std::vector<Diagnostic>& wa
         options.height = height;
         options.lenient = opt.lenient;
         options.camera = CameraChoice::parse(opt.camera);
+        options.variant = opt.variant;
         options.look = look;
         if (std::optional<double> t = opt.seconds()) {
             options.time.animation = opt.animation;

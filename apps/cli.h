@@ -68,8 +68,9 @@ struct Options {
     /// said at the first frame and is not repeated.
     bool noteSaid = false;
     bool lenient = false;
-    std::string camera;  ///< --camera: empty for the model's first camera.
-    double fovy = 0;     ///< --fov: the vertical field of view in degrees; 0: the camera's.
+    std::string camera;   ///< --camera: empty for the model's first camera.
+    std::string variant;  ///< --variant: a glTF file's material variant; empty: its defaults.
+    double fovy = 0;      ///< --fov: the vertical field of view in degrees; 0: the camera's.
     // A piece of the frame for `glint merge` (apps/piece.h); empty: the whole image.
     std::string crop;     ///< --crop x0,x1,y0,y1
     std::string samples;  ///< --samples A:B

@@ -269,6 +269,11 @@ void addOptions(CLI::App& app, Options& opt) {
             return {};
         }))
         ->type_name("N|NAME|none|orbit:...");
+    app.add_option("--variant", opt.variant,
+                   "A glTF model's material variant (KHR_materials_variants), by name or number "
+                   "from 0; --check lists them (default: the file's own materials)")
+        ->group(input)
+        ->type_name("NAME|N");
     app.add_option("--fov", opt.fovy,
                    "Vertical field of view in degrees, overriding the camera's, 0.01 to 179")
         ->group(input)

@@ -54,6 +54,17 @@ TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     EXPECT_FALSE(contains(r.err, "showing")) << r.err;
 }
 
+TEST(CliGltf, AVariantTheFileDoesNotHaveIsAnErrorAndCheckListsThem) {
+    std::string dir = dirWith("gltf-variant", {"quad.gltf", "quad.bin", "quadrants.png"});
+    CommandResult r = runGlint("quad.gltf --variant Blue --size 16x12 --spp 1", dir);
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_TRUE(contains(r.err,
+                         "--variant Blue: no such material variant: the file has no "
+                         "material variants"))
+        << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/quad.png"));  // nothing written
+}
+
 TEST(CliGltf, AnAlmostBlackImageIsWarnedOfWithWhatToTry) {
     // The file's camera inside a closed box, no lights: the studio cannot light the inside.
     std::string dir = dirWith("gltf-dark", {"closed-room.gltf"});

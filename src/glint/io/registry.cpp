@@ -136,8 +136,10 @@ Model loadGltfModel(const std::string& path, std::vector<Diagnostic>& warnings,
     GltfOptions gltf;
     gltf.limits = options.limits;
     gltf.camera = options.camera;
-    // The camera choice is applied while posing: it is part of what is cached.
-    const std::string key = path + '\n' + options.camera.describe();
+    gltf.variant = options.variant;
+    // The camera choice is applied while posing, the variant while parsing: both are part of
+    // what is cached.
+    const std::string key = path + '\n' + options.camera.describe() + '\n' + options.variant;
     std::shared_ptr<GltfDocument> asset = options.assets ? options.assets->find(key) : nullptr;
     if (!asset) {
         asset = openGltf(path, warnings, gltf);

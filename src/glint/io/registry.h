@@ -59,6 +59,8 @@ struct LoadOptions {
     /// (a scene file keeps its aperture and focus); choosing one of the file's own cameras is an
     /// error for a scene file, and naming a camera is one for a model without cameras.
     CameraChoice camera;
+    /// A glTF model's material variant (GltfOptions::variant); empty: its own materials.
+    std::string variant;
     /// How a model is shown (frameModelScene): the studio look unless asked otherwise.
     ModelLook look;
     /// Which animation of a model file (and of the files a scene's `mesh` lines name) to play,

@@ -117,16 +117,93 @@ std::set<std::string> namesUsed(const tinygltf::Model& m) {
 
 }  // namespace
 
-std::vector<FormatExtension> reportExtensions(Context& ctx) {
+std::vector<FormatExtension> reportExtensions(Context& ctx, const std::string& variant) {
     std::vector<FormatExtension> out;
     for (const std::string& name : namesUsed(ctx.model)) {
         const GltfExtension* e = findGltfExtension(name);
         if (!e || e->support == GltfSupport::Ignored)
             ctx.warn("the file uses " + name + ", which Glint does not render: " +
                      std::string(e ? e->note : kUnknownGltfNote));
-        out.push_back({name, gltfSupportText(name)});
+        std::string text = gltfSupportText(name);
+        if (name == "KHR_materials_variants") {
+            const std::vector<std::string> names = materialVariants(ctx);
+            text += ": ";
+            for (size_t i = 0; i < names.size(); ++i)
+                text += (i ? ", " : "") + std::to_string(i) + " '" + names[i] + "'";
+            text += variant.empty() ? " (showing the file's own materials; --variant chooses)"
+                                    : " (showing " + variant + ")";
+        }
+        out.push_back({name, text});
     }
     return out;
+}
+
+namespace {
+
+/// The root object of KHR_materials_variants, or null.
+const tinygltf::Value* variantsRoot(const Context& ctx) {
+    auto it = ctx.model.extensions.find("KHR_materials_variants");
+    if (it == ctx.model.extensions.end() || !it->second.IsObject()) return nullptr;
+    const tinygltf::Value& list = it->second.Get("variants");
+    return list.IsArray() ? &list : nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> materialVariants(const Context& ctx) {
+    std::vector<std::string> out;
+    const tinygltf::Value* list = variantsRoot(ctx);
+    if (!list) return out;
+    for (size_t i = 0; i < list->ArrayLen(); ++i) {
+        const tinygltf::Value& v = list->Get(static_cast<int>(i));
+        const tinygltf::Value& name = v.IsObject() ? v.Get("name") : tinygltf::Value();
+        out.push_back(name.IsString() ? name.Get<std::string>() : "variant " + std::to_string(i));
+    }
+    return out;
+}
+
+void applyVariant(Context& ctx, const std::string& variant) {
+    if (variant.empty()) return;
+    const std::vector<std::string> names = materialVariants(ctx);
+    int chosen = -1;
+    for (size_t i = 0; i < names.size() && chosen < 0; ++i)
+        if (names[i] == variant) chosen = static_cast<int>(i);
+    if (chosen < 0 && !variant.empty() &&
+        variant.find_first_not_of("0123456789") == std::string::npos && variant.size() < 9 &&
+        std::stoul(variant) < names.size())
+        chosen = static_cast<int>(std::stoul(variant));
+    if (chosen < 0) {
+        std::string have = "the file has no material variants (KHR_materials_variants)";
+        if (!names.empty()) {
+            have = "its variants are";
+            for (size_t i = 0; i < names.size(); ++i)
+                have += (i ? ", " : " ") + std::to_string(i) + " '" + names[i] + "'";
+        }
+        ctx.fail("--variant " + variant + ": no such material variant: " + have);
+    }
+    const int materials = static_cast<int>(ctx.model.materials.size());
+    for (tinygltf::Mesh& mesh : ctx.model.meshes)
+        for (tinygltf::Primitive& p : mesh.primitives) {
+            auto it = p.extensions.find("KHR_materials_variants");
+            if (it == p.extensions.end() || !it->second.IsObject()) continue;
+            const tinygltf::Value& mappings = it->second.Get("mappings");
+            if (!mappings.IsArray()) continue;
+            for (size_t m = 0; m < mappings.ArrayLen(); ++m) {
+                const tinygltf::Value& map = mappings.Get(static_cast<int>(m));
+                if (!map.IsObject() || !map.Get("material").IsInt()) continue;
+                const int material = map.Get("material").Get<int>();
+                const tinygltf::Value& variants = map.Get("variants");
+                if (!variants.IsArray()) continue;
+                for (size_t k = 0; k < variants.ArrayLen(); ++k) {
+                    const tinygltf::Value& v = variants.Get(static_cast<int>(k));
+                    if (!v.IsInt() || v.Get<int>() != chosen) continue;
+                    if (material < 0 || material >= materials)
+                        missing(ctx, "material", material, static_cast<size_t>(materials),
+                                mesh.name.empty() ? "a mesh's variant" : mesh.name + "'s variant");
+                    p.material = material;
+                }
+            }
+        }
 }
 
 }  // namespace glint::gltf

@@ -55,8 +55,7 @@ inline constexpr std::array kGltfExtensions = {
     GltfExtension{"KHR_materials_transmission", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_materials_unlit", GltfSupport::Ignored,
                   "unlit materials are shaded and lit like the others"},
-    GltfExtension{"KHR_materials_variants", GltfSupport::Ignored,
-                  "the default materials are rendered, and no other variant can be chosen"},
+    GltfExtension{"KHR_materials_variants", GltfSupport::Rendered, ""},  // --variant
     GltfExtension{"KHR_materials_volume", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_mesh_quantization", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_meshopt_compression", GltfSupport::Rendered, ""},

@@ -73,8 +73,17 @@ void checkAsset(Context& ctx);
 
 /// Every extension the file uses (extensionsUsed, extensionsRequired, and those found on its
 /// objects), by name, with what Glint does with each (gltf_extensions.h); warns once for each
-/// that Glint ignores.
-std::vector<FormatExtension> reportExtensions(Context& ctx);
+/// that Glint ignores. KHR_materials_variants' entry lists the variants and says which is shown
+/// (`variant`, as GltfOptions::variant).
+std::vector<FormatExtension> reportExtensions(Context& ctx, const std::string& variant = "");
+
+/// The names of the file's material variants (KHR_materials_variants), in order ("variant N"
+/// for one without a name); empty if it has none.
+std::vector<std::string> materialVariants(const Context& ctx);
+/// Gives each primitive that KHR_materials_variants maps for `variant` (a name, or a number
+/// from 0) that variant's material; nothing for an empty `variant`. Fails if the file has no
+/// such variant, listing those it has.
+void applyVariant(Context& ctx, const std::string& variant);
 
 /// "mesh 2 'Cube'", "node 0", ...: an object of the file with its name, for messages.
 std::string describe(const char* kind, size_t index, const std::string& name);

@@ -510,7 +510,8 @@ GltfDocument::GltfDocument(std::string_view bytes, const std::string& fileName,
     try {
         gltf::parseContainer(impl_->ctx, bytes);
         gltf::checkAsset(impl_->ctx);
-        impl_->extensions = gltf::reportExtensions(impl_->ctx);
+        gltf::applyVariant(impl_->ctx, options.variant);
+        impl_->extensions = gltf::reportExtensions(impl_->ctx, options.variant);
         impl_->animations = gltf::listAnimations(impl_->ctx);
     } catch (...) {
         impl_->report(warnings);

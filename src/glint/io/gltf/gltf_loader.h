@@ -34,6 +34,10 @@ struct GltfOptions {
     double dracoSeconds = 2;
     /// Which animation to play, at what time (parseGltf, loadGltf); by default none.
     ModelTime time{};
+    /// KHR_materials_variants: the variant, by name or by its number, whose materials the
+    /// primitives it maps take; empty: the file's own materials. A file without it, or without
+    /// a variant of that name, is an error that lists the variants there are.
+    std::string variant;
 };
 
 /// Glint's light colour for a glTF light of `intensity` (candela for point lights, lux for

@@ -63,7 +63,8 @@ TEST(GltfExtensions, TheTableNamesEachExtensionOnceWithANoteForWhatIsLeftOut) {
     EXPECT_TRUE(rendersGltfExtension("KHR_materials_transmission"));
     EXPECT_TRUE(rendersGltfExtension("KHR_lights_punctual"));
     EXPECT_EQ(rendersGltfExtension("EXT_texture_webp"), decodesWebp());
-    EXPECT_FALSE(rendersGltfExtension("KHR_materials_variants"));
+    EXPECT_TRUE(rendersGltfExtension("KHR_materials_variants"));  // --variant
+    EXPECT_FALSE(rendersGltfExtension("KHR_texture_basisu"));
     EXPECT_FALSE(rendersGltfExtension("EXT_made_up"));
 }
 

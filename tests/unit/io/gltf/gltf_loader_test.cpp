@@ -330,6 +330,46 @@ TEST(GltfMaterials, AWebpImageOfExtTextureWebpTakesThePlaceOfItsFallback) {
     EXPECT_THAT(m.texture->image->name, HasSubstr("quadrants_alpha.webp"));
 }
 
+// KHR_materials_variants: two variants of a triangle's material, chosen by name or number;
+// the file's own material without one; an unknown variant is an error that lists them.
+TEST(GltfMaterials, AMaterialVariantIsChosenByNameOrNumber) {
+    std::string text = gltfText(kTriangleViews + R"(,
+        "extensionsUsed": ["KHR_materials_variants"],
+        "extensions": {"KHR_materials_variants": {"variants": [{"name": "Red"}, {"name": "Blue"}]}},
+        "materials": [
+          {"name": "grey", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}},
+          {"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0, 0, 1], "metallicFactor": 0}},
+          {"name": "blue", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0.8, 1], "metallicFactor": 0}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0,
+          "extensions": {"KHR_materials_variants": {"mappings": [
+            {"material": 1, "variants": [0]}, {"material": 2, "variants": [1]}]}}}]}],
+        "nodes": [{"mesh": 0}])",
+                                kTriangle);
+    auto diffuseOf = [&](const std::string& variant) {
+        GltfOptions options;
+        options.variant = variant;
+        std::vector<Diagnostic> warnings;
+        Model model = parseGltf(text, "t.gltf", warnings, options);
+        EXPECT_TRUE(warnings.empty()) << warnings.front().format("warning");
+        EXPECT_EQ(model.extensions.size(), 1u);
+        if (!model.extensions.empty()) {
+            EXPECT_THAT(model.extensions[0].support, HasSubstr("0 'Red', 1 'Blue'"));
+        }
+        return materialOf(model, 0).material.diffuse;
+    };
+    expectNear(diffuseOf(""), Vec3(0.5));
+    expectNear(diffuseOf("Red"), {0.8, 0, 0});
+    expectNear(diffuseOf("1"), {0, 0, 0.8});
+    GltfOptions options;
+    options.variant = "Green";
+    Diagnostic d = errorParsing(text, options);
+    EXPECT_THAT(d.message, HasSubstr("--variant Green: no such material variant: its variants are "
+                                     "0 'Red', 1 'Blue'"));
+    options.variant = "Red";
+    d = errorParsing(gltfText(kTriangleScene, kTriangle), options);
+    EXPECT_THAT(d.message, HasSubstr("the file has no material variants"));
+}
+
 TEST(GltfMaterials, NoImageFileIsReadWhenReadingFilesIsOff) {
     GltfOptions options;
     options.limits.readFiles = false;
