@@ -277,7 +277,8 @@ TEST(Denoise, WorksWithoutFeatureOrVarianceBuffers) {
         ASSERT_EQ(out.size(), s.size());
         EXPECT_TRUE(allFinite(out));
         // Colour alone is a weak case: the variance estimated from neighbour differences takes
-        // the texture for noise and the filter blurs it (docs/denoiser-method.md). Only no NaN there.
+        // the texture for noise and the filter blurs it (docs/denoiser-method.md). Only no NaN
+        // there.
         if (leaveOut == 4) continue;
         EXPECT_LT(relMse(out, s.truth), before / 3) << "without buffer " << leaveOut;
         EXPECT_NEAR(meanValue(out) / meanValue(s.color), 1.0, 0.02)
