@@ -121,10 +121,7 @@ std::string darkImageWarning(const Film& film, const DisplayTransform& display) 
     if (n == 0) return "";
     double sum = 0;
     for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x) {
-            const Vec3& c = film.at(x, y);
-            sum += std::max(0.0, 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z);
-        }
+        for (int x = 0; x < film.width(); ++x) sum += std::max(0.0, luminance(film.at(x, y)));
     const double mean = sum / static_cast<double>(n) * display.scale();
     if (!std::isfinite(mean) || mean >= 0.001) return "";
     char text[32];

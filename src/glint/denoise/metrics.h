@@ -46,11 +46,10 @@ inline double relMseTrimmed(const std::vector<Vec3>& x, const std::vector<Vec3>&
 /// away scores below. Images of `width` x `height` pixels, row by row.
 inline double detailKept(const std::vector<Vec3>& x, const std::vector<Vec3>& ref, int width,
                          int height) {
-    auto luminance = [&](const std::vector<Vec3>& image) {
+    auto compressed = [&](const std::vector<Vec3>& image) {
         std::vector<double> l(image.size());
         for (size_t i = 0; i < image.size(); ++i) {
-            const double v =
-                std::max(0.0, 0.2126 * image[i].x + 0.7152 * image[i].y + 0.0722 * image[i].z);
+            const double v = std::max(0.0, luminance(image[i]));
             l[i] = v / (1 + v);
         }
         return l;
@@ -63,7 +62,7 @@ inline double detailKept(const std::vector<Vec3>& x, const std::vector<Vec3>& re
                 sum += l[static_cast<size_t>(v) * width + u];
         return l[static_cast<size_t>(py) * width + px] - sum / n;
     };
-    const std::vector<double> lx = luminance(x), lr = luminance(ref);
+    const std::vector<double> lx = compressed(x), lr = compressed(ref);
     double cross = 0, energy = 0;
     for (int py = 0; py < height; ++py)
         for (int px = 0; px < width; ++px) {

@@ -19,20 +19,9 @@
 namespace glint::unet::avx512 {
 namespace {
 
-struct Ops8 {
-    using B = __m256;
-    using Block = Ops8;
-    static constexpr int kLanes = 8;
-    static constexpr int kPixels[2] = {12, 12};
-    static B load(const float* p) { return _mm256_loadu_ps(p); }
-    static void store(float* const* blocks, size_t offset, B b) {
-        _mm256_storeu_ps(blocks[0] + offset, b);
-    }
-    static B splat(const float* p) { return _mm256_broadcast_ss(p); }
-    static B madd(B w, B v, B acc) { return _mm256_fmadd_ps(w, v, acc); }
-    static B max(B a, B b) { return _mm256_max_ps(a, b); }
-    static B zero() { return _mm256_setzero_ps(); }
-};
+#include "glint/denoise/unet/ops_avx256.inl"
+
+using Ops8 = Ops256<12, 12>;
 
 struct Ops {
     using B = __m512;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "glint/io/course/course_parser.h"
@@ -260,9 +261,8 @@ void Parser::cmdSpot() {
     if (!(inner >= 0)) fail(10, "the inner cone angle must be 0 to 90 degrees");
     if (!(outer > inner && outer <= 90))
         fail(11, "the outer cone angle must be more than the inner one and at most 90 degrees");
-    constexpr double kDegree = 0.017453292519943295;
-    l.cosInner = std::cos(inner * kDegree);
-    l.cosOuter = std::cos(outer * kDegree);
+    l.cosInner = std::cos(inner * std::numbers::pi / 180);
+    l.cosOuter = std::cos(outer * std::numbers::pi / 180);
     l.attenuation = builder_.attenuation();
     builder_.addLight(l);
     if (pointLights_++ == 0) firstPointLine_ = line_;

@@ -219,16 +219,12 @@ std::optional<LightSpec> nodeLight(Context& ctx, int index, const Mat4& world,
             else
                 out.axis = along / len;
             double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
-            constexpr double kRight = 1.5707963267948966;
-            auto num = [](double v) {
-                char text[32];
-                std::snprintf(text, sizeof text, "%g", v);
-                return std::string(text);
-            };
+            constexpr double kRight = std::numbers::pi / 2;
             if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0 || outer <= 0 ||
                 outer > kRight || inner >= outer) {
-                ctx.warn(label + ": its cone angles (inner " + num(inner) + ", outer " +
-                         num(outer) +
+                char angles[64];
+                std::snprintf(angles, sizeof angles, "inner %g, outer %g", inner, outer);
+                ctx.warn(label + ": its cone angles (" + angles +
                          ") are not 0 <= inner < outer <= pi/2: taken within those bounds");
                 outer = std::isfinite(outer) ? std::clamp(outer, 1e-4, kRight) : kRight / 2;
                 inner = std::isfinite(inner) ? std::clamp(inner, 0.0, outer * 0.999) : 0;
