@@ -152,6 +152,18 @@ std::string count(unsigned long long n, const char* one, const char* many) {
 
 /// "2 triangles, 1 sphere", then the other kinds the scene has: "1 box, 2 planes". Polygons
 /// are counted as the triangles they became.
+std::string depthSummary(const Scene& scene) {
+    std::string text = "maxdepth " + std::to_string(scene.maxDepth), kinds;
+    const BounceLimits& b = scene.bounces;
+    for (auto [name, limit] : {std::pair{"diffuse", b.diffuse},
+                               {"glossy", b.glossy},
+                               {"transmission", b.transmission},
+                               {"volume", b.volume}})
+        if (limit != BounceLimits::kUnlimited)
+            kinds += (kinds.empty() ? "" : ", ") + std::string(name) + " " + std::to_string(limit);
+    return kinds.empty() ? text : text + " (" + kinds + ")";
+}
+
 std::string primitiveSummary(const Primitives& prims) {
     using glint::ShapeKind;
     std::string s = count(prims.triangleCount(), "triangle", "triangles") + ", " +
@@ -267,6 +279,41 @@ std::string parseShutter(const std::string& text, double& open, double& close) {
     return {};
 }
 
+std::string parseBounces(const std::string& text, BounceOptions& out) {
+    const std::string kinds = "total, diffuse, glossy, transmission or volume";
+    auto number = [&](std::string_view v, int& n) -> std::string {
+        auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
+        if (v.empty() || ec != std::errc() || p != v.data() + v.size() || n < 1 ||
+            n > kMaxDepthLimit)
+            return "each limit must be 1 to " + std::to_string(kMaxDepthLimit) + ", got '" +
+                   std::string(v) + "'";
+        return {};
+    };
+    if (!text.empty() && std::isdigit(static_cast<unsigned char>(text[0])))
+        return number(text, out.total);
+    BounceOptions read;
+    for (size_t at = 0; at <= text.size();) {
+        const size_t end = std::min(text.find(',', at), text.size());
+        const std::string_view item(text.data() + at, end - at);
+        const size_t eq = item.find('=');
+        if (eq == std::string_view::npos)
+            return "expected N or KIND=N,... (KIND " + kinds + "), got '" + text + "'";
+        const std::string_view kind = item.substr(0, eq);
+        int* slot = kind == "total"          ? &read.total
+                    : kind == "diffuse"      ? &read.diffuse
+                    : kind == "glossy"       ? &read.glossy
+                    : kind == "transmission" ? &read.transmission
+                    : kind == "volume"       ? &read.volume
+                                             : nullptr;
+        if (!slot) return "unknown kind '" + std::string(kind) + "': expected " + kinds;
+        if (std::string problem = number(item.substr(eq + 1), *slot); !problem.empty())
+            return problem;
+        at = end + 1;
+    }
+    out = read;
+    return {};
+}
+
 std::string frameFileName(const std::string& pattern, long long frame) {
     for (size_t i = 0; i < pattern.size(); ++i) {
         if (pattern[i] == '#') {  // Blender's: a run of #s is the number, zero-padded
@@ -314,6 +361,15 @@ DisplayTransform displayFor(const Options& opt, const Scene& scene) {
 
 void applyRenderSettings(const Options& opt, Scene& scene) {
     if (opt.maxDepth >= 0) scene.maxDepth = opt.maxDepth;
+    BounceOptions b;
+    if (!opt.maxBounces.empty() && parseBounces(opt.maxBounces, b).empty()) {
+        if (b.total > 0) scene.maxDepth = b.total;
+        for (auto [given, limit] : {std::pair{b.diffuse, &scene.bounces.diffuse},
+                                    {b.glossy, &scene.bounces.glossy},
+                                    {b.transmission, &scene.bounces.transmission},
+                                    {b.volume, &scene.bounces.volume}})
+            if (given > 0) *limit = given;
+    }
     scene.clampIndirect = opt.clampIndirect;
     scene.caustics = opt.caustics == "on";
     if (!opt.integrator.empty()) scene.integrator = opt.integrator;

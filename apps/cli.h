@@ -50,6 +50,7 @@ struct Options {
     std::string kernels = "auto";
     std::string size;
     int maxDepth = -1;
+    std::string maxBounces;       ///< --max-bounces: limits by kind (parseBounces).
     double clampIndirect = 0;     ///< --clamp-indirect; 0: none.
     std::string caustics = "on";  ///< --caustics: the path tracer's light pass, on or off.
     std::string integrator;       ///< Empty: the scene's `integrator`, else whitted.
@@ -98,6 +99,14 @@ struct Options {
 /// Parses --shutter OPEN:CLOSE (frames from the frame rendered, OPEN <= CLOSE, each within
 /// +-1000); returns what is wrong, or nothing.
 std::string parseShutter(const std::string& text, double& open, double& close);
+
+/// --max-bounces: the path tracer's bounce limits, each -1 where not given.
+struct BounceOptions {
+    int total = -1, diffuse = -1, glossy = -1, transmission = -1, volume = -1;
+};
+/// Parses N (bounces in all, as --maxdepth) or KIND=N,... with KIND total, diffuse, glossy,
+/// transmission or volume and N from 1 to 64; returns what is wrong, or nothing.
+std::string parseBounces(const std::string& text, BounceOptions& out);
 
 /// A range of frames, --frames A:B[:STEP]: A to B inclusive, every STEP-th.
 struct FrameRange {
@@ -226,6 +235,9 @@ double secondsSince(std::chrono::steady_clock::time_point t);
 /// "1 light", "2 lights".
 std::string count(unsigned long long n, const char* one, const char* many);
 std::string primitiveSummary(const Primitives& prims);
+/// "maxdepth 12", with the limits by kind where there are any: "maxdepth 12 (diffuse 8, glossy
+/// 8, transmission 12, volume 8)".
+std::string depthSummary(const Scene& scene);
 void printStats(const Scene& scene, double parse, double build, const RenderResult& r,
                 double write);
 

@@ -94,11 +94,11 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
     const glint::DisplayTransform& display = prepared.display;
     if (opt.check) {
         const auto& prims = scene->primitives;
-        std::printf("%s: ok: %dx%d, %s, %s, maxdepth %d, output %s\n",
+        std::printf("%s: ok: %dx%d, %s, %s, %s, output %s\n",
                     demo ? "demo.test" : opt.scene.c_str(), scene->width, scene->height,
                     primitiveSummary(prims).c_str(),
-                    count(scene->lights.size(), "light", "lights").c_str(), scene->maxDepth,
-                    output.c_str());
+                    count(scene->lights.size(), "light", "lights").c_str(),
+                    depthSummary(*scene).c_str(), output.c_str());
         // A model file's format extensions, each with what Glint does with it.
         if (!prepared.extensions.empty()) {
             size_t width = 0;

@@ -89,11 +89,11 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job, glint::AssetCach
     } keep{scene, accel};
     if (opt.check) {
         if (root)
-            std::printf("%s: ok: %dx%d, %s, %s, maxdepth %d, output %s, %d ranks\n",
+            std::printf("%s: ok: %dx%d, %s, %s, %s, output %s, %d ranks\n",
                         prepared.demo ? "demo.test" : opt.scene.c_str(), scene.width, scene.height,
                         primitiveSummary(scene.primitives).c_str(),
-                        count(scene.lights.size(), "light", "lights").c_str(), scene.maxDepth,
-                        prepared.output.c_str(), job.size);
+                        count(scene.lights.size(), "light", "lights").c_str(),
+                        depthSummary(scene).c_str(), prepared.output.c_str(), job.size);
         return 0;
     }
 

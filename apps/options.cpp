@@ -366,10 +366,18 @@ void addOptions(CLI::App& app, Options& opt) {
         ->group(render)
         ->type_name("WxH");
     app.add_option("--maxdepth", opt.maxDepth,
-                   "Maximum reflection depth, 0 to 64, overriding the scene's (models: 8)")
+                   "Maximum reflection depth, 0 to 64, overriding the scene's (models: 12)")
         ->group(render)
         ->check(integerIn(0, kMaxDepthLimit))
         ->type_name("N");
+    app.add_option("--max-bounces", opt.maxBounces,
+                   "Path tracer's bounce limits as Cycles' Light Paths: in all (N, as "
+                   "--maxdepth) or by kind (total=12,diffuse=4,glossy=4,transmission=12,"
+                   "volume=4, any of them), each 1 to 64, 1 being direct light only (Cycles' "
+                   "0); models: total=12,transmission=12,diffuse=8,glossy=8,volume=8")
+        ->group(render)
+        ->check(parsedBy<BounceOptions>(parseBounces))
+        ->type_name("LIST");
     app.add_option("--clamp-indirect", opt.clampIndirect,
                    "Path tracer: scale each sample's light after two or more bounces down to at "
                    "most X in its largest channel (Cycles' Clamp Indirect): fewer fireflies, "

@@ -131,11 +131,19 @@ std::string pixelSettings(const Options& opt, const Scene& scene) {
             if (c == ' ') c = '_';  // settings are words separated by spaces
         return s;
     };
+    auto bounceText = [](const BounceLimits& b) {
+        auto n = [](int v) {
+            return v == BounceLimits::kUnlimited ? std::string("-") : std::to_string(v);
+        };
+        return n(b.diffuse) + "," + n(b.glossy) + "," + n(b.transmission) + "," + n(b.volume);
+    };
     std::string environment = opt.environment;
     if (!environment.empty() && environment != "studio" && environment != "none")
         environment = "file";
     return "integrator=" + orDefault(scene.integrator) +
            " maxdepth=" + std::to_string(scene.maxDepth) +
+           (scene.bounces == BounceLimits{} ? std::string()
+                                            : " bounces=" + bounceText(scene.bounces)) +
            (scene.clampIndirect > 0 ? " clamp-indirect=" + exactText(scene.clampIndirect)
                                     : std::string()) +
            (scene.caustics ? std::string() : std::string(" caustics=off")) +

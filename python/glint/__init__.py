@@ -55,7 +55,8 @@ _COMMAND_LINE_ONLY = frozenset(
 _RENDER_OPTIONS = frozenset(
     [
         "spp", "integrator", "threads", "seed", "aov", "denoise", "denoiser", "denoise-quality",
-        "noise-threshold", "min-spp", "time", "maxdepth", "clamp-indirect", "caustics",
+        "noise-threshold", "min-spp", "time", "maxdepth", "max-bounces", "clamp-indirect",
+        "caustics",
         "exposure", "srgb", "tonemap",
     ]
 )
@@ -563,8 +564,8 @@ class Scene:
         `options` are the command line's rendering options: spp, integrator, threads, seed,
         aov (a list of albedo, normal, depth, variance: Image.passes), denoise, denoiser
         ("oidn", the network, where this build has its weights; "nlm"), denoise_quality
-        ("fast", "balanced", "high"), noise_threshold, min_spp, time, maxdepth, clamp_indirect,
-        caustics, and exposure, srgb and tonemap for how it is shown. A model (and nothing else)
+        ("fast", "balanced", "high"), noise_threshold, min_spp, time, maxdepth, max_bounces,
+        clamp_indirect, caustics, and exposure, srgb and tonemap for how it is shown. A model (and nothing else)
         is sampled until clean and denoised unless told otherwise, as by the glint command. The interpreter's lock is
         released while it renders; Ctrl-C stops it (KeyboardInterrupt) within a fraction of a
         second. `progress(fraction, seconds)` is called about ten times a second."""

@@ -138,6 +138,10 @@ def test_errors_name_the_options_as_python_spells_them(tmp_path):
     # One name per option, the command line's: older spellings still work.
     scene = glint.load(data("cse167x", "scene6.test"), size=(8, 6), max_depth=2)
     assert scene.render(maxdepth=1, aov=["albedo"]).passes["albedo"].shape == (6, 8, 3)
+    # Limits by kind, as --max-bounces; a bad one is named as Python spells it.
+    assert scene.render(integrator="path", spp=1, max_bounces="transmission=2").shape == (6, 8, 3)
+    with pytest.raises(ValueError, match="^max_bounces: unknown kind 'glass'"):
+        scene.render(max_bounces="glass=2")
 
 
 def test_integer_images_are_refused_with_how_to_convert_them(tmp_path):

@@ -258,6 +258,32 @@ TEST(Cli, MaxDepthOptionRejectsOutOfRangeOrNonIntegerValues) {
     }
 }
 
+TEST(Cli, MaxBouncesSetsLimitsByKindOverTheModelModesOwn) {
+    std::string dir = freshDir("maxbounces");
+    const std::string slabs = std::string(GLINT_SOURCE_DIR) + "/tests/data/gltf/glass-slabs.gltf";
+    CommandResult r = runGlint(slabs + " --check", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "maxdepth 12 (diffuse 8, glossy 8, transmission 12, volume 8),"))
+        << r.out;
+    r = runGlint(slabs + " --check --max-bounces total=20,diffuse=3,volume=64", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "maxdepth 20 (diffuse 3, glossy 8, transmission 12, volume 64),"))
+        << r.out;
+    r = runGlint("--check --max-bounces 7", dir);  // a scene: the total alone, as --maxdepth
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "maxdepth 7,")) << r.out;
+
+    for (const char* bad : {"0", "65", "diffuse=0", "glass=4", "total=4,", "diffuse", "4,5"}) {
+        SCOPED_TRACE(bad);
+        r = runGlint(std::string("--check --max-bounces ") + bad, dir);
+        EXPECT_EQ(r.exitCode, 2);
+        EXPECT_TRUE(contains(r.err, "--max-bounces")) << r.err;
+        EXPECT_TRUE(r.out.empty()) << r.out;
+    }
+    r = runGlint("--check --max-bounces glass=4", dir);
+    EXPECT_TRUE(contains(r.err, "total, diffuse, glossy, transmission or volume")) << r.err;
+}
+
 TEST(Cli, IntegratorOptionOverridesTheScenesAndNamesTheChoicesWhenWrong) {
     std::string dir = sceneDir("integrator");
     writeFile(dir + "/named.test", std::string("integrator whitted\n") + kScene);

@@ -45,7 +45,7 @@ TEST(CliGltf, AFileWithCameraAndLightsRendersAsItSaysAtItsAspectRatio) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.out,
               "scene.glb: ok: 100x50, 530 triangles, 0 spheres, 2 mesh instances, 2 lights, "
-              "maxdepth 8, output scene.png\n"
+              "maxdepth 12 (diffuse 8, glossy 8, transmission 12, volume 8), output scene.png\n"
               "extensions used (1):\n"
               "  KHR_lights_punctual  rendered\n");
     // The classic look: the file's camera and lights alone, nothing said.

@@ -90,10 +90,11 @@ TEST(CliModel, ExtensionIsCaseInsensitiveAndCheckSummarises) {
     fs::copy_file(kMeshes + "quad.obj", dir + "/QUAD.OBJ");
     CommandResult r = runGlint("QUAD.OBJ --check", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    // The studio: no plane and no light of Glint's (the environment lights it), maxdepth 8.
+    // The studio: no plane and no light of Glint's (the environment lights it), and its
+    // bounce limits.
     EXPECT_EQ(r.out,
-              "QUAD.OBJ: ok: 640x480, 2 triangles, 0 spheres, 0 lights, maxdepth 8, output "
-              "QUAD.png\n");
+              "QUAD.OBJ: ok: 640x480, 2 triangles, 0 spheres, 0 lights, maxdepth 12 (diffuse 8, "
+              "glossy 8, transmission 12, volume 8), output QUAD.png\n");
     r = runGlint("QUAD.OBJ --check --integrator whitted", dir);
     EXPECT_EQ(r.out,
               "QUAD.OBJ: ok: 640x480, 2 triangles, 0 spheres, 1 plane, 2 lights, maxdepth 5, "

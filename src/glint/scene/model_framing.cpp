@@ -206,6 +206,7 @@ ModelScene studioScene(const Model& model, int width, int height, const ModelLoo
     scene.integrator = "path";
     scene.spp = kStudioSpp;
     scene.maxDepth = kStudioMaxDepth;
+    scene.bounces = kStudioBounces;
     scene.display = DisplaySpec{ToneMap::PbrNeutral, true};
 
     std::string camera;

@@ -38,8 +38,12 @@ struct ModelScene {
 /// Camera rays per pixel of the studio look: enough for rough metal and soft shadows to come
 /// out clean at 640 x 480 (docs/performance.md, "The model mode").
 inline constexpr int kStudioSpp = 64;
-/// Path length of the studio look: a ray through a glass model and out again, with a bounce.
-inline constexpr int kStudioMaxDepth = 8;
+/// Path length of the studio look, and its limits by kind: glass gets as deep as Cycles lets
+/// it (12 bounces in all and through transmission), reflections as deep as before
+/// (docs/performance.md, "Bounce limits").
+inline constexpr int kStudioMaxDepth = 12;
+inline constexpr BounceLimits kStudioBounces{
+    .diffuse = 8, .glossy = 8, .transmission = 12, .volume = 8};
 
 /// What a framed model stands on.
 enum class ModelGround {

@@ -65,6 +65,17 @@ struct FrameAccel {
     bool kept = false;        ///< Whether a frame's are here.
 };
 
+/// The path tracer's bounce limits by kind (`--max-bounces`, Cycles' Light Paths): a path
+/// ends after its n-th bounce of a kind whose limit is n, as it does after Scene::maxDepth
+/// bounces in all. Transmission is a BSDF sample through the surface, diffuse and glossy are
+/// reflections (glossy includes mirrors), volume a scattering in a medium. Unlimited by
+/// default; the model mode lets glass go deeper than the rest.
+struct BounceLimits {
+    static constexpr int kUnlimited = 1 << 30;
+    int diffuse = kUnlimited, glossy = kUnlimited, transmission = kUnlimited, volume = kUnlimited;
+    bool operator==(const BounceLimits&) const = default;
+};
+
 /// How Scene::prepare builds the acceleration structures.
 struct PrepareOptions {
     /// The threads to build on, the calling thread among them; null: all hardware threads.
@@ -86,7 +97,8 @@ class Scene {
     Scene& operator=(const Scene&) = delete;
 
     int width = 640, height = 480;
-    int maxDepth = 5;  ///< Primary rays are depth 0; reflect while depth < maxDepth.
+    int maxDepth = 5;      ///< Primary rays are depth 0; reflect while depth < maxDepth.
+    BounceLimits bounces;  ///< The path tracer's limits by kind, within maxDepth.
     /// The path tracer's clamp of indirect light (`--clamp-indirect`, Cycles' "Clamp
     /// Indirect"): each sample's light that reached the camera after two or more bounces is
     /// scaled down to at most this in its largest channel. 0: no clamp (unbiased).

@@ -456,3 +456,44 @@ a.add("nodes", {"camera": 0, "matrix": look_at((0, 1, 1.5), (0, 0.5, -1), (0, 1,
 a.add("scenes", {"nodes": [0, 1]})
 a.j["scene"] = 0
 a.write_gltf("closed-room.gltf")
+
+# glass-slabs.gltf: five slabs of clear glass one behind another before a chequered board, so
+# that a ray through all of them refracts ten times: black where the path tracer's transmission
+# limit is shorter (the model mode's was 8 bounces in all), the board where it is not.
+a = Asset()
+slab_pos, slab_nrm, slab_idx = [], [], []
+for axis in range(3):
+    for sign in (-1, 1):
+        n = [0, 0, 0]
+        n[axis] = sign
+        u, v = [(axis + 1) % 3, (axis + 2) % 3]
+        base = len(slab_pos)
+        for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            p = [0.0, 0.0, 0.0]
+            p[axis] = sign * 0.5
+            p[u], p[v] = cu * 0.5, cv * 0.5
+            slab_pos.append((p[0] * 1.6, p[1] * 1.6, p[2] * 0.12))
+            slab_nrm.append(tuple(n))
+        quad_idx = [0, 1, 2, 0, 2, 3] if sign > 0 else [0, 2, 1, 0, 3, 2]
+        slab_idx += [base + i for i in quad_idx]
+a.add("materials", {"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0,
+                                                               "roughnessFactor": 0},
+                    "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+                                   "KHR_materials_volume": {"thicknessFactor": 0.12}}})
+a.j["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_volume"]
+a.add("meshes", {"name": "slab", "primitives": [{
+    "attributes": {"POSITION": a.vec(slab_pos, "VEC3"), "NORMAL": a.vec(slab_nrm, "VEC3")},
+    "indices": a.indices(slab_idx), "material": 0}]})
+a.add("samplers", {"magFilter": 9728, "minFilter": 9728})
+a.add("textures", {"source": a.image(grid()), "sampler": 0})
+a.add("materials", {"name": "board", "pbrMetallicRoughness": {
+    "baseColorTexture": {"index": 0}, "metallicFactor": 0}})
+quad(a, material=1)
+for i in range(5):
+    a.add("nodes", {"mesh": 0, "translation": [0, 0, 0.3 * i]})
+a.add("nodes", {"mesh": 1, "translation": [-1.5, -1.5, -0.6], "scale": [3, 3, 1]})
+a.add("cameras", {"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.05}})
+a.add("nodes", {"camera": 0, "matrix": look_at((0.5, 0.4, 6), (0, 0, 0), (0, 1, 0))})
+a.add("scenes", {"nodes": list(range(7))})
+a.j["scene"] = 0
+a.write_gltf("glass-slabs.gltf")

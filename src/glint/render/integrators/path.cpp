@@ -17,6 +17,20 @@ namespace {
 /// transmission), so that lights on either side count.
 Vec3 receivingNormal(const Bsdf& bsdf, const Vec3& ng) { return bsdf.transmits() ? Vec3(0) : ng; }
 
+/// A path's bounces of each kind (Scene::bounces): each count answers whether its bounce was
+/// the last its kind allows, after which the path ends at the next surface, as it does after
+/// maxdepth bounces in all.
+struct BounceCounts {
+    int diffuse = 0, glossy = 0, transmission = 0, volume = 0;
+
+    bool surface(BsdfFlags flags, const BounceLimits& limits) {
+        if (hasAny(flags, BsdfFlags::Transmission)) return ++transmission >= limits.transmission;
+        if (hasAny(flags, BsdfFlags::Diffuse)) return ++diffuse >= limits.diffuse;
+        return ++glossy >= limits.glossy;  // glossy and mirror reflections
+    }
+    bool scattered(const BounceLimits& limits) { return ++volume >= limits.volume; }
+};
+
 }  // namespace
 
 PathIntegrator::PathIntegrator(const Scene& scene, Strategy strategy)
@@ -135,6 +149,8 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
     uint32_t medium = scene_.fog;
     int crossings = 0;
     int channel = -1;  // the colour channel a dispersing surface chose; -1: all
+    BounceCounts bounces;
+    bool lastBounce = false;  // the last bounce used up its kind's limit
 
     for (int depth = 0;; ++depth) {
         // ==== Shadow catcher: seen by camera rays and their specular continuations only ====
@@ -170,8 +186,9 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                     if (depth == 0) passes->depth = length(p - ray.origin);
                     passes = nullptr;
                 }
-                if (depth >= scene_.maxDepth) break;
+                if (depth >= scene_.maxDepth || lastBounce) break;
                 const Vec3 next = scatterInMedium(med, medium, p, wo, depth, beta, sampler, ctx, L);
+                lastBounce = bounces.scattered(scene_.bounces);
                 bsdfPdf = HenyeyGreenstein{med.g}.eval(wo, next);
                 specularBounce = false;
                 castersSinceSeen = -1;
@@ -271,7 +288,10 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                           bsdfWeight(bsdfPdf, lights_.pdfHit(from, fromN, ray.dir, hit, si));
             L += clamped(light, depth);
         }
-        if (depth >= scene_.maxDepth) break;
+        // A path that runs out of bounces ends black, inside glass too: ending it in the
+        // environment along its way was measured more wrong (docs/performance.md, "Bounce
+        // limits"); the model mode's deeper transmission limit is what keeps glass clear.
+        if (depth >= scene_.maxDepth || lastBounce) break;
 
         const Frame& frame = shading.frame;
         const Vec3 wo = frame.toLocal(-ray.dir);
@@ -351,6 +371,7 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
             }
         }
         if (beta == Vec3(0)) break;
+        lastBounce = bounces.surface(bs->flags, scene_.bounces);
         specularBounce = bs->isSpecular();
         if (seenHere && !specularBounce) castersSinceSeen = 0;
         bsdfPdf = bs->pdf;

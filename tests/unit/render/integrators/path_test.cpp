@@ -194,6 +194,72 @@ TEST(PathClosedSphere, TheInsideOfAnEmittingDiffuseSphereIsEOverOneMinusRho) {
     }
 }
 
+// Bounce limits by kind (Scene::bounces, --max-bounces) end paths as maxdepth does, each
+// counting only its own kind of bounce.
+TEST(PathBounceLimits, ADiffuseLimitEndsPathsInsideAnEmittingSphereAsMaxdepthDoes) {
+    // Inside a closed emitting sphere every bounce is diffuse: after n of them the path has
+    // gathered E (1 + rho + ... + rho^n), whichever of the two limits is n.
+    // (Within 1e-3 of it: sampling the sphere's light from inside is 4e-4 off at n = 1, as it
+    // is with maxdepth.) The two limits give the same paths, so the same estimate.
+    const double rho = 0.7, emitted = 0.25;
+    for (int n : {1, 3}) {
+        double means[2];
+        for (bool byKind : {true, false}) {
+            Scene scene;
+            scene.integrator = "path";
+            scene.maxDepth = byKind ? kMaxDepthLimit : n;
+            if (byKind) scene.bounces.diffuse = n;
+            // Limits of the other kinds change nothing here.
+            scene.bounces.glossy = scene.bounces.transmission = scene.bounces.volume = 1;
+            Material m;
+            m.diffuse = Vec3(rho);
+            m.emission = Vec3(emitted);
+            scene.primitives.addSphere(Sphere{{0, 0, 0}, 2, {}}, scene.addMaterial(m));
+            scene.prepare();
+            PathIntegrator integrator(scene);
+            const double expected = emitted * (1 - std::pow(rho, n + 1)) / (1 - rho);
+            Ray ray{{0.3, -0.5, 0.8}, normalize(Vec3(1, 2, -3)), 0, kInfinity};
+            test::MeanEstimate e = estimate(scene, integrator, ray, 4000, 7);
+            EXPECT_NEAR(e.mean(), expected, kZ * e.standardError() + 1e-3 * expected)
+                << "n " << n << (byKind ? ", diffuse limit" : ", maxdepth") << ", standard error "
+                << e.standardError();
+            means[byKind] = e.mean();
+        }
+        EXPECT_EQ(means[0], means[1]) << "n " << n;
+        // One more bounce gathers more: the limit is not ignored.
+        EXPECT_GT(emitted * (1 - std::pow(rho, n + 2)) / (1 - rho) - means[1], 0.05);
+    }
+}
+
+TEST(PathBounceLimits, ATransmissionLimitDarkensGlassAndNoOtherLimitDoes) {
+    // A smooth glass sphere in a white furnace is invisible (radiance 1) when paths may go
+    // through it; a path that enters and leaves refracts twice.
+    auto glassWith = [](BounceLimits limits) {
+        auto scene = std::make_unique<Scene>();
+        furnace(*scene, material(0, 0, 1));
+        scene->bounces = limits;
+        return scene;
+    };
+    {
+        auto scene = glassWith({.diffuse = 1, .volume = 1});
+        expectEverywhere(*scene, PathIntegrator(*scene), 1, 64, "diffuse and volume limits 1");
+    }
+    {
+        auto scene = glassWith({.transmission = 2});
+        expectEverywhere(*scene, PathIntegrator(*scene), 1, 64, "transmission limit 2");
+    }
+    // With one transmission a path that enters ends inside: only the light the surface
+    // reflects (Fresnel, well below a third at these angles) is left.
+    auto scene = glassWith({.transmission = 1});
+    PathIntegrator integrator(*scene);
+    uint64_t seed = 1;
+    for (const Ray& ray : raysAtTheSphere(8)) {
+        test::MeanEstimate e = estimate(*scene, integrator, ray, 256, seed++);
+        EXPECT_GT(e.mean(), 0.01) << ray.dir;
+        EXPECT_LT(e.mean(), 0.33) << ray.dir;
+    }
+}
+
 /// A room for the strategies: a floor, a rough glossy sphere and a diffuse one, lit by a quad
 /// light, a small emissive sphere and a point light.
 void lightsAndGloss(Scene& scene) {
