@@ -281,8 +281,8 @@ TEST(CliGltf, AnOrbitCameraLooksAtItsTargetWithTheFieldOfViewAsked) {
     EXPECT_GT(orbit.at(4, 4, 0), 200);
 }
 
-/// Two quads whose materials use KHR_materials_clearcoat (which Glint ignores), one with a
-/// KHR_texture_transform and KHR_materials_volume (both rendered, the latter in part).
+/// Two quads whose materials use KHR_materials_clearcoat and KHR_materials_pbrSpecularGlossiness
+/// (which Glint ignores), one with KHR_materials_volume.
 std::string coatedQuads() {
     GltfAsset a;
     int left = a.floats({-4, -1, 0, -2, -1, 0, -2, 1, 0, -4, 1, 0}, "VEC3");
@@ -294,13 +294,13 @@ std::string coatedQuads() {
                std::to_string(material) + "}]}";
     };
     return a.text(R"("meshes": [)" + quad(left, 0) + ", " + quad(right, 1) + R"(],
-        "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_unlit",
+        "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_pbrSpecularGlossiness",
                            "KHR_materials_volume", "KHR_texture_transform"],
         "materials": [
           {"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1},
-                          "KHR_materials_unlit": {}}},
+                          "KHR_materials_pbrSpecularGlossiness": {}}},
           {"pbrMetallicRoughness": {"baseColorFactor": [0, 0, 1, 1]},
-           "extensions": {"KHR_materials_unlit": {},
+           "extensions": {"KHR_materials_pbrSpecularGlossiness": {},
                           "KHR_materials_volume": {"thicknessFactor": 0}}}],
         "nodes": [{"mesh": 0}, {"mesh": 1}])");
 }
@@ -321,32 +321,70 @@ TEST(CliGltf, CheckListsTheExtensionsUsedAndARenderWarnsOnceOfEachIgnoredOne) {
     EXPECT_TRUE(contains(r.out, "coated.gltf: ok: ")) << r.out;
     EXPECT_TRUE(contains(r.out, "extensions used (4):\n")) << r.out;
     EXPECT_TRUE(contains(r.out,
-                         "  KHR_materials_unlit      ignored: unlit materials are shaded and lit "
-                         "like the others\n"))
+                         "  KHR_materials_pbrSpecularGlossiness  ignored: specular-glossiness "
+                         "materials are shaded by their metallic-roughness factors"))
         << r.out;
-    EXPECT_TRUE(contains(r.out, "  KHR_materials_clearcoat  rendered\n")) << r.out;
-    EXPECT_TRUE(contains(r.out, "  KHR_materials_volume     rendered\n")) << r.out;
-    EXPECT_TRUE(contains(r.out, "  KHR_texture_transform    rendered\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "  KHR_materials_clearcoat              rendered\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "  KHR_materials_volume                 rendered\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "  KHR_texture_transform                rendered\n")) << r.out;
 
     // A render says it once, although two materials use it; nothing of the others.
     r = runGlint("coated.gltf --size 32x24 --spp 1", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(occurrences(r.err, "KHR_materials_unlit"), 1u) << r.err;
-    EXPECT_TRUE(contains(r.err,
-                         "coated.gltf: warning: the file uses KHR_materials_unlit, which "
-                         "Glint does not render: unlit materials"))
+    EXPECT_EQ(occurrences(r.err, "KHR_materials_pbrSpecularGlossiness"), 1u) << r.err;
+    EXPECT_TRUE(
+        contains(r.err,
+                 "coated.gltf: warning: the file uses KHR_materials_pbrSpecularGlossiness, which "
+                 "Glint does not render: specular-glossiness materials"))
         << r.err;
     EXPECT_EQ(occurrences(r.err, "KHR_materials_clearcoat"), 0u) << r.err;
     EXPECT_EQ(occurrences(r.err, "KHR_texture_transform"), 0u) << r.err;
     EXPECT_EQ(occurrences(r.err, "KHR_materials_volume"), 0u) << r.err;
     // Quiet renders too: it is a warning.
     r = runGlint("-q coated.gltf --size 32x24 --spp 1 -o q.png", dir);
-    EXPECT_EQ(occurrences(r.err, "KHR_materials_unlit"), 1u) << r.err;
+    EXPECT_EQ(occurrences(r.err, "KHR_materials_pbrSpecularGlossiness"), 1u) << r.err;
     // A file without extensions lists none.
     writeFile(dir + "/two.gltf", twoCameras());
     r = runGlint("two.gltf --check", dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_FALSE(contains(r.out, "extensions")) << r.out;
+}
+
+// KHR_materials_unlit (tests/data/gltf/unlit.gltf): a sign showing its texture as it is, to both
+// integrators and whatever lights the scene, and casting no shadow on the floor it stands on.
+TEST(CliGltf, AnUnlitSignShowsItsColoursAsTheyAreAndCastsNoShadow) {
+    std::string dir = freshDir("gltf-unlit");
+    const std::string text =
+        readBytes(std::string(GLINT_SOURCE_DIR) + "/tests/data/gltf/unlit.gltf");
+    writeFile(dir + "/unlit.gltf", text);
+    std::string lit = text;  // the same file with the extension unknown: shaded and lit
+    for (size_t at; (at = lit.find("KHR_materials_unlit")) != std::string::npos;)
+        lit.replace(at, 19, "EXT_unknown_unlit");
+    writeFile(dir + "/lit.gltf", lit);
+    CommandResult r = runGlint("unlit.gltf --check", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "KHR_materials_unlit  rendered\n")) << r.out;
+
+    const std::string small = " -q --size 64x48 --spp 4 --no-denoise";
+    for (const char* run : {"unlit.gltf -o path.pfm", "unlit.gltf -o dark.pfm --environment none",
+                            "unlit.gltf -o whitted.pfm --integrator whitted",
+                            "lit.gltf -o lit.pfm --integrator whitted"}) {
+        r = runGlint(run + small, dir);
+        ASSERT_EQ(r.exitCode, 0) << run << "\n" << r.err;
+    }
+    const Film path = readPfm(dir + "/path.pfm"), dark = readPfm(dir + "/dark.pfm"),
+               whitted = readPfm(dir + "/whitted.pfm"), shaded = readPfm(dir + "/lit.pfm");
+    // A pixel of the sign's orange: the same colour without the studio's light and to the
+    // Whitted integrator; shaded, it is another.
+    const Vec3 sign = path.at(32, 22);
+    EXPECT_GT(sign.x, 0.5) << sign;
+    EXPECT_LT(sign.z, 0.1) << sign;
+    EXPECT_NEAR(length(dark.at(32, 22) - sign), 0, 1e-6) << dark.at(32, 22);
+    EXPECT_NEAR(length(whitted.at(32, 22) - sign), 0, 1e-6) << whitted.at(32, 22);
+    EXPECT_GT(length(shaded.at(32, 22) - sign), 0.1) << shaded.at(32, 22);
+    // The floor where a lit sign casts its shadow: lit by the sun when the sign is unlit.
+    EXPECT_GT(whitted.at(28, 40).x, 2 * shaded.at(28, 40).x)
+        << whitted.at(28, 40) << " " << shaded.at(28, 40);
 }
 
 }  // namespace

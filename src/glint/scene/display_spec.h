@@ -1,7 +1,7 @@
 #pragma once
 /// How a scene's linear radiance is meant to become 8-bit pixels (the conversion itself is in
-/// render/film/display.h and render/film/tonemap.h). A scene carries its default; the command line may
-/// override it (`--tonemap`, `--srgb`, `--no-srgb`).
+/// render/film/display.h and render/film/tonemap.h). A scene carries its default; the command line
+/// may override it (`--tonemap`, `--srgb`, `--no-srgb`).
 
 #include <optional>
 #include <string_view>

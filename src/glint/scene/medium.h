@@ -2,8 +2,8 @@
 /// Participating media (docs/scene-format.md, "Media"): what fills the space inside a closed
 /// surface or the whole scene, absorbing and scattering light as it passes (fog, smoke, milk,
 /// wax, jade, skin). pbrt-v4's split: a Medium gives the coefficients at a point and an upper
-/// bound of them along a ray (its majorant); the path tracer (render/integrators/media.h) samples points
-/// against that bound; a phase function (Henyey-Greenstein) scatters at them.
+/// bound of them along a ray (its majorant); the path tracer (render/integrators/media.h) samples
+/// points against that bound; a phase function (Henyey-Greenstein) scatters at them.
 ///
 /// Coefficients are per unit of scene length: sigma_a absorbs, sigma_s scatters out, and
 /// sigma_t = sigma_a + sigma_s is the extinction; light keeps exp(-sigma_t d) over a distance d
@@ -39,11 +39,11 @@ struct DensityGrid {
 };
 
 /// Bounds on a density grid's density over coarse blocks of kBlock^3 voxels: the majorants that
-/// delta and ratio tracking step through block by block (render/integrators/media.cpp), so that the empty
-/// and thin parts of a smoke plume cost few tentative collisions. Block (a, b, c) covers
-/// [a kBlock, (a + 1) kBlock] x ... of the grid's index space; its bound is the largest voxel
-/// among those DensityGrid::lookup interpolates anywhere inside it (one voxel beyond the block
-/// on every side), so it bounds the density there.
+/// delta and ratio tracking step through block by block (render/integrators/media.cpp), so that the
+/// empty and thin parts of a smoke plume cost few tentative collisions. Block (a, b, c) covers [a
+/// kBlock, (a + 1) kBlock] x ... of the grid's index space; its bound is the largest voxel among
+/// those DensityGrid::lookup interpolates anywhere inside it (one voxel beyond the block on every
+/// side), so it bounds the density there.
 struct MajorantGrid {
     static constexpr int kBlock = 8;
     int nx = 0, ny = 0, nz = 0;  ///< Blocks along each axis.

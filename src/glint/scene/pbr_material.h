@@ -68,6 +68,10 @@ struct PbrMaterial {
     /// Lit on both faces; false: the back face is not seen by camera rays (glTF's back-face
     /// culling), though it still casts shadows and is seen in reflections.
     bool doubleSided = false;
+    /// KHR_materials_unlit: camera rays see the base colour (factor, texture, vertex colour) as
+    /// it is, unshaded; every other ray passes through (no shadow, no reflection, no light
+    /// from it), as Blender's glTF importer maps it for Cycles.
+    bool unlit = false;
     /// KHR_materials_transmission: the fraction of the dielectric part that is transmitted
     /// (times the red channel of transmissionTexture).
     double transmission = 0;
@@ -124,7 +128,9 @@ struct PbrMaterial {
     Vec3 diffuseTransmissionColor{1};
     TextureSlot diffuseTransmissionColorTexture;
 
-    bool cutsOut() const { return alphaMode != AlphaMode::Opaque; }
+    /// Whether some rays pass through it: alpha masked or blended, or unlit (seen by camera
+    /// rays only).
+    bool cutsOut() const { return alphaMode != AlphaMode::Opaque || unlit; }
     bool operator==(const PbrMaterial&) const = default;
 };
 

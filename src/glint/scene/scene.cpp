@@ -108,6 +108,7 @@ bool Scene::cutOut(const Ray& ray, const Hit& hit, bool cameraRay) const {
     const Material& m = materials[si.material];
     if (m.pbr == 0) return false;
     const PbrMaterial& pm = pbr(m.pbr);
+    if (pm.unlit && !cameraRay) return true;
     if (cameraRay && !pm.doubleSided && dot(ray.dir, si.ng) > 0) return true;
     if (pm.alphaMode == AlphaMode::Opaque) return false;
     const double alpha = opacityAt(pm, si);

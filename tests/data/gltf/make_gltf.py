@@ -497,3 +497,35 @@ a.add("nodes", {"camera": 0, "matrix": look_at((0.5, 0.4, 6), (0, 0, 0), (0, 1, 
 a.add("scenes", {"nodes": list(range(7))})
 a.j["scene"] = 0
 a.write_gltf("glass-slabs.gltf")
+
+# unlit.gltf: an unlit sign (KHR_materials_unlit, the chequered texture) standing on a lit grey
+# floor, a directional light low behind it: the camera sees the sign's colours as they are, and
+# the sign casts no shadow (Blender's importer makes it visible to camera rays alone).
+a = Asset()
+a.add("samplers", {"magFilter": 9728, "minFilter": 9728})
+a.add("textures", {"source": a.image(grid()), "sampler": 0})
+a.add("materials", {"name": "sign", "pbrMetallicRoughness": {
+    "baseColorTexture": {"index": 0}, "metallicFactor": 0},
+    "extensions": {"KHR_materials_unlit": {}}})
+a.add("materials", {"name": "floor", "pbrMetallicRoughness": {
+    "baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0, "roughnessFactor": 1}})
+quad(a, material=0)
+floor_pos = a.vec([(-3, 0, 3), (3, 0, 3), (3, 0, -3), (-3, 0, -3)], "VEC3")
+floor_nrm = a.vec([(0, 1, 0)] * 4, "VEC3")
+a.add("meshes", {"name": "floor", "primitives": [{
+    "attributes": {"POSITION": floor_pos, "NORMAL": floor_nrm},
+    "indices": a.indices([0, 1, 2, 0, 2, 3]), "material": 1}]})
+a.add("cameras", {"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 4 / 3,
+                                                         "znear": 0.05}})
+a.j["extensionsUsed"] = ["KHR_materials_unlit", "KHR_lights_punctual"]
+a.j["extensions"] = {"KHR_lights_punctual": {"lights": [
+    {"name": "sun", "type": "directional", "intensity": 3}]}}
+a.add("nodes", {"name": "sign", "mesh": 0, "translation": [-0.5, 0.2, 0]})
+a.add("nodes", {"name": "floor", "mesh": 1})
+a.add("nodes", {"name": "camera", "camera": 0,
+                "matrix": look_at((0.6, 1.2, 3.2), (0, 0.5, 0), (0, 1, 0))})
+a.add("nodes", {"name": "sun", "rotation": quaternion((1, 0, 0), -150),
+                "extensions": {"KHR_lights_punctual": {"light": 0}}})
+a.add("scenes", {"nodes": [0, 1, 2, 3]})
+a.j["scene"] = 0
+a.write_gltf("unlit.gltf")

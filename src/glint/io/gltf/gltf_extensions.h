@@ -53,8 +53,7 @@ inline constexpr std::array kGltfExtensions = {
     GltfExtension{"KHR_materials_sheen", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_materials_specular", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_materials_transmission", GltfSupport::Rendered, ""},
-    GltfExtension{"KHR_materials_unlit", GltfSupport::Ignored,
-                  "unlit materials are shaded and lit like the others"},
+    GltfExtension{"KHR_materials_unlit", GltfSupport::Rendered, ""},  // seen by the camera only
     GltfExtension{"KHR_materials_variants", GltfSupport::Rendered, ""},  // --variant
     GltfExtension{"KHR_materials_volume", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_mesh_quantization", GltfSupport::Rendered, ""},

@@ -122,6 +122,13 @@ MeshMaterial Materials::map(int index) {
         ctx_.warn(label + ": alphaMode '" + m.alphaMode + "' is not one glTF defines: opaque");
     }
     p.doubleSided = m.doubleSided;
+    // KHR_materials_unlit: the base colour alone; the other properties (emission among them:
+    // it would make a light nothing else sees) are to be ignored.
+    p.unlit = m.extensions.count("KHR_materials_unlit") > 0;
+    if (p.unlit) {
+        p.emissive = Vec3(0);
+        p.emissiveTexture = {};
+    }
     if (m.occlusionTexture.index != -1)
         ctx_.warnOnce("occlusion",
                       "occlusion textures are not read: a path tracer computes the occlusion "

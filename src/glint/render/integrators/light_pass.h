@@ -1,6 +1,6 @@
 #pragma once
-/// What a light pass (render/integrators/caustics.h) gives a render: light splatted into the image, and
-/// photons for the camera's paths to gather.
+/// What a light pass (render/integrators/caustics.h) gives a render: light splatted into the image,
+/// and photons for the camera's paths to gather.
 
 #include <algorithm>
 #include <cmath>

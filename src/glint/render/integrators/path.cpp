@@ -288,6 +288,8 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
                           bsdfWeight(bsdfPdf, lights_.pdfHit(from, fromN, ray.dir, hit, si));
             L += clamped(light, depth);
         }
+        if (shading.unlit) [[unlikely]]
+            break;  // its colour, as is, and nothing beyond
         // A path that runs out of bounces ends black, inside glass too: ending it in the
         // environment along its way was measured more wrong (docs/performance.md, "Bounce
         // limits"); the model mode's deeper transmission limit is what keeps glass clear.

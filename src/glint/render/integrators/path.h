@@ -1,9 +1,9 @@
 #pragma once
 /// A unidirectional path tracer (`integrator path`): next-event estimation and BSDF sampling
 /// combined by multiple importance sampling with the power heuristic (Veach 1997), unbiased
-/// Russian roulette, and every light of the scene (render/lights/light_sampler.h). Materials are the
-/// course's, made physical by bsdfFromMaterial (render/bsdfs/bsdf.h); the course's ambient term is
-/// not used (the indirect light it stands for is computed), and `emission` makes a surface a
+/// Russian roulette, and every light of the scene (render/lights/light_sampler.h). Materials are
+/// the course's, made physical by bsdfFromMaterial (render/bsdfs/bsdf.h); the course's ambient term
+/// is not used (the indirect light it stands for is computed), and `emission` makes a surface a
 /// light. The path length is the scene's `maxdepth`: the number of scattering events, so 1 is
 /// direct lighting only (pbrt's convention; the default is the course's 5). A shadow catcher
 /// (Scene::shadowCatcher) ends the camera paths that meet it (render/integrators/shadow_catcher.h).
@@ -17,8 +17,8 @@
 #include "glint/render/bsdfs/bsdf.h"
 #include "glint/render/integrators/caustics.h"
 #include "glint/render/integrators/integrator.h"
-#include "glint/render/lights/light_sampler.h"
 #include "glint/render/integrators/shadow_catcher.h"
+#include "glint/render/lights/light_sampler.h"
 
 namespace glint {
 

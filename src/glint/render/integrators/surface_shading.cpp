@@ -65,6 +65,13 @@ SurfaceShading shadeSurface(const Scene& scene, const SurfaceInteraction& si, co
     if (m.pbr != 0) {
         const PbrMaterial& pm = scene.pbr(m.pbr);
         const PbrSurface ps = evalSurface(pm, si);
+        if (pm.unlit) [[unlikely]] {
+            s.emission = ps.baseColor;
+            s.bsdf = Bsdf{Lambertian{ps.baseColor}};
+            s.frame = Frame(dot(s.normal, si.ng) < 0 ? -s.normal : s.normal);
+            s.unlit = true;
+            return s;
+        }
         s.emission = ps.emission;
         s.normal = ps.normal;
         if (pm.normalTexture.image) s.normal = facingViewer(s.normal, si.ng, wo);
@@ -111,6 +118,7 @@ Vec3 volumeTransmittance(const Scene& scene, const SurfaceInteraction& si, const
 bool castsCaustics(const Scene& scene, const Material& m) {
     if (m.pbr != 0) {  // the material's own factors
         const PbrMaterial& pm = scene.pbr(m.pbr);
+        if (pm.unlit) return false;  // no path but the camera's meets it
         return MetallicRoughness{pm.baseColor,    pm.metallic, ggxAlpha(pm.roughness),
                                  pm.transmission, pm.ior,      pm.thickness == 0}
             .castsCaustics();

@@ -20,6 +20,9 @@ struct SurfaceShading {
     /// side (so that the side a direction lies on, inside or outside a dielectric, is the
     /// geometry's), its x the direction of anisotropy where a material has one.
     Frame frame{Vec3(0, 0, 1)};
+    /// An unlit surface (PbrMaterial::unlit): `emission` is its colour, which ends the path;
+    /// the BSDF only gives the render passes its albedo.
+    bool unlit = false;
 };
 
 /// The shading of `si`, seen from unit direction `wo` (towards the viewer, or towards where a

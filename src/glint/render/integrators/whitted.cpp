@@ -305,6 +305,9 @@ Vec3 WhittedIntegrator::shadeSpecial(const Ray& ray, const SurfaceInteraction& s
     // The back face of a double-sided glTF material is lit as its front (the glTF
     // specification: its normals are turned towards the viewer). Only the lights see the
     // turned normals: refraction tells entering from leaving by the geometric normal as it is.
+    // An unlit surface shows its colour, unshaded (only camera rays find it: Scene::cutOut).
+    if (m.pbr != 0 && scene_.pbr(m.pbr).unlit) [[unlikely]]
+        return evalSurface(scene_.pbr(m.pbr), si).baseColor;
     SurfaceInteraction lit = si;
     if (m.pbr != 0 && scene_.pbr(m.pbr).doubleSided && dot(ray.dir, si.ng) > 0) {
         lit.n = -si.n;

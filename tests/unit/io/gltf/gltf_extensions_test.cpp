@@ -58,7 +58,7 @@ TEST(GltfExtensions, TheTableNamesEachExtensionOnceWithANoteForWhatIsLeftOut) {
         decodesWebp()
             ? "rendered"
             : std::string(findGltfExtension("EXT_texture_webp")->note).insert(0, "ignored: "));
-    EXPECT_THAT(gltfSupportText("KHR_materials_unlit"), testing::StartsWith("ignored: "));
+    EXPECT_EQ(gltfSupportText("KHR_materials_unlit"), "rendered");  // seen by the camera only
     EXPECT_EQ(gltfSupportText("EXT_made_up"), "ignored: Glint does not know this extension");
     EXPECT_TRUE(rendersGltfExtension("KHR_materials_transmission"));
     EXPECT_TRUE(rendersGltfExtension("KHR_lights_punctual"));
@@ -70,14 +70,14 @@ TEST(GltfExtensions, TheTableNamesEachExtensionOnceWithANoteForWhatIsLeftOut) {
 
 TEST(GltfExtensions, EveryExtensionUsedIsReportedAndEachIgnoredOneWarnedOfOnce) {
     // Clearcoat on two materials, a texture transform inside the clearcoat's texture and
-    // unlit on a material (both found though extensionsUsed forgets them), and one Glint
-    // does not know.
+    // specular-glossiness on a material (both found though extensionsUsed forgets them), and one
+    // Glint does not know.
     const std::string clearcoat =
         R"("KHR_materials_clearcoat": {"clearcoatFactor": 1,
              "clearcoatTexture": {"index": 0,
                "extensions": {"KHR_texture_transform": {"scale": [2, 2]}}}})";
     const std::string first =
-        R"({"extensions": {)" + clearcoat + R"(, "KHR_materials_unlit": {}}})";
+        R"({"extensions": {)" + clearcoat + R"(, "KHR_materials_pbrSpecularGlossiness": {}}})";
     const std::string second = R"({"extensions": {)" + clearcoat + R"(, "EXT_made_up": {}}})";
     std::string text = withMaterial(first + ", " + second,
                                     R"("extensionsUsed": ["KHR_materials_clearcoat",
@@ -90,21 +90,25 @@ TEST(GltfExtensions, EveryExtensionUsedIsReportedAndEachIgnoredOneWarnedOfOnce) 
     for (const FormatExtension& e : model.extensions) names.push_back(e.name);
     EXPECT_THAT(names, testing::ElementsAre("EXT_made_up", "KHR_materials_clearcoat",
                                             "KHR_materials_emissive_strength",
-                                            "KHR_materials_unlit", "KHR_texture_transform"));
+                                            "KHR_materials_pbrSpecularGlossiness",
+                                            "KHR_texture_transform"));
     EXPECT_EQ(reported(model, "KHR_texture_transform"), "rendered");
     EXPECT_EQ(reported(model, "KHR_materials_clearcoat"), "rendered");
-    EXPECT_EQ(reported(model, "KHR_materials_unlit"), gltfSupportText("KHR_materials_unlit"));
-    EXPECT_THAT(reported(model, "KHR_materials_unlit"), testing::StartsWith("ignored: "));
+    EXPECT_EQ(reported(model, "KHR_materials_pbrSpecularGlossiness"),
+              gltfSupportText("KHR_materials_pbrSpecularGlossiness"));
+    EXPECT_THAT(reported(model, "KHR_materials_pbrSpecularGlossiness"),
+                testing::StartsWith("ignored: "));
     // One warning for each ignored extension however often the file uses it, none for those
     // rendered.
     EXPECT_EQ(warningsNaming(warnings, "KHR_materials_clearcoat"), 0u);
-    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_unlit"), 1u);
+    EXPECT_EQ(warningsNaming(warnings, "KHR_materials_pbrSpecularGlossiness"), 1u);
     EXPECT_EQ(warningsNaming(warnings, "EXT_made_up"), 1u);
     EXPECT_EQ(warningsNaming(warnings, "KHR_texture_transform"), 0u);
     EXPECT_EQ(warningsNaming(warnings, "KHR_materials_emissive_strength"), 0u);
     for (const Diagnostic& d : warnings) {
-        if (d.message.find("KHR_materials_unlit") != std::string::npos) {
-            EXPECT_THAT(d.message, HasSubstr("which Glint does not render: unlit materials"));
+        if (d.message.find("KHR_materials_pbrSpecularGlossiness") != std::string::npos) {
+            EXPECT_THAT(d.message,
+                        HasSubstr("which Glint does not render: specular-glossiness materials"));
         }
     }
 }
@@ -140,11 +144,11 @@ TEST(GltfExtensions, AFileOfRenderedExtensionsAloneLoadsWithoutAWord) {
 }
 
 TEST(GltfExtensions, AnIgnoredExtensionTheFileRequiresIsAnError) {
-    EXPECT_THAT(errorParsing(withMaterial(R"({"extensions": {"KHR_materials_unlit": {}}})",
-                                          R"("extensionsUsed": ["KHR_materials_unlit"],
-                                     "extensionsRequired": ["KHR_materials_unlit"])"))
+    EXPECT_THAT(errorParsing(withMaterial("{}",
+                                          R"("extensionsUsed": ["KHR_texture_basisu"],
+                                     "extensionsRequired": ["KHR_texture_basisu"])"))
                     .message,
-                HasSubstr("the file requires extension KHR_materials_unlit, which Glint does not "
+                HasSubstr("the file requires extension KHR_texture_basisu, which Glint does not "
                           "support"));
 }
 

@@ -188,6 +188,22 @@ TEST(GltfPbr, DefaultsAreTheSpecificationsAndSingleSided) {
     EXPECT_EQ(p.ior, 1.5);
 }
 
+TEST(GltfPbr, UnlitKeepsTheBaseColourAndDropsTheEmission) {
+    // KHR_materials_unlit: the base colour is all there is; an emission would make a light that
+    // no ray but the camera's sees.
+    const std::string material = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 1],
+        "baseColorTexture": {"index": 0}}, "emissiveFactor": [1, 1, 1],
+        "emissiveTexture": {"index": 0}, "extensions": {"KHR_materials_unlit": {}}})";
+    PbrMaterial p = pbrOf(material, kImage + R"(, "textures": [{"source": 0}])");
+    EXPECT_TRUE(p.unlit);
+    EXPECT_TRUE(p.cutsOut());  // rays other than the camera's pass through
+    EXPECT_EQ(p.baseColor, Vec3(0.2, 0.4, 0.6));
+    EXPECT_TRUE(p.baseColorTexture);
+    EXPECT_EQ(p.emissive, Vec3(0));
+    EXPECT_FALSE(p.emissiveTexture);
+    EXPECT_FALSE(pbrOf("{}").unlit);
+}
+
 TEST(GltfPbr, OcclusionTexturesAreSaidToBeUnneeded) {
     std::vector<Diagnostic> warnings;
     pbrOf(R"({"occlusionTexture": {"index": 0}})", kImage + R"(, "textures": [{"source": 0}])",

@@ -246,6 +246,55 @@ TEST(PbrPath, AnAlphaMaskCutsOutTexelsForCameraRaysAndShadows) {
     EXPECT_LT(shadowed, 0.2 * lit);
 }
 
+TEST(PbrPath, AnUnlitSurfaceShowsItsColourToTheCameraAndNothingElse) {
+    // KHR_materials_unlit as Blender's importer maps it: camera rays see the base colour
+    // (times its texture) as it is, whatever the light; other rays pass through it.
+    PbrMaterial label;
+    label.baseColor = Vec3(0.9, 0.5, 0.25);
+    label.metallic = 0;
+    label.unlit = true;
+    label.baseColorTexture = slot(image(2, 1, [](int x, int) {
+        return x == 0 ? std::array<uint8_t, 4>{255, 255, 255, 255}
+                      : std::array<uint8_t, 4>{0, 255, 51, 255};
+    }));
+    auto lit = [&](bool withLabel) {  // the label at z = 1 over a floor at z = 0
+        auto scene = std::make_unique<Scene>();
+        if (withLabel) addQuad(*scene, pbrMaterial(*scene, label), 1);
+        PbrMaterial floor;
+        floor.baseColor = Vec3(0.5);
+        floor.metallic = 0;
+        addQuad(*scene, pbrMaterial(*scene, floor), 0);
+        scene->lights.push_back(directional({0, 0, 1}, 1));
+        scene->prepare();
+        return scene;
+    };
+    auto scene = lit(true);
+    // Camera rays stop at the label; shadow and other rays do not see it.
+    Hit hit;
+    ASSERT_TRUE(scene->intersect(towards({-0.5, 0, 3}, {-0.5, 0, 0}), hit, true));
+    EXPECT_NEAR(hit.t, 2, 1e-5);
+    hit = Hit{};
+    ASSERT_TRUE(scene->intersect(towards({-0.5, 0, 3}, {-0.5, 0, 0}), hit, false));
+    EXPECT_NEAR(hit.t, 3, 1e-5);
+    EXPECT_FALSE(scene->occluded(Ray{{0.5, 0, 1e-3}, {0, 0, 1}, 0, kInfinity}));
+    // Its colour, per texel (8 bits), exactly: no light added, none taken away.
+    const double secondTexel[3] = {0, 1, 0.2};
+    for (int c = 0; c < 3; ++c) {
+        const test::MeanEstimate white =
+            estimate(*scene, towards({-0.5, 0, 3}, {-0.5, 0, 1}), 16, c);
+        EXPECT_NEAR(white.mean(), label.baseColor[c], 1e-6) << c;
+        EXPECT_LT(white.standardError(), 1e-6) << c;  // the same every sample
+        const double texel = estimate(*scene, towards({0.5, 0, 3}, {0.5, 0, 1}), 16, c).mean();
+        EXPECT_NEAR(texel, label.baseColor[c] * secondTexel[c], 1e-6) << c;
+    }
+    // The floor under it is lit as if it were not there.
+    const Ray floorRay = towards({0.5, 0, 0.5}, {0.5, 0.01, 0});
+    const test::MeanEstimate under = estimate(*scene, floorRay, 400);
+    const test::MeanEstimate bare = estimate(*lit(false), floorRay, 400);
+    EXPECT_GT(bare.mean(), 0.1);
+    EXPECT_NEAR(under.mean(), bare.mean(), kZ * (under.standardError() + bare.standardError()));
+}
+
 TEST(PbrPath, AlphaBlendingLetsThroughTheTransparentShareOfRays) {
     auto scene = std::make_unique<Scene>();
     PbrMaterial glassy;
