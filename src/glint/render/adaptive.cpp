@@ -48,13 +48,18 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
     o.progressivePositions = true;
 
     RenderResult result;
-    int done = 0, roundSpp = minSpp;
+    // Within a time budget the minimum is taken in rounds too, from one sample up, each cut to
+    // the time left, so that a slow machine or a heavy model stops near its budget however
+    // long the minimum would take; without one it is a single round (a reproducible image).
+    const bool budget = adaptive.seconds > 0;
+    int done = 0, roundSpp = budget ? 1 : minSpp;
     size_t activeCount = active.size();
     double pixelSampleSeconds = 0;  // per sample of one pixel, measured
     for (int round = 0;; ++round) {
+        const bool everyPixel = done < minSpp;  // the minimum, which every pixel takes
         o.sampleBegin = done;
         o.sampleEnd = done + roundSpp;
-        o.active = round == 0 ? nullptr : &active;
+        o.active = everyPixel ? nullptr : &active;
         const double before = elapsed();
         if (options.onProgress)
             o.onProgress = [&](const RenderProgress& p) {
@@ -66,7 +71,7 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
         result.tilesDone = r.tilesDone;
         result.tilesTotal = r.tilesTotal;
         if (!r.complete) {
-            if (round == 0)
+            if (round == 0)  // later rounds leave every pixel at least one sample
                 result.complete = false;
             else
                 result.stoppedEarly = true;
@@ -78,7 +83,8 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
             pixelSampleSeconds = seconds / (static_cast<double>(activeCount) * roundSpp);
         done += roundSpp;
 
-        // Which pixels go on: those above the threshold, below the cap, in the part rendered.
+        // Which pixels go on: those above the threshold, below the cap, in the part rendered
+        // (while the minimum is taken, all those rendered).
         activeCount = 0;
         for (int y = 0; y < height; ++y)
             for (int x = 0; x < width; ++x) {
@@ -86,15 +92,17 @@ RenderResult renderAdaptive(const Scene& scene, const RenderOptions& options,
                 if (!a) continue;
                 const double n = sums.weight(x, y);
                 a = n > 0 && done < maxSpp &&
-                    !(pixelError(sums.sum(x, y).value(), sums.passes(x, y).squares, n) <
-                      adaptive.threshold);
+                    (done < minSpp ||
+                     !(pixelError(sums.sum(x, y).value(), sums.passes(x, y).squares, n) <
+                       adaptive.threshold));
                 activeCount += a;
             }
         if (activeCount == 0 || done >= maxSpp) break;
-        // The next round: as many samples as all before, at most kMaxRoundSpp, cut to the cap
-        // and to the time left at the rate so far.
-        int next = std::min({done, kMaxRoundSpp, maxSpp - done});
-        if (adaptive.seconds > 0) {
+        // The next round: as many samples as all before, up to the minimum first, then at most
+        // kMaxRoundSpp, cut to the cap and to the time left at the rate so far.
+        int next = done < minSpp ? std::min(done, minSpp - done)
+                                 : std::min({done, kMaxRoundSpp, maxSpp - done});
+        if (budget) {
             const double left = adaptive.seconds - elapsed();
             const double fit =
                 std::floor(left / (pixelSampleSeconds * static_cast<double>(activeCount)));

@@ -4,11 +4,14 @@
 /// `maxSpp` (`--spp`), optionally within a time budget (`--time`).
 ///
 /// The image is rendered in rounds over the pixels still sampling. Round 0 takes samples
-/// [0, minSpp) of every pixel; each later round the next samples of the pixels not yet stopped,
-/// twice as many as all rounds before it, at most kMaxRoundSpp, cut to the cap. After each round
-/// a pixel stops when its error is below T. A pixel's samples are those of one render of its
-/// sample count: the same indices, at sub-pixel positions spread in every prefix
-/// (sampler.h, progressive positions), so wherever it stops its samples cover it evenly.
+/// [0, minSpp) of every pixel (within a time budget: rounds of 1, 1, 2, 4, ... samples of every
+/// pixel up to minSpp, each cut to the time left, so that a heavy scene on a busy machine
+/// still stops near its budget, with at least one sample in every pixel); each later round the next
+/// samples of the pixels not yet stopped, twice as many as all rounds before it, at most
+/// kMaxRoundSpp, cut to the cap. After each round a pixel stops when its error is below T. A
+/// pixel's samples are those of one render of its sample count: the same indices, at sub-pixel
+/// positions spread in every prefix (sampler.h, progressive positions), so wherever it stops its
+/// samples cover it evenly.
 ///
 /// The error is Cycles' form of a pixel's relative error, with the standard error of each
 /// channel's mean (from the pixel's own samples) for its noise:

@@ -77,6 +77,26 @@ TEST(Adaptive, NoPixelStopsBeforeItsMinimumAndNoneGoesPastTheCap) {
     EXPECT_EQ(r.samplesPerPixel, 40);
 }
 
+TEST(Adaptive, ATimeBudgetCutsTheMinimumTooButLeavesEveryPixelASample) {
+    // A budget already spent when the first round ends: that round, one sample of every pixel,
+    // is all there is, where the minimum would take 24 (a heavy model on a busy machine).
+    auto scene = test::preparedScene(kHalfNoisy);
+    RenderOptions o = threads(1);
+    o.keepSums = true;
+    const RenderResult spent = renderAdaptive(*scene, o, {0.05, 24, 256, 1e-9});
+    ASSERT_TRUE(spent.complete);
+    EXPECT_EQ(spent.samplesPerPixel, 1);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x) EXPECT_EQ(spent.sums.weight(x, y), 1) << x << " " << y;
+    // A budget the minimum fits in: the minimum in rounds from one sample, then as without
+    // a budget (the wall's pixels go on to the cap, the exact sky's stop).
+    const RenderResult ample = renderAdaptive(*scene, o, {1e-4, 24, 64, 60});
+    ASSERT_TRUE(ample.complete);
+    EXPECT_EQ(ample.sums.weight(14, 4), 24);
+    EXPECT_EQ(ample.sums.weight(2, 4), 64);
+    EXPECT_GE(ample.passes, 6);  // 1, 1, 2, 4, 8, 8 to the minimum, then more
+}
+
 TEST(Adaptive, TheImageDoesNotDependOnThreadsOrCrops) {
     auto scene = test::preparedScene(kHalfNoisy);
     const AdaptiveOptions a{0.03, 8, 128, 0};
