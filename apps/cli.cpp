@@ -353,7 +353,8 @@ std::string sequencePattern(const Options& opt, std::string& pattern) {
 }
 
 DisplayTransform displayFor(const Options& opt, const Scene& scene) {
-    DisplayTransform display{opt.exposure, scene.display.srgb, scene.display.toneMap};
+    DisplayTransform display{std::isnan(opt.exposure) ? scene.display.exposure : opt.exposure,
+                             scene.display.srgb, scene.display.toneMap};
     if (opt.srgb != 0) display.srgb = opt.srgb > 0;
     if (!opt.toneMap.empty()) display.toneMap = *toneMapNamed(opt.toneMap);
     return display;

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -56,7 +57,9 @@ struct Options {
     std::string integrator;       ///< Empty: the scene's `integrator`, else whitted.
     int spp = 0;                  ///< 0: the scene's `spp`, else 1.
     uint64_t seed = 0;
-    double exposure = 0;      ///< EV: radiance times 2^exposure before writing.
+    /// EV: radiance times 2^exposure before writing; NaN: not given (the scene's, 0 but for a
+    /// model lit in physical units).
+    double exposure = std::numeric_limits<double>::quiet_NaN();
     int srgb = 0;             ///< sRGB curve for 8-bit outputs: 1 on, -1 off, 0 the scene's.
     std::string toneMap;      ///< Empty: the scene's (PBR Neutral for models, else clamp).
     std::string environment;  ///< Empty: the scene's; "studio", "none" or a file.

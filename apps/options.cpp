@@ -328,7 +328,8 @@ void addOptions(CLI::App& app, Options& opt) {
         ->type_name("FILE");
     app.add_option("--exposure", opt.exposure,
                    "Multiply radiance by 2^EV before writing, -64 to 64, every format "
-                   "(default 0: unchanged)")
+                   "(default 0: unchanged; for a model lit by its own lights in physical units, "
+                   "the exposure Glint chooses and says)")
         ->group(out)
         ->check(numberIn(-64, 64))
         ->type_name("EV");

@@ -387,5 +387,29 @@ TEST(CliGltf, AnUnlitSignShowsItsColoursAsTheyAreAndCastsNoShadow) {
         << whitted.at(28, 40) << " " << shaded.at(28, 40);
 }
 
+// A file lit in physical units (tests/data/gltf/lamp-in-lux.gltf: a 1500 cd bulb and a 512 lux
+// sun): the model mode chooses an exposure and says so, --exposure overrides it, and the bulb
+// around the point light leaves no dark halo on the ground shadow (issue 37).
+TEST(CliGltf, LightsInPhysicalUnitsGetAnExposureAndTheirBulbNoHalo) {
+    std::string dir = freshDir("gltf-lux");
+    writeFile(dir + "/lamp.gltf",
+              readBytes(std::string(GLINT_SOURCE_DIR) + "/tests/data/gltf/lamp-in-lux.gltf"));
+    const std::string small = " --size 64x48 --spp 16 --no-denoise";
+    CommandResult r = runGlint("lamp.gltf -o chosen.pfm" + small, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err,
+                         "its lights are in physical units (candela, lux), 256 times as "
+                         "bright as the studio: exposure -8 (--exposure changes it)"))
+        << r.err;
+    r = runGlint("lamp.gltf -o raw.pfm --exposure 0" + small, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Film chosen = readPfm(dir + "/chosen.pfm"), raw = readPfm(dir + "/raw.pfm");
+    for (auto [x, y] : {std::pair{10, 10}, {32, 30}, {46, 32}})
+        EXPECT_NEAR(chosen.at(x, y).y * 256, raw.at(x, y).y, 1e-4 * raw.at(x, y).y)
+            << x << " " << y;
+    // The ground beside the bulb shows the studio as it is (about 0.49), not a shadow.
+    EXPECT_GT(raw.at(46, 32).y, 0.45) << raw.at(46, 32);
+}
+
 }  // namespace
 }  // namespace glint::test

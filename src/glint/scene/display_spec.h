@@ -19,6 +19,10 @@ struct DisplaySpec {
     ToneMap toneMap = ToneMap::Clamp;
     /// 8-bit outputs through the sRGB curve, rounded; false: the course's floor(255 c).
     bool srgb = false;
+    /// Exposure in EV (radiance times 2^exposure) the scene is meant to be shown at: 0 but for
+    /// a model lit by its own lights in physical units (model_framing.h); `--exposure`
+    /// overrides it.
+    double exposure = 0;
 
     bool operator==(const DisplaySpec&) const = default;
 };

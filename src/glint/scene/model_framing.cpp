@@ -242,11 +242,72 @@ ModelScene studioScene(const Model& model, int width, int height, const ModelLoo
                               : path + " has no camera: framing it with " + camera +
                                     ", and showing it " + staging;
     if (!placed.has.empty()) out.note += " (and " + placed.has + ")";
+    if (const double ev = modelExposure(scene, e.center, e.radius); ev != 0) {
+        scene.display.exposure = ev;
+        out.note += "; its lights are in physical units (candela, lux), " + format(std::exp2(-ev)) +
+                    " times as bright as the studio: exposure " + format(ev) +
+                    " (--exposure changes it)";
+    }
     out.scene = std::move(placed.scene);
     return out;
 }
 
 }  // namespace
+
+namespace {
+
+/// Whether the point light at `p` sits inside emitting geometry (a bulb around it, as glTF
+/// files model lamps): inside the box of the emitting primitives within `near` of it. Such a
+/// light lights nothing but its bulb's inside.
+bool inBulb(const Scene& scene, const Vec3& p, double near) {
+    const Primitives& prims = scene.primitives;
+    auto emits = [&](uint32_t m) {
+        return m != Primitives::kMixedMaterials && !(scene.materials[m].emission == Vec3(0));
+    };
+    Bounds3f bulb;
+    auto add = [&](Bounds3f b) {
+        const Vec3 lo(b.lo), hi(b.hi);
+        const Vec3 gap = max(max(lo - p, p - hi), Vec3(0));
+        if (length(gap) <= near) bulb.extend(b);
+    };
+    for (uint32_t id = 0; id < prims.boundedCount(); ++id) {
+        if (prims.isInstance(id)) {
+            const Primitives& mesh = prims.sharedMesh(prims.instanceMesh(id));
+            const Transform& t = prims.instanceTransform(id);
+            for (uint32_t k = 0; k < mesh.triangleCount(); ++k) {
+                if (!emits(mesh.materialOf(k))) continue;
+                Bounds3f b;
+                for (const Vec3f& v : mesh.triangleVertices(k)) b.extend(Vec3f(t.point(Vec3(v))));
+                add(b);
+            }
+        } else if (emits(prims.materialOf(id))) {
+            add(prims.bounds(id));
+        }
+    }
+    if (bulb.empty()) return false;
+    const Vec3 lo(bulb.lo), hi(bulb.hi);
+    return p.x > lo.x && p.y > lo.y && p.z > lo.z && p.x < hi.x && p.y < hi.y && p.z < hi.z;
+}
+
+}  // namespace
+
+double modelExposure(const Scene& scene, const Vec3& at, double size) {
+    double lights = 0;  // the radiance of a white matte surface at `at` facing each light
+    for (const LightSpec& l : scene.lights) {
+        const double power = luminance(l.color);
+        if (l.kind == LightSpec::Kind::Directional) {
+            lights += power;
+        } else if (l.kind != LightSpec::Kind::Quad && !inBulb(scene, l.position, 0.1 * size)) {
+            // Point and spot lights by the inverse square.
+            const double d = std::max(length(l.position - at), 0.25 * size);
+            lights += power / (l.attenuation.x + l.attenuation.y * d + l.attenuation.z * d * d);
+        }
+    }
+    const double studio = luminance(studioEnvironment()->averageRadiance());
+    const double ratio = lights / studio;
+    if (!(ratio > kPhysicalLightRatio) || !std::isfinite(ratio)) return 0;
+    return -std::round(2 * std::log2(ratio)) / 2;
+}
 
 ModelScene frameModelScene(const Model& model, int width, int height, const ModelLook& look) {
     ModelScene out = look.studio ? studioScene(model, width, height, look)

@@ -45,6 +45,17 @@ inline constexpr int kStudioMaxDepth = 12;
 inline constexpr BounceLimits kStudioBounces{
     .diffuse = 8, .glossy = 8, .transmission = 12, .volume = 8};
 
+/// A model whose own lights light it more than this many times as brightly as the studio
+/// environment does is taken to give them in physical units (glTF's candela and lux), and the
+/// studio look chooses an exposure for them (modelExposure).
+inline constexpr double kPhysicalLightRatio = 4;
+
+/// The exposure (EV, in half stops) at which `scene`'s own lights light the point `at` as
+/// brightly as the studio environment would, when they outshine it more than
+/// kPhysicalLightRatio times (glTF files in physical units); 0 otherwise. `size` is the
+/// model's radius: lights nearer the point than a quarter of it count from there.
+double modelExposure(const Scene& scene, const Vec3& at, double size);
+
 /// What a framed model stands on.
 enum class ModelGround {
     Shadow,  ///< A shadow catcher: the environment, darkened by the model's shadow.

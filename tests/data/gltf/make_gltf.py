@@ -529,3 +529,60 @@ a.add("nodes", {"name": "sun", "rotation": quaternion((1, 0, 0), -150),
 a.add("scenes", {"nodes": [0, 1, 2, 3]})
 a.j["scene"] = 0
 a.write_gltf("unlit.gltf")
+
+# lamp-in-lux.gltf: lit in physical units, as glTF means its lights: a 1500 cd point light inside
+# its glowing bulb (emissive strength 1500) above a white cube, and a 512 lux sun. At exposure 0
+# it is white; glint chooses an exposure for it. No ground of its own: the model mode's shadow
+# catcher takes the cube's shadow, and none from the bulb around the light.
+a = Asset()
+a.add("materials", {"name": "white", "pbrMetallicRoughness": {"metallicFactor": 0,
+                                                               "roughnessFactor": 0.6}})
+a.add("materials", {"name": "bulb", "emissiveFactor": [1, 0.85, 0.6],
+                    "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1],
+                                             "metallicFactor": 0},
+                    "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1500}}})
+P, N, I = [], [], []
+for axis in range(3):
+    for sign in (-1, 1):
+        base = len(P)
+        u, v = (axis + 1) % 3, (axis + 2) % 3
+        for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            p = [0.0, 0.0, 0.0]
+            p[axis], p[u], p[v] = sign * 0.3, cu * 0.3, cv * 0.3
+            P.append((p[0], p[1] + 0.3, p[2]))
+            n = [0, 0, 0]
+            n[axis] = sign
+            N.append(tuple(n))
+        I += [base + i for i in ([0, 1, 2, 0, 2, 3] if sign > 0 else [0, 2, 1, 0, 3, 2])]
+a.add("meshes", {"name": "cube", "primitives": [{"attributes": {
+    "POSITION": a.vec(P, "VEC3"), "NORMAL": a.vec(N, "VEC3")}, "indices": a.indices(I),
+    "material": 0}]})
+P, N, I = [], [], []
+rings, segs = 8, 16
+for r in range(rings + 1):
+    th = math.pi * r / rings
+    for s_ in range(segs + 1):
+        ph = 2 * math.pi * s_ / segs
+        n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
+        N.append(n)
+        P.append(tuple(0.08 * c for c in n))
+for r in range(rings):
+    for s_ in range(segs):
+        k = r * (segs + 1) + s_
+        I += [k, k + segs + 1, k + 1, k + 1, k + segs + 1, k + segs + 2]
+a.add("meshes", {"name": "bulb", "primitives": [{"attributes": {
+    "POSITION": a.vec(P, "VEC3"), "NORMAL": a.vec(N, "VEC3")}, "indices": a.indices(I),
+    "material": 1}]})
+a.j["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"]
+a.j["extensions"] = {"KHR_lights_punctual": {"lights": [
+    {"name": "filament", "type": "point", "color": [1, 0.85, 0.6], "intensity": 1500},
+    {"name": "sun", "type": "directional", "intensity": 512}]}}
+a.add("nodes", {"name": "cube", "mesh": 0})
+a.add("nodes", {"name": "bulb", "mesh": 1, "translation": [0.6, 1.1, 0.2]})
+a.add("nodes", {"name": "filament", "translation": [0.6, 1.1, 0.2],
+                "extensions": {"KHR_lights_punctual": {"light": 0}}})
+a.add("nodes", {"name": "sun", "rotation": quaternion((1, 0.3, 0), -60),
+                "extensions": {"KHR_lights_punctual": {"light": 1}}})
+a.add("scenes", {"nodes": [0, 1, 2, 3]})
+a.j["scene"] = 0
+a.write_gltf("lamp-in-lux.gltf")

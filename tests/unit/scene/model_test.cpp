@@ -241,6 +241,44 @@ TEST(ModelFraming, TheStudioAddsToTheModelsOwnCameraAndLights) {
               "(and its camera 0 (node 1) and 1 light of its own)");
 }
 
+TEST(ModelFraming, LightsInPhysicalUnitsGetAnExposureThatBringsThemToTheStudiosLevel) {
+    const double studio = luminance(studioEnvironment()->averageRadiance());
+    auto sun = [](double level) {
+        LightSpec l;
+        l.kind = LightSpec::Kind::Directional;
+        l.direction = {0, 1, 0};
+        l.color = Vec3(level);
+        return l;
+    };
+    Scene scene;
+    scene.lights = {sun(100 * studio)};  // 100 times the studio: 2^-6.64, to the half stop
+    EXPECT_EQ(modelExposure(scene, Vec3(0), 1), -6.5);
+    scene.lights = {sun(3 * studio)};  // a file lit about as brightly as the studio: as it is
+    EXPECT_EQ(modelExposure(scene, Vec3(0), 1), 0);
+    // A point light by the inverse square from where it is measured (not nearer than a
+    // quarter of the model's size).
+    LightSpec bulb;
+    bulb.position = {0, 2, 0};
+    bulb.attenuation = {0, 0, 1};
+    bulb.color = Vec3(4 * 64 * studio);
+    scene.lights = {bulb};
+    EXPECT_EQ(modelExposure(scene, Vec3(0), 1), -6);
+    EXPECT_EQ(modelExposure(scene, Vec3(0, 2, 0), 4), -8);  // counted from 1 away
+    // Inside a glowing bulb it lights nothing outside: it counts for nothing.
+    Material glass;
+    glass.emission = Vec3(5);
+    scene.primitives.addSphere(Sphere{{0, 2, 0}, 0.1, {}}, scene.addMaterial(glass));
+    EXPECT_EQ(modelExposure(scene, Vec3(0), 1), 0);
+
+    // The studio look chooses it, says so, and shows the scene at it.
+    Model model = singleMeshModel(triangle());
+    model.lights.push_back(sun(1000 * studio));
+    ModelScene m = frameModelScene(model);
+    EXPECT_EQ(m.scene->display.exposure, -10);
+    EXPECT_THAT(m.note, HasSubstr("its lights are in physical units (candela, lux), 1024 times "
+                                  "as bright as the studio: exposure -10 (--exposure changes it)"));
+}
+
 TEST(ModelFraming, EachStudioDefaultCanBeTurnedOff) {
     ModelLook look;
     look.ground = ModelGround::None;

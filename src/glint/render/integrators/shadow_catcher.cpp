@@ -122,6 +122,13 @@ std::optional<double> ShadowCatcherShading::intersect(const Ray& ray) const {
     return t;
 }
 
+bool ShadowCatcherShading::enclosedByEmitter(const Ray& shadow) const {
+    Hit hit;
+    if (!scene_.intersect(shadow, hit)) return false;
+    const SurfaceInteraction si = scene_.primitives.interaction(shadow, hit);
+    return !(scene_.materials[si.material].emission == Vec3(0));
+}
+
 Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvironment,
                                     double uLight, RayCounts& counts) const {
     const Vec3 behind = scene_.backgroundRadiance(dir);
@@ -153,8 +160,16 @@ Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvi
         double end = s->distance;
         if (std::isfinite(end)) end -= spawnOffset(p + s->wi * end, offset);
         counts.shadow++;
-        if (scene_.occluded(spawnRay(p, s->wi, offset, end)))
-            blocked += each ? e : e * static_cast<double>(lights.size());
+        const Ray shadow = spawnRay(p, s->wi, offset, end);
+        if (!scene_.occluded(shadow)) continue;
+        // A light inside an emitting surface (a bulb around a point light, as glTF files
+        // have them) lights the scene through its bulb alone: it neither weighs in E nor
+        // shadows the plane, where it would darken a wide halo around the bulb.
+        if (enclosedByEmitter(shadow)) {
+            if (each) irradiance -= e;
+            continue;
+        }
+        blocked += each ? e : e * static_cast<double>(lights.size());
     }
     return behind * (Vec3(1) - ratio(blocked, irradiance));
 }

@@ -15,7 +15,8 @@
 /// without noise. The environment's direction is drawn over the upper hemisphere in proportion
 /// to the map's luminance times cos(theta), texel by texel (for a background colour: by
 /// cos(theta)), so that each blocked sample weighs about E itself: in full shadow the estimate
-/// is then nearly noiseless too. Lights of emissive surfaces cast no shadow on it.
+/// is then nearly noiseless too. Lights of emissive surfaces cast no shadow on it, nor does a
+/// light whose way to the plane an emitting surface blocks (a point light in its bulb).
 
 #include <optional>
 #include <vector>
@@ -57,6 +58,9 @@ class ShadowCatcherShading {
     std::optional<EnvironmentSample> sampleEnvironment(Point2 u) const;
 
   private:
+    /// Whether what first blocks the light's `shadow` ray emits light itself: the light's bulb.
+    bool enclosedByEmitter(const Ray& shadow) const;
+
     const Scene& scene_;
     std::vector<Light> lights_;  ///< The scene's own (point, spot, directional, quad).
     double height_;

@@ -215,6 +215,39 @@ TEST(ShadowCatcher, TheSceneLightsCastShadowsToo) {
               scene.environment->eval({0, -1, 0}));
 }
 
+TEST(ShadowCatcher, APointLightInsideItsGlowingBulbCastsNoShadowAroundIt) {
+    // A bulb (an emitting sphere) around a bright point light, a dim environment: the light
+    // cannot leave the bulb, and the plane around it shows the environment, not a dark halo
+    // (issue 37); an ordinary sphere there still shadows it.
+    for (bool glows : {true, false}) {
+        Scene scene;
+        scene.shadowCatcher = ShadowCatcher{0};
+        scene.environment = constantMap(0.1);
+        Material bulb;
+        bulb.diffuse = Vec3(0.5);
+        if (glows) bulb.emission = Vec3(3);
+        scene.primitives.addSphere(Sphere{{0, 2, 0}, 0.2, {}}, scene.addMaterial(bulb));
+        LightSpec point;
+        point.position = {0, 2, 0};
+        point.color = Vec3(50);
+        scene.lights.push_back(point);
+        scene.prepare();
+        ShadowCatcherShading catcher(scene);
+        Rng rng(3);
+        RayCounts counts;
+        // Beside the bulb, where the sphere hides almost none of the environment.
+        const Vec3 beside(1.5, 0, 0);
+        test::MeanEstimate e;
+        for (int i = 0; i < 2000; ++i)
+            e.add(catcher.radiance(beside, {0, -1, 0}, uniform2(rng), rng.uniform(), counts).y);
+        if (glows) {
+            EXPECT_GT(e.mean(), 0.099) << "a halo around the bulb";
+        } else {
+            EXPECT_LT(e.mean(), 0.01) << "the sphere hides the light";
+        }
+    }
+}
+
 TEST(ShadowCatcher, LayersOfAlphaBlendedSurfacesLetThroughTheirShareOfLight) {
     // N wide layers of alpha a above the plane, under the environment and a light straight
     // above: each shadow ray passes a layer with probability 1 - a, so (1 - a)^N of the light
