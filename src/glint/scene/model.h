@@ -125,7 +125,10 @@ struct Model {
     std::optional<ModelCamera> camera;
     /// A camera that moves over the shutter: its specs at the shutter's keys; empty if still.
     std::vector<CameraSpec> cameraMotion;
-    std::vector<LightSpec> lights;  ///< In the model's space.
+    /// In the model's space, physically: point and spot lights' colour their radiant
+    /// intensity (glTF's candela), directional lights' their irradiance (lux), as the path
+    /// tracer takes them.
+    std::vector<LightSpec> lights;
     /// The format's extensions the file uses, by name (glTF's; none for other formats).
     std::vector<FormatExtension> extensions;
     /// The file's animations (glTF's), played or not.

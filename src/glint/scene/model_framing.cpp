@@ -144,7 +144,8 @@ struct Placed {
     std::string has;  ///< What the file brought, for the note ("its camera 0", "2 lights ...").
 };
 
-Placed placeWithItsOwn(const Model& model, int width, int height) {
+/// The model placed with its camera and lights, the lights' colours times `lightScale`.
+Placed placeWithItsOwn(const Model& model, int width, int height, double lightScale = 1) {
     SceneBuilder builder;
     Scene& settings = builder.scene();
     settings.width = width > 0 ? width : 640;
@@ -161,7 +162,10 @@ Placed placeWithItsOwn(const Model& model, int width, int height) {
                 std::lround(settings.width / model.camera->aspectRatio), 1L, long(kMaxImageSide)));
     }
     if (!model.lights.empty()) {
-        for (const LightSpec& light : model.lights) builder.addLight(light);
+        for (LightSpec light : model.lights) {
+            light.color = light.color * lightScale;
+            builder.addLight(light);
+        }
         has = (has.empty() ? "" : has + " and ") + std::to_string(model.lights.size()) +
               (model.lights.size() == 1 ? " light" : " lights") + " of its own";
     }
@@ -170,7 +174,9 @@ Placed placeWithItsOwn(const Model& model, int width, int height) {
 
 /// The classic look: what the model lacks of a camera (with a floor and a sky) and lights.
 ModelScene classicScene(const Model& model, int width, int height, const ModelLook& look) {
-    Placed placed = placeWithItsOwn(model, width, height);
+    // The Whitted integrator's diffuse term is kd N.L without a Lambertian's 1/pi: a light of
+    // colour c shows a white surface as c, so the model's physical lights are divided by pi.
+    Placed placed = placeWithItsOwn(model, width, height, 1 / std::numbers::pi);
     Scene& scene = *placed.scene;
     const std::string& path = model.name;
     Framing framing{!model.camera, model.lights.empty(),
@@ -292,7 +298,8 @@ bool inBulb(const Scene& scene, const Vec3& p, double near) {
 }  // namespace
 
 double modelExposure(const Scene& scene, const Vec3& at, double size) {
-    double lights = 0;  // the radiance of a white matte surface at `at` facing each light
+    // The radiance of a white matte surface at `at` facing each light: irradiance / pi.
+    double lights = 0;
     for (const LightSpec& l : scene.lights) {
         const double power = luminance(l.color);
         if (l.kind == LightSpec::Kind::Directional) {
@@ -304,7 +311,7 @@ double modelExposure(const Scene& scene, const Vec3& at, double size) {
         }
     }
     const double studio = luminance(studioEnvironment()->averageRadiance());
-    const double ratio = lights / studio;
+    const double ratio = lights / std::numbers::pi / studio;
     if (!(ratio > kPhysicalLightRatio) || !std::isfinite(ratio)) return 0;
     return -std::round(2 * std::log2(ratio)) / 2;
 }

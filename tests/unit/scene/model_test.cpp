@@ -242,7 +242,9 @@ TEST(ModelFraming, TheStudioAddsToTheModelsOwnCameraAndLights) {
 }
 
 TEST(ModelFraming, LightsInPhysicalUnitsGetAnExposureThatBringsThemToTheStudiosLevel) {
-    const double studio = luminance(studioEnvironment()->averageRadiance());
+    // A light's colour is physical (radiant intensity, irradiance): a white matte surface
+    // facing it shows colour / pi / d^2, which is compared with the studio's radiance.
+    const double studio = std::numbers::pi * luminance(studioEnvironment()->averageRadiance());
     auto sun = [](double level) {
         LightSpec l;
         l.kind = LightSpec::Kind::Directional;

@@ -200,7 +200,11 @@ std::optional<LightSpec> nodeLight(Context& ctx, int index, const Mat4& world,
         !std::isfinite(l.intensity) || l.intensity < 0)
         ctx.fail(label + ": its color and intensity must be finite numbers, not negative");
     LightSpec out;
-    out.color = colour * (l.intensity * kGltfLightScale);
+    // Candela (point, spot) and lux (directional) as the path tracer's radiant intensity and
+    // irradiance: a white matte surface lit head-on at 1 m shows intensity / pi, as Cycles
+    // (the importer's 'COMPAT' lighting) and three.js show it. The classic look scales them
+    // to the course's convention (model_framing.h).
+    out.color = colour * l.intensity;
     if (l.type == "point" || l.type == "spot") {
         out.kind = LightSpec::Kind::Point;
         out.position = applyPoint(world, Vec3(0));

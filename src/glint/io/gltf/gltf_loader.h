@@ -40,11 +40,6 @@ struct GltfOptions {
     std::string variant;
 };
 
-/// Glint's light colour for a glTF light of `intensity` (candela for point lights, lux for
-/// directional ones): colour x intensity / pi, so that a white Lambertian surface lit head-on
-/// shows the radiance a physically based glTF viewer computes, before its exposure.
-constexpr double kGltfLightScale = 0.31830988618379067;  // 1 / pi
-
 /// Parses the glTF asset `bytes` (JSON text, or a binary .glb recognised by its magic);
 /// `fileName` names it in messages, and its directory is where external buffers and images are
 /// found. Throws SceneError naming the file at the first error, or if the asset would need more

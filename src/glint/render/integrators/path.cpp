@@ -326,29 +326,30 @@ Vec3 PathIntegrator::li(const Ray& cameraRay, const Hit* cameraHit, PathContext&
         const double uLight = uChoices.x;
         const Point2 uLightPoint = sampler.get2D();
         const Vec3 receiver = receivingNormal(bsdf, si.ng);
-        if (!lights_.empty() && !bsdf.specularOnly()) {
-            std::optional<LightSample> ls = lights_.sample(si.p, receiver, uLight, uLightPoint);
+        auto addLight = [&](const LightSample& ls) {
             // BSDF sampling alone cannot reach delta lights: they are sampled in every mode.
             // Past casters from a seen surface, most lights are the light pass's.
-            if (ls && !(ls->L == Vec3(0)) && (ls->delta || strategy_ != Strategy::BsdfOnly) &&
-                !(castersSinceSeen > 0 && ls->leftToPass)) {
-                Vec3 wi = frame.toLocal(ls->wi);
-                if (!consistent(ls->wi, wi)) wi = Vec3(0);
-                Vec3 f = bsdf.eval(wo, wi) * std::abs(wi.z);
-                if (!(f == Vec3(0))) {
-                    ctx.counts.shadow++;
-                    const Vec3 tr = transmittance(
-                        shadowRayOffSurface(si.p, si.ng, ls->wi, ls->distance, offset),
-                        mediumAfter(m, bsdf, ls->wi, si.ng, medium), ctx);
-                    if (!(tr == Vec3(0))) {
-                        double w = ls->delta || strategy_ == Strategy::LightsOnly
-                                       ? 1
-                                       : powerHeuristic(ls->pdf, bsdf.pdf(wo, wi));
-                        const Vec3 light = beta * f * tr * ls->L * (w / ls->pdf);
-                        L += clamped(light, depth + 1);
-                    }
-                }
-            }
+            if (ls.L == Vec3(0) || !(ls.delta || strategy_ != Strategy::BsdfOnly) ||
+                (castersSinceSeen > 0 && ls.leftToPass))
+                return;
+            Vec3 wi = frame.toLocal(ls.wi);
+            if (!consistent(ls.wi, wi)) wi = Vec3(0);
+            Vec3 f = bsdf.eval(wo, wi) * std::abs(wi.z);
+            if (f == Vec3(0)) return;
+            ctx.counts.shadow++;
+            const Vec3 tr =
+                transmittance(shadowRayOffSurface(si.p, si.ng, ls.wi, ls.distance, offset),
+                              mediumAfter(m, bsdf, ls.wi, si.ng, medium), ctx);
+            if (tr == Vec3(0)) return;
+            double w = ls.delta || strategy_ == Strategy::LightsOnly
+                           ? 1
+                           : powerHeuristic(ls.pdf, bsdf.pdf(wo, wi));
+            L += clamped(beta * f * tr * ls.L * (w / ls.pdf), depth + 1);
+        };
+        if (!lights_.empty() && !bsdf.specularOnly()) {
+            lights_.sampleEach(si.p, addLight);  // a few delta lights, each (light_sampler.h)
+            if (std::optional<LightSample> ls = lights_.sample(si.p, receiver, uLight, uLightPoint))
+                addLight(*ls);
         }
 
         // ==== BSDF sample: the next direction, and the passes' way on from smooth surfaces ====

@@ -44,23 +44,26 @@ Vec3 PathIntegrator::scatterInMedium(const Medium& med, uint32_t medium, const V
                                      SobolSampler& sampler, PathContext& ctx, Vec3& L) const {
     const HenyeyGreenstein phase{med.g};
     const Point2 uLight = sampler.get2D(), uLightPoint = sampler.get2D();
-    if (!lights_.empty()) {
-        std::optional<LightSample> ls = lights_.sample(p, Vec3(0), uLight.x, uLightPoint);
-        if (ls && !(ls->L == Vec3(0)) && (ls->delta || strategy_ != Strategy::BsdfOnly)) {
-            const double f = phase.eval(wo, ls->wi);
-            ctx.counts.shadow++;
-            Ray shadow{p, ls->wi, 0, kInfinity};
-            if (std::isfinite(ls->distance)) {
-                const Vec3 target = p + ls->wi * ls->distance;
-                shadow.tMax = ls->distance - spawnOffset(target, scene_.spawnOffset());
-            }
-            const Vec3 tr = transmittance(shadow, medium, ctx);
-            if (!(tr == Vec3(0)) && f > 0) {
-                const double w =
-                    ls->delta || strategy_ == Strategy::LightsOnly ? 1 : powerHeuristic(ls->pdf, f);
-                L += clamped(beta * tr * ls->L * (f * w / ls->pdf), depth + 1);
-            }
+    auto addLight = [&](const LightSample& ls) {
+        if (ls.L == Vec3(0) || !(ls.delta || strategy_ != Strategy::BsdfOnly)) return;
+        const double f = phase.eval(wo, ls.wi);
+        ctx.counts.shadow++;
+        Ray shadow{p, ls.wi, 0, kInfinity};
+        if (std::isfinite(ls.distance)) {
+            const Vec3 target = p + ls.wi * ls.distance;
+            shadow.tMax = ls.distance - spawnOffset(target, scene_.spawnOffset());
         }
+        const Vec3 tr = transmittance(shadow, medium, ctx);
+        if (!(tr == Vec3(0)) && f > 0) {
+            const double w =
+                ls.delta || strategy_ == Strategy::LightsOnly ? 1 : powerHeuristic(ls.pdf, f);
+            L += clamped(beta * tr * ls.L * (f * w / ls.pdf), depth + 1);
+        }
+    };
+    if (!lights_.empty()) {
+        lights_.sampleEach(p, addLight);  // a few delta lights, each (light_sampler.h)
+        if (std::optional<LightSample> ls = lights_.sample(p, Vec3(0), uLight.x, uLightPoint))
+            addLight(*ls);
     }
     return phase.sample(wo, sampler.get2D());
 }

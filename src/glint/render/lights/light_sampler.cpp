@@ -30,9 +30,19 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     };
 
     // The scene's own lights, but the quads: their emissive triangles below stand for them.
+    // A few delta lights are each sampled, not chosen (see the header).
+    const size_t deltas = std::count_if(scene.lights.begin(), scene.lights.end(),
+                                        [](const LightSpec& s) { return s.isDelta(); });
+    const bool each = deltas >= 2 && deltas <= kEachDelta;
     for (const LightSpec& spec : scene.lights) {
         if (spec.kind == LightSpec::Kind::Quad) continue;
         const Light light = lightFromSpec(spec);
+        if (each) {
+            each_.push_back(static_cast<uint32_t>(lights_.size()));
+            lights_.push_back(light);
+            infiniteWeight_.push_back(0);
+            continue;
+        }
         if (light.bounds())
             addBounded(light);
         else if (light.infiniteImportance() > 0)
@@ -132,7 +142,7 @@ double LightSampler::pInfinite(const Vec3& p, const Vec3& n) const {
 
 std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, double uLight,
                                                 Point2 u) const {
-    if (lights_.empty()) return std::nullopt;
+    if (!choosesAny()) return std::nullopt;
     uint32_t index;
     double choice;
     const double pInf = pInfinite(p, n);
@@ -160,6 +170,7 @@ std::optional<LightSample> LightSampler::sample(const Vec3& p, const Vec3& n, do
 
 double LightSampler::choiceProbability(size_t index, const Vec3& p, const Vec3& n) const {
     if (index >= lights_.size()) return 0;
+    if (std::find(each_.begin(), each_.end(), index) != each_.end()) return 1;  // sampled each
     const uint32_t leaf = treeLeafOf_[index];
     if (leaf != UINT32_MAX) return (1 - pInfinite(p, n)) * tree_.pmf(p, n, leaf);
     return pInfinite(p, n) * infiniteWeight_[index] / infiniteTotal_;

@@ -12,6 +12,12 @@
 /// the same units), then within the group: a light at infinity by its irradiance, one of the
 /// others through the light tree (render/lights/light_tree.h, pbrt-v4's BVHLightSampler), by
 /// its power, distance and orientation as seen from the shading point and its normal.
+///
+/// A scene's point, spot and directional lights, when it has two to kEachDelta of them, are
+/// not chosen but each sampled at every shading point (sampleEach): choosing among coincident
+/// or nearby lights of different colours (red, green and blue lamps in one place) shows as
+/// colour noise that no choice by power and distance can remove, and a delta light costs one
+/// shadow ray and no sampling of its own.
 
 #include <cstdint>
 #include <optional>
@@ -48,6 +54,23 @@ class LightSampler {
     size_t size() const { return lights_.size(); }
     /// Light `index` (of size()).
     const Light& light(size_t index) const { return lights_[index]; }
+
+    /// The most point, spot and directional lights sampled each (see the file comment).
+    static constexpr size_t kEachDelta = 8;
+
+    /// Calls `f(const LightSample&)` with a sample of each light that is sampled at every
+    /// shading point (delta lights, pdf 1), for point `p`.
+    template <class F>
+    void sampleEach(const Vec3& p, F&& f) const {
+        for (uint32_t index : each_) {
+            const Light& light = lights_[index];
+            if (std::optional<LightLiSample> s = light.sampleLi(p, Point2{0.5, 0.5}))
+                f(LightSample{s->wi, s->L, s->pdf, s->distance, s->delta,
+                              light.tracedByLightPass(s->L)});
+        }
+    }
+    /// Whether sample() has lights to choose among (besides those sampled each).
+    bool choosesAny() const { return lights_.size() > each_.size(); }
 
     /// Chooses a light with `uLight` for point `p` whose surface normal is `n` (zero: p
     /// receives from every side, behind glass or in a medium) and samples a direction towards
@@ -106,6 +129,7 @@ class LightSampler {
     /// triangle in the mesh).
     std::unordered_map<uint64_t, uint32_t> lightOfInstanced_;
     uint32_t environment_ = UINT32_MAX;  ///< Index of the environment light, if any.
+    std::vector<uint32_t> each_;  ///< The lights sampled at every shading point (sampleEach).
 };
 
 }  // namespace glint

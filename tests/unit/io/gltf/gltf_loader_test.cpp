@@ -404,10 +404,10 @@ TEST(GltfLoader, TheCameraAndLightsAreImported) {
     EXPECT_EQ(bulb.kind, LightSpec::Kind::Point);
     expectNear(bulb.position, {2, 3, 2.5});
     expectNear(bulb.attenuation, {0, 0, 1});
-    expectNear(bulb.color, Vec3(1, 0.9, 0.8) * (30 / std::numbers::pi), 1e-9);
+    expectNear(bulb.color, Vec3(1, 0.9, 0.8) * 30.0, 1e-9);  // candela, as radiant intensity
     const LightSpec& sun = model.lights[1];
     EXPECT_EQ(sun.kind, LightSpec::Kind::Directional);
-    expectNear(sun.color, Vec3(1.2 / std::numbers::pi), 1e-12);
+    expectNear(sun.color, Vec3(1.2), 1e-12);  // lux, as irradiance
     // The node turns -50 degrees about (1, 0.6, 0): its +z, towards the light, is raised.
     EXPECT_NEAR(length(sun.direction), 1, 1e-12);
     EXPECT_GT(sun.direction.y, 0.5);
@@ -439,7 +439,7 @@ TEST(GltfLoader, SpotLightsShineAlongTheirNodesMinusZWithinTheirConesAndOrthogra
     EXPECT_EQ(down.kind, LightSpec::Kind::Spot);
     expectNear(down.position, {0, 2, 0});
     expectNear(down.axis, {0, -1, 0}, 1e-7);
-    expectNear(down.color, Vec3(2 * kGltfLightScale), 1e-12);
+    expectNear(down.color, Vec3(2), 1e-12);  // candela as they are
     EXPECT_NEAR(down.cosInner, std::cos(0.2), 1e-12);
     EXPECT_NEAR(down.cosOuter, std::cos(0.5), 1e-12);
     EXPECT_EQ(down.range, 3);
