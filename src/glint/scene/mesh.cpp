@@ -54,6 +54,7 @@ MeshPlacement addTriangles(Scene& scene, Primitives& target, const MeshData& mes
         Material m = mesh.materials[i].material;
         if (mesh.materials[i].texture) m.texture = scene.addTexture(*mesh.materials[i].texture);
         if (mesh.materials[i].pbr) m.pbr = scene.addPbrMaterial(*mesh.materials[i].pbr);
+        if (mesh.materials[i].interior) m.interior = scene.addMedium(*mesh.materials[i].interior);
         materialIds[i] = scene.addMaterial(m);
     }
 

@@ -28,6 +28,9 @@ struct MeshMaterial {
     /// The physically based material the path tracer renders (glTF, OBJ's PBR extensions);
     /// `material` is its flat approximation for the Whitted integrator.
     std::optional<PbrMaterial> pbr;
+    /// What fills the closed surfaces of this material (glTF's KHR_materials_volume_scatter):
+    /// the path tracer's medium inside them (Material::interior); none: nothing scatters.
+    std::optional<Medium> interior;
 };
 
 /// A triangle mesh in its own (object) space.

@@ -56,6 +56,7 @@ inline constexpr std::array kGltfExtensions = {
     GltfExtension{"KHR_materials_unlit", GltfSupport::Rendered, ""},  // seen by the camera only
     GltfExtension{"KHR_materials_variants", GltfSupport::Rendered, ""},  // --variant
     GltfExtension{"KHR_materials_volume", GltfSupport::Rendered, ""},
+    GltfExtension{"KHR_materials_volume_scatter", GltfSupport::Rendered, ""},  // a medium
     GltfExtension{"KHR_mesh_quantization", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_meshopt_compression", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_texture_basisu", GltfSupport::Ignored,

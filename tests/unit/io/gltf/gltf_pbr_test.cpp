@@ -204,6 +204,43 @@ TEST(GltfPbr, UnlitKeepsTheBaseColourAndDropsTheEmission) {
     EXPECT_FALSE(pbrOf("{}").unlit);
 }
 
+TEST(GltfPbr, VolumeScatterFillsTheVolumeWithAMediumOfItsAlbedo) {
+    // KHR_materials_volume_scatter: extinction from KHR_materials_volume's attenuation
+    // (-ln 0.5 / 0.1 in every channel), scattering by the single-scattering albedo whose
+    // multi-scatter albedo the file gives: none for 0, nearly all for 1.
+    auto parsed = [](const std::string& scatter, const std::string& volume) {
+        std::string text = gltfText(kTriangleScene + std::string(R"(, "materials": [{
+            "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
+              "KHR_materials_volume": )" + volume + R"(,
+              "KHR_materials_volume_scatter": )" + scatter + "}}]"),
+                                    kTriangle);
+        text.replace(text.find(R"({"POSITION": 0})"), 15, R"({"POSITION": 0}, "material": 0)");
+        std::vector<Diagnostic> w;
+        Model model = parseGltf(text, dataPath("t.gltf"), w, {});
+        return std::pair{model.meshes.at(0).materials.at(0), w};
+    };
+    const std::string volume =
+        R"({"thicknessFactor": 1, "attenuationDistance": 0.1, "attenuationColor": [0.5, 0.5, 0.5]})";
+    auto [m, warnings] =
+        parsed(R"({"multiscatterColor": [0, 0.5, 1], "scatterAnisotropy": 0.3})", volume);
+    EXPECT_TRUE(warnings.empty());
+    ASSERT_TRUE(m.interior);
+    const double sigmaT = -std::log(0.5) / 0.1;
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(m.interior->sigmaT()[k], sigmaT, 1e-9);
+    EXPECT_NEAR(m.interior->sigmaS.x, 0, 1e-3 * sigmaT);  // black multi-scatter albedo: absorbs
+    EXPECT_GT(m.interior->sigmaS.y, 0.8 * sigmaT);        // 0.5 after many bounces: ~0.9 per bounce
+    EXPECT_LT(m.interior->sigmaS.y, 0.95 * sigmaT);
+    EXPECT_NEAR(m.interior->sigmaS.z, sigmaT, 1e-3 * sigmaT);  // white: all scatters
+    EXPECT_EQ(m.interior->g, 0.3);
+    // The medium absorbs now: the surface's own Beer-Lambert pass is off.
+    EXPECT_FALSE(std::isfinite(m.pbr->attenuationDistance));
+    // Without an attenuation distance there is nothing to scatter: said, and no medium.
+    auto [bare, said] = parsed(R"({"multiscatterColor": [1, 1, 1]})", R"({"thicknessFactor": 1})");
+    EXPECT_FALSE(bare.interior);
+    ASSERT_EQ(said.size(), 1u);
+    EXPECT_THAT(said[0].message, HasSubstr("has nothing to scatter"));
+}
+
 TEST(GltfPbr, OcclusionTexturesAreSaidToBeUnneeded) {
     std::vector<Diagnostic> warnings;
     pbrOf(R"({"occlusionTexture": {"index": 0}})", kImage + R"(, "textures": [{"source": 0}])",
