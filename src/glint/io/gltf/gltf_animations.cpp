@@ -47,6 +47,108 @@ std::optional<size_t> chooseAnimation(const Context& ctx, const std::string& nam
     ctx.fail("no animation is named '" + name + "': " + animationList(listAnimations(ctx)));
 }
 
+/// The property of ctx.model that JSON pointer `pointer` (KHR_animation_pointer) names, read
+/// and written as `width` numbers: `get` its value, `set` a new one. Material factors and the
+/// numbers and colours of material extensions, punctual lights' colour, intensity, range and
+/// cone, and perspective cameras' fields. False for any other target, or a width the target
+/// does not take. `material` is set to the material it belongs to (else -1).
+bool pointerTarget(Context& ctx, const std::string& pointer, size_t width, std::vector<double>* get,
+                   const std::vector<double>* set, int& material) {
+    std::vector<std::string> part;
+    for (size_t at = 1; at <= pointer.size() && !pointer.empty() && pointer[0] == '/';) {
+        const size_t end = std::min(pointer.find('/', at), pointer.size());
+        part.push_back(pointer.substr(at, end - at));
+        at = end + 1;
+    }
+    auto index = [&](const std::string& s, size_t count) -> std::optional<size_t> {
+        size_t i = 0;
+        auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), i);
+        if (ec != std::errc() || p != s.data() + s.size() || i >= count) return std::nullopt;
+        return i;
+    };
+    // A number or a fixed-size array of numbers, with its default where the file has none.
+    auto number = [&](double& v) {
+        if (width != 1) return false;
+        if (get) *get = {v};
+        if (set) v = (*set)[0];
+        return true;
+    };
+    auto numbers = [&](std::vector<double>& v, std::vector<double> fallback) {
+        if (width != fallback.size()) return false;
+        if (get) *get = v.size() == width ? v : fallback;
+        if (set) v = *set;
+        return true;
+    };
+    material = -1;
+    const size_t n = part.size();
+    if (n >= 3 && part[0] == "materials") {
+        const auto m = index(part[1], ctx.model.materials.size());
+        if (!m) return false;
+        material = static_cast<int>(*m);
+        tinygltf::Material& mat = ctx.model.materials[*m];
+        if (n == 4 && part[2] == "pbrMetallicRoughness") {
+            auto& pbr = mat.pbrMetallicRoughness;
+            if (part[3] == "baseColorFactor") return numbers(pbr.baseColorFactor, {1, 1, 1, 1});
+            if (part[3] == "metallicFactor") return number(pbr.metallicFactor);
+            if (part[3] == "roughnessFactor") return number(pbr.roughnessFactor);
+            return false;
+        }
+        if (n == 3 && part[2] == "emissiveFactor") return numbers(mat.emissiveFactor, {0, 0, 0});
+        if (n == 3 && part[2] == "alphaCutoff") return number(mat.alphaCutoff);
+        if (n == 5 && part[2] == "extensions") {  // a number or colour of a material extension
+            auto ext = mat.extensions.find(part[3]);
+            if (ext == mat.extensions.end() || !ext->second.IsObject()) return false;
+            tinygltf::Value::Object object = ext->second.Get<tinygltf::Value::Object>();
+            const auto it = object.find(part[4]);
+            if (it != object.end() && !it->second.IsNumber() && !it->second.IsArray()) return false;
+            if (get) {
+                get->assign(width, width == 1 ? 0.0 : 1.0);  // absent: the usual defaults
+                if (it != object.end() && it->second.IsNumber() && width == 1)
+                    (*get)[0] = it->second.GetNumberAsDouble();
+                if (it != object.end() && it->second.IsArray() && it->second.ArrayLen() == width)
+                    for (size_t k = 0; k < width; ++k)
+                        (*get)[k] = it->second.Get(static_cast<int>(k)).GetNumberAsDouble();
+            }
+            if (set) {
+                if (width == 1) {
+                    object[part[4]] = tinygltf::Value((*set)[0]);
+                } else {
+                    tinygltf::Value::Array a;
+                    for (double x : *set) a.push_back(tinygltf::Value(x));
+                    object[part[4]] = tinygltf::Value(std::move(a));
+                }
+                ext->second = tinygltf::Value(std::move(object));
+            }
+            return true;
+        }
+        return false;
+    }
+    if (n >= 5 && part[0] == "extensions" && part[1] == "KHR_lights_punctual" &&
+        part[2] == "lights") {
+        const auto l = index(part[3], ctx.model.lights.size());
+        if (!l) return false;
+        tinygltf::Light& light = ctx.model.lights[*l];
+        if (n == 5 && part[4] == "color") return numbers(light.color, {1, 1, 1});
+        if (n == 5 && part[4] == "intensity") return number(light.intensity);
+        if (n == 5 && part[4] == "range") return number(light.range);
+        if (n == 6 && part[4] == "spot" && part[5] == "innerConeAngle")
+            return number(light.spot.innerConeAngle);
+        if (n == 6 && part[4] == "spot" && part[5] == "outerConeAngle")
+            return number(light.spot.outerConeAngle);
+        return false;
+    }
+    if (n == 4 && part[0] == "cameras" && part[2] == "perspective") {
+        const auto c = index(part[1], ctx.model.cameras.size());
+        if (!c) return false;
+        tinygltf::PerspectiveCamera& p = ctx.model.cameras[*c].perspective;
+        if (part[3] == "yfov") return number(p.yfov);
+        if (part[3] == "aspectRatio") return number(p.aspectRatio);
+        if (part[3] == "znear") return number(p.znear);
+        if (part[3] == "zfar") return number(p.zfar);
+    }
+    return false;
+}
+
 /// The number of morph targets of node `node`'s mesh (0 without one).
 size_t targetsOf(const Context& ctx, int node) {
     const int mesh = ctx.model.nodes[static_cast<size_t>(node)].mesh;
@@ -91,6 +193,80 @@ std::vector<ModelAnimation> listAnimations(const Context& ctx) {
     return out;
 }
 
+namespace {
+
+/// The sampler of channel `ch` of animation `a` for `width` numbers per key.
+KeyframeTrack trackOf(Context& ctx, const tinygltf::Animation& a,
+                      const tinygltf::AnimationChannel& ch, const std::string& label,
+                      size_t width) {
+    if (ch.sampler < 0 || static_cast<size_t>(ch.sampler) >= a.samplers.size())
+        ctx.fail(label + ": sampler " + std::to_string(ch.sampler) +
+                 " does not exist (the animation has " + std::to_string(a.samplers.size()) +
+                 " samplers)");
+    const tinygltf::AnimationSampler& s = a.samplers[static_cast<size_t>(ch.sampler)];
+    KeyframeTrack track;
+    track.interpolation = s.interpolation == "STEP"          ? Interpolation::Step
+                          : s.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
+                                                             : Interpolation::Linear;
+    const FloatElements input = readFloats(ctx, s.input, "input of " + label, false);
+    const FloatElements output = readFloats(ctx, s.output, "output of " + label, false);
+    const size_t perKey = track.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    if (input.components != 1 || output.components != width || output.count != input.count * perKey)
+        ctx.fail(label + ": its sampler's keys do not match its target (" + std::to_string(width) +
+                 " numbers per key)");
+    track.times.assign(input.values.begin(), input.values.end());
+    track.values.assign(output.values.begin(), output.values.end());
+    track.width = width;
+    if (std::string problem = track.problem(); !problem.empty()) ctx.fail(label + ": " + problem);
+    return track;
+}
+
+/// Plays channel `ch` of animation `a` at time `t` if it is a KHR_animation_pointer channel:
+/// sets its target in ctx.model, keeping what it was (Context::pointed).
+void playPointer(Context& ctx, const tinygltf::Animation& a, const tinygltf::AnimationChannel& ch,
+                 const std::string& label, double t) {
+    const auto ext = ch.target_extensions.find("KHR_animation_pointer");
+    if (ch.target_path != "pointer" || ext == ch.target_extensions.end() ||
+        !ext->second.IsObject() || !ext->second.Has("pointer") ||
+        !ext->second.Get("pointer").IsString())
+        return;  // another extension's target: reported with the extensions
+    const std::string pointer = ext->second.Get("pointer").Get<std::string>();
+    // The sampler's output type gives the width: SCALAR 1, VEC3 3, VEC4 4.
+    size_t width = 0;
+    if (ch.sampler >= 0 && static_cast<size_t>(ch.sampler) < a.samplers.size()) {
+        const int out = a.samplers[static_cast<size_t>(ch.sampler)].output;
+        if (out >= 0 && static_cast<size_t>(out) < ctx.model.accessors.size())
+            width = static_cast<size_t>(tinygltf::GetNumComponentsInType(
+                ctx.model.accessors[static_cast<size_t>(out)].type));
+    }
+    std::vector<double> before;
+    int material = -1;
+    if (width == 0 || !pointerTarget(ctx, pointer, width, &before, nullptr, material)) {
+        ctx.warnOnce("pointer " + pointer,
+                     label + ": KHR_animation_pointer target '" + pointer +
+                         "' is not played (Glint plays material factors, material extensions' "
+                         "numbers and colours, punctual lights and perspective cameras)");
+        return;
+    }
+    const KeyframeTrack track = trackOf(ctx, a, ch, label, width);
+    std::vector<double> value(width);
+    track.sample(t, value.data());
+    ctx.pointed.emplace_back(pointer, before);
+    pointerTarget(ctx, pointer, width, nullptr, &value, material);
+    if (material >= 0) ctx.pointedMaterials.insert(material);
+}
+
+}  // namespace
+
+void unplayPointers(Context& ctx) {
+    // In reverse, so that a property set twice gets its first value back.
+    for (auto it = ctx.pointed.rbegin(); it != ctx.pointed.rend(); ++it) {
+        int material = -1;
+        pointerTarget(ctx, it->first, it->second.size(), nullptr, &it->second, material);
+    }
+    ctx.pointed.clear();
+}
+
 std::optional<size_t> playAnimation(Context& ctx, const ModelTime& time, std::string& played) {
     const std::optional<size_t> chosen = chooseAnimation(ctx, time.animation);
     if (!chosen) return std::nullopt;
@@ -104,7 +280,10 @@ std::optional<size_t> playAnimation(Context& ctx, const ModelTime& time, std::st
     for (size_t c = 0; c < a.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = a.channels[c];
         const std::string channel = label + ", channel " + std::to_string(c);
-        if (ch.target_node == -1) continue;  // a target of an extension (KHR_animation_pointer)
+        if (ch.target_node == -1) {  // KHR_animation_pointer, or another extension's target
+            playPointer(ctx, a, ch, channel, t);
+            continue;
+        }
         if (ch.target_node < 0 || static_cast<size_t>(ch.target_node) >= nodes.size())
             missing(ctx, "node", ch.target_node, nodes.size(), channel);
         const size_t node = static_cast<size_t>(ch.target_node);

@@ -73,13 +73,27 @@ JsonShape scanJson(std::string_view text) {
 /// receives it.
 size_t lookBeforeTinygltf(Context& ctx, std::string_view json, bool glb, bool countBinaryCopies,
                           std::string& rewritten) {
+    const bool pointers = json.find("KHR_animation_pointer") != std::string_view::npos;
     if (!countBinaryCopies && json.find("\"images\"") == std::string_view::npos &&
-        json.find("\\u") == std::string_view::npos && !mayUseCompression(json))
+        json.find("\\u") == std::string_view::npos && !mayUseCompression(json) && !pointers)
         return 0;
     nlohmann::json j = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
     if (!j.is_object()) return 0;
-    if (prepareCompression(ctx, j, glb))
-        rewritten = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    bool changed = prepareCompression(ctx, j, glb);
+    // tinygltf 2.7 drops an animation channel whose target names no node, as a
+    // KHR_animation_pointer channel's does: such a target gets node -1, which tinygltf reads and
+    // the animation player takes for a pointer (gltf_animations.cpp).
+    if (auto animations = j.find("animations");
+        pointers && animations != j.end() && animations->is_array())
+        for (nlohmann::json& a : *animations)
+            if (auto channels = a.find("channels"); channels != a.end() && channels->is_array())
+                for (nlohmann::json& c : *channels)
+                    if (auto target = c.find("target");
+                        target != c.end() && target->is_object() && !target->contains("node")) {
+                        (*target)["node"] = -1;
+                        changed = true;
+                    }
+    if (changed) rewritten = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     auto array = [&](const char* key) -> const nlohmann::json* {
         auto it = j.find(key);
         return it != j.end() && it->is_array() ? &*it : nullptr;

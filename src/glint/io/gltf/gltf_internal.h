@@ -54,6 +54,11 @@ struct Context {
     std::shared_ptr<Compression> compression;
     /// By node, what the animation played gives it; empty when none is played.
     std::vector<AnimatedNode> animated;
+    /// KHR_animation_pointer: each property the animation played set in `model` (a JSON
+    /// pointer) with the value it had before, to be put back before the next pose; and the
+    /// materials it changed, to be mapped again.
+    std::vector<std::pair<std::string, std::vector<double>>> pointed;
+    std::set<int> pointedMaterials;
 
     /// Throws SceneError naming the file.
     [[noreturn]] void fail(const std::string& message) const;
@@ -150,6 +155,8 @@ class Materials {
     explicit Materials(Context& ctx) : ctx_(ctx) {}
     /// Glint's material for glTF material `index` (in range).
     const MeshMaterial& get(int index);
+    /// Forgets the mapping of material `index`: its values changed (an animation pointer).
+    void forget(int index) { mapped_.erase(index); }
 
   private:
     MeshMaterial map(int index);
@@ -237,6 +244,8 @@ std::vector<ModelAnimation> listAnimations(const Context& ctx);
 /// animation and its sampler or channel, for data that cannot be played: a missing animation (the
 /// message lists them), key times not increasing, counts that disagree, values not finite.
 std::optional<size_t> playAnimation(Context& ctx, const ModelTime& time, std::string& played);
+/// Puts back what the last animation played through KHR_animation_pointer changed in ctx.model.
+void unplayPointers(Context& ctx);
 
 /// A node placing a mesh with a skin: its placement is posed by the skin (gltf_skins.cpp).
 struct SkinnedPlacement {

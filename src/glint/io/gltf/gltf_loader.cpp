@@ -532,7 +532,10 @@ Model GltfDocument::pose(const ModelTime& time, std::vector<Diagnostic>& warning
         out.extensions = impl_->extensions;
         out.animations = impl_->animations;
         ctx.animated.clear();
+        gltf::unplayPointers(ctx);  // the last pose's animated properties, as the file has them
         if (time.playing()) out.animation = gltf::playAnimation(ctx, time, out.posed);
+        for (int m : ctx.pointedMaterials) impl_->materials.forget(m);  // now or before animated
+        if (ctx.pointed.empty()) ctx.pointedMaterials.clear();
         std::vector<gltf::SkinnedPlacement> skinned;
         gltf::walkNodes(ctx, out, skinned);
         std::vector<gltf::VertexWeights> weights;

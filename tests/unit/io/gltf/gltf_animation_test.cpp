@@ -335,5 +335,72 @@ TEST(GltfAnimation, AFileParsedOncePosesAtEveryTimeAsAFreshParse) {
     EXPECT_TRUE(warnings.empty());
 }
 
+// KHR_animation_pointer: channels that animate a material's factors and an extension's number,
+// a light's intensity and a camera's field of view (JSON pointers into the file) set them at
+// the time posed; a later pose without the animation has the file's own values back; a target
+// Glint does not play is warned of once.
+TEST(GltfAnimation, PointersAnimateMaterialsLightsAndCameras) {
+    Animated a;
+    int times = a.asset.floats({0, 2}, "SCALAR");
+    int emissive = a.asset.floats({0, 0, 0, 1, 0.5f, 0}, "VEC3");
+    int strength = a.asset.floats({1, 3}, "SCALAR");
+    int intensity = a.asset.floats({1, 5}, "SCALAR");
+    int fov = a.asset.floats({0.5f, 1.0f}, "SCALAR");
+    auto pointer = [](int sampler, const std::string& to) {
+        return R"({"sampler": )" + std::to_string(sampler) +
+               R"(, "target": {"path": "pointer", "extensions": {"KHR_animation_pointer":
+               {"pointer": ")" +
+               to + "\"}}}}";
+    };
+    const std::string text = a.text(
+        R"([{"mesh": 0}, {"camera": 0, "translation": [0, 0, 5]},
+            {"translation": [0, 3, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}])",
+        R"([{"name": "Glow", "samplers": [)" + sampler(times, emissive) + ", " +
+            sampler(times, strength) + ", " + sampler(times, intensity) + ", " +
+            sampler(times, fov) + ", " + sampler(times, strength) + R"(], "channels": [)" +
+            pointer(0, "/materials/0/emissiveFactor") + ", " +
+            pointer(1, "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength") +
+            ", " + pointer(2, "/extensions/KHR_lights_punctual/lights/0/intensity") + ", " +
+            pointer(3, "/cameras/0/perspective/yfov") + ", " +
+            pointer(4, "/materials/0/normalTexture/scale") + "]}]",
+        R"(, "materials": [{"emissiveFactor": [0, 0, 0],
+              "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1}}}],
+            "cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}],
+            "extensionsUsed": ["KHR_animation_pointer", "KHR_lights_punctual",
+                               "KHR_materials_emissive_strength"],
+            "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point",
+                                                               "intensity": 1}]}})");
+    // Point the triangle at material 0.
+    std::string withMaterial = text;
+    withMaterial.replace(withMaterial.find(R"("targets")"), 9, R"("material": 0, "targets")");
+    std::vector<Diagnostic> warnings;
+    GltfDocument doc(withMaterial, "pointer.gltf", warnings, {});
+    auto at = [&](std::optional<double> seconds) {
+        ModelTime time;
+        time.seconds = seconds;
+        return doc.pose(time, warnings);
+    };
+    Model half = at(1);  // halfway
+    ASSERT_EQ(half.meshes.size(), 1u);
+    const PbrMaterial& glow = *half.meshes[0].materials.at(0).pbr;
+    expectNear(glow.emissive, Vec3(0.5, 0.25, 0) * 2.0, 1e-6);  // the factor times strength 2
+    ASSERT_EQ(half.lights.size(), 1u);
+    expectNear(half.lights[0].color, Vec3(3), 1e-6);
+    ASSERT_TRUE(half.camera);
+    EXPECT_NEAR(half.camera->spec.fovyDegrees, 0.75 * 180 / std::numbers::pi, 1e-4);
+    // The one target not played, said once however often it is posed.
+    Model again = at(2);
+    expectNear(again.lights[0].color, Vec3(5), 1e-6);
+    size_t said = 0;
+    for (const Diagnostic& w : warnings)
+        said += w.message.find("normalTexture/scale") != std::string::npos;
+    EXPECT_EQ(said, 1u);
+    // Not played: the file's own values.
+    Model still = at(std::nullopt);
+    expectNear(still.meshes[0].materials.at(0).pbr->emissive, Vec3(0), 1e-12);
+    expectNear(still.lights[0].color, Vec3(1), 1e-12);
+    EXPECT_NEAR(still.camera->spec.fovyDegrees, 0.5 * 180 / std::numbers::pi, 1e-9);
+}
+
 }  // namespace
 }  // namespace glint
