@@ -16,7 +16,7 @@ BUILD=$1
 OUT=$2
 shift 2
 MODELS=${*:-ClearCoatTest SheenChair ToyCar SpecularTest IridescenceLamp AnisotropyBarnLamp \
-DispersionTest GlassVaseFlowers TransmissionTest AttenuationTest}
+DispersionTest GlassVaseFlowers GlassHurricaneCandleHolder TransmissionTest AttenuationTest}
 HERE=$(cd "$(dirname "$0")" && pwd)
 ASSETS=${GLINT_ASSETS:-$HERE/../../../shared/real-world/gltf-ext}
 TSV=$ASSETS/render-fidelity-cameras.tsv
