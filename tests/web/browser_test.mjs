@@ -12,7 +12,8 @@
 // canvas changes the view; a dropped GLB renders as `glint model.glb` does; a long render can be cancelled; a timer on the page's main
 // thread keeps firing while the worker renders; the path tracer's image is denoised; and a
 // dropped animated glTF gets a time slider and Play, and renders at each time as `glint model.gltf
-// --time-at T` does.
+// --time-at T` does; a dropped glTF with material variants offers them, and renders the one
+// chosen as `glint model.gltf --variant NAME` does.
 import { execFileSync, spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -332,6 +333,31 @@ try {
     g = await waitFor('done', (p) => p.rendersDone > doneBefore9c && !p.last.preview);
     check(!g.playing && g.last.time === g.time && g.last.width === 160,
           `Pause renders the full image at the time shown (${g.time.toFixed(3)} s)`);
+
+    // 10. A dropped glTF with material variants (variants.gltf: red, and Blue and Green): the
+    //     variants offered beside the integrator, none for a file without them; choosing one
+    //     renders it as glint variants.gltf --variant does.
+    check(await page.isHidden('#variant-label'), 'a file without variants offers none');
+    let doneBefore10 = (await glintPage()).rendersDone;
+    const variants = path.join(data, 'gltf', 'variants.gltf');
+    await page.evaluate((text) => {
+        const transfer = new DataTransfer();
+        transfer.items.add(new File([text], 'variants.gltf'));
+        document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true }));
+    }, fs.readFileSync(variants, 'utf8'));
+    g = await waitFor('done', (p) => p.rendersDone > doneBefore10 && !p.last.preview);
+    check(g.materialVariants.join(', ') === 'Blue, Green' && await page.isVisible('#variant'),
+          `its variants are offered: ${g.materialVariants.join(', ')}`);
+    const own = await canvasPng('variant-own.png');
+    doneBefore10 = g.rendersDone;
+    await page.selectOption('#variant', 'Green');
+    await waitFor('done', (p) => p.rendersDone > doneBefore10 && !p.last.preview);
+    const green = await canvasPng('variant-green.png');
+    const nativeGreen = path.join(tmp, 'variant-native-green.png');
+    execFileSync(args.glint, [variants, '--variant', 'Green', '--integrator', 'whitted',
+                              '--size', '160x120', '--spp', '1', '-o', nativeGreen, '-q']);
+    check(!sameImage(own, green, 8, 160 * 120 / 50), 'the Green variant changes the image');
+    check(sameImage(green, nativeGreen, 0, 0), 'it renders as glint variants.gltf --variant Green does');
 } catch (e) {
     check(false, `the page works through every step: ${e.stack || e}`);
 } finally {

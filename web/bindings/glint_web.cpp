@@ -114,7 +114,9 @@ class Session {
     int threads() const { return pool_.threads(); }
 
     /// Reads the scene or model file at `path` as `glint FILE` does, with options
-    /// {integrator, lenient, width, height, prepare, kernels, animation, time, reuse}: prepare
+    /// {integrator, lenient, width, height, prepare, kernels, animation, time, variant, reuse}:
+    /// `variant` is a glTF model's material variant (KHR_materials_variants), as --variant;
+    /// prepare
     /// (default true) builds its BVH for rendering; false only checks it (the editor, as you
     /// type). A model's animation plays as `glint FILE --animation A --time-at T` plays it:
     /// `animation` is its index (from 0) or name (default the first), `time` the file's seconds,
@@ -124,7 +126,7 @@ class Session {
     /// instead of read again, and a camera that setCamera() moved stays where it was put.
     /// Returns {ok, error, warnings, note, width, height, spp, maxDepth, integrator,
     /// animations: [{name, start, end, channels}], animation (the index played, or null), time
-    /// (the seconds posed, or null)}.
+    /// (the seconds posed, or null), variants (the names of a model's material variants)}.
     val load(const std::string& path, const val& options) {
         val r = val::object();
         val warningList = val::array();
@@ -142,6 +144,7 @@ class Session {
             val integrator = options["integrator"];
             if (integrator.isString()) lo.look.studio = integrator.as<std::string>() != "whitted";
             lo.assets = assets_.get();
+            if (options["variant"].isString()) lo.variant = options["variant"].as<std::string>();
             val animation = options["animation"], time = options["time"];
             if (animation.isNumber())
                 lo.time.animation = std::to_string(std::max(0, animation.as<int>()));
@@ -177,6 +180,9 @@ class Session {
                 animations.call<void>("push", o);
             }
             r.set("animations", animations);
+            val variants = val::array();
+            for (const std::string& v : m.variants) variants.call<void>("push", v);
+            r.set("variants", variants);
             r.set("animation", m.animation ? val(static_cast<double>(*m.animation)) : val::null());
             r.set("time", m.animation ? val(*lo.time.seconds) : val::null());
             if (!scene->camera) throw RenderError("the scene has no camera");

@@ -23,7 +23,7 @@ const kernels = params.get('kernels') || 'auto';
 const page = (window.glintPage = {
     variant, threads: 1, kernels: null, opened: performance.now(), firstPixelMs: null, rendersDone: 0,
     previewsDone: 0, rendersCancelled: 0, last: null, state: 'starting', checks: 0,
-    animations: [], animation: null, time: null, playing: false,
+    animations: [], animation: null, time: null, playing: false, materialVariants: [],
 });
 
 // ---- the worker -------------------------------------------------------------------------
@@ -184,7 +184,8 @@ function options(preview) {
     const o = { width: size ? Number(size[1]) : undefined,
                 height: size ? Number(size[2]) : undefined,
                 spp, maxDepth: depth, integrator, passes: path,
-                denoise: path && $('denoise').checked };
+                denoise: path && $('denoise').checked,
+                variant: $('variant').value || undefined };
     // A model is framed for the full image, also in a preview.
     o.frameWidth = o.width;
     o.frameHeight = o.height;
@@ -249,6 +250,27 @@ function showAnimations(result) {
     $('timeline').hidden = !anim;
     page.animations = list;
     showTime();
+}
+
+/// The material variants of the model just loaded (KHR_materials_variants): a choice beside the
+/// integrator, hidden for a file without them; the choice stays while the same list does.
+function showVariants(result) {
+    const list = result.variants || [];
+    const select = $('variant');
+    const shown = [...select.options].slice(1).map((o) => o.value);
+    if (JSON.stringify(shown) !== JSON.stringify(list)) {
+        const own = document.createElement('option');
+        own.value = '';
+        own.textContent = "the file's own";
+        select.replaceChildren(own, ...list.map((name) => {
+            const option = document.createElement('option');
+            option.value = name;
+            option.textContent = name;
+            return option;
+        }));
+    }
+    $('variant-label').hidden = list.length === 0;
+    page.materialVariants = list;
 }
 
 /// The slider, the readout and the Play button as the time and play state are.
@@ -326,6 +348,7 @@ function onRenderMessage(m) {
                 $('maxdepth').placeholder = m.result.maxDepth;
                 if (m.result.note && !m.reposed) $('status').textContent = m.result.note;
                 showAnimations(m.result);
+                showVariants(m.result);
                 job.time = m.result.time ?? null;  // the time posed (a file's start: its own)
             }
             return;
@@ -506,7 +529,7 @@ $('animation').onchange = () => {
 };
 $('time').addEventListener('input', () => seek(Number($('time').value), true));
 $('time').addEventListener('change', () => seek(Number($('time').value), false));
-for (const id of ['size', 'spp', 'maxdepth', 'integrator', 'denoise'])
+for (const id of ['size', 'spp', 'maxdepth', 'integrator', 'denoise', 'variant'])
     $(id).addEventListener('change', () => startRender({ reload: id === 'integrator' }));
 document.addEventListener('keydown', (e) => {
     if ((e.ctrlKey || e.metaKey) && e.key === 'Enter') startRender({ reload: true });

@@ -17,6 +17,7 @@ let kernels = null;  // the traversal kernels scenes are prepared for (init)
 let current = null;  // the render in progress: {id, cancelled}
 let loadedPath = null, loadedText = null, loadedKey = null;
 let loadedTime = null;  // the time the loaded model was posed at: {animation, seconds}, or null
+let loadedVariant = '';  // the material variant the loaded model shows ('': the file's own)
 let filesChanged = false;  // files written since the last load: model files are read again
 
 const yieldToEvents = (() => {
@@ -107,7 +108,9 @@ async function render({ id, path, text, reload, options, camera, preview, time }
     // What the loaded scene depends on besides its text: a model's look and framing (the full
     // image's size, also for a preview).
     const key = JSON.stringify([options.integrator, options.frameWidth, options.frameHeight]);
-    const same = !filesChanged && path === loadedPath && text === loadedText;
+    // Another material variant: the file read anew (a parsed model keeps the variant it had).
+    const same = !filesChanged && path === loadedPath && text === loadedText &&
+                 (options.variant || '') === loadedVariant;
     const when = time || (same ? loadedTime : null);
     const reposing = same && timeKey(when) !== timeKey(loadedTime);  // the same model, a new time
     if (reload || !same || (key !== loadedKey && !preview) || reposing) {
@@ -115,7 +118,8 @@ async function render({ id, path, text, reload, options, camera, preview, time }
         const result = session.load(path, { prepare: true, integrator: options.integrator,
                                             width: options.frameWidth, height: options.frameHeight,
                                             kernels, animation: when ? when.animation : undefined,
-                                            time: when ? when.seconds : undefined, reuse: same });
+                                            time: when ? when.seconds : undefined,
+                                            variant: options.variant || undefined, reuse: same });
         postMessage({ type: 'loaded', id, path, result, reposed: reposing,
                       camera: result.ok ? session.camera(true) : null });
         filesChanged = false;
@@ -127,6 +131,7 @@ async function render({ id, path, text, reload, options, camera, preview, time }
         loadedPath = path;
         loadedText = text;
         loadedKey = key;
+        loadedVariant = options.variant || '';
         loadedTime = result.animation === null
             ? null : { animation: result.animation, seconds: result.time };
     }

@@ -133,6 +133,8 @@ struct Model {
     std::vector<FormatExtension> extensions;
     /// The file's animations (glTF's), played or not.
     std::vector<ModelAnimation> animations;
+    /// The names of the file's material variants (glTF's KHR_materials_variants), in order.
+    std::vector<std::string> variants;
     /// What was played: "animation 0 'Walk' at 1.25 s"; empty when none was.
     std::string posed;
     std::optional<size_t> animation;  ///< The index of the animation played.

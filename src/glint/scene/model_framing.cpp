@@ -322,6 +322,7 @@ ModelScene frameModelScene(const Model& model, int width, int height, const Mode
     out.framed = true;
     out.extensions = model.extensions;
     out.animations = model.animations;
+    out.variants = model.variants;
     out.animation = model.animation;
     if (!model.posed.empty()) {
         out.note += (out.note.empty() ? model.name + ": " : "; ") + "posed by " + model.posed +

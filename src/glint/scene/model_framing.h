@@ -31,6 +31,8 @@ struct ModelScene {
     std::vector<FormatExtension> extensions;
     /// The model file's animations (Model::animations): `glint --check` lists them.
     std::vector<ModelAnimation> animations;
+    /// The model file's material variants (Model::variants): the web page offers them.
+    std::vector<std::string> variants;
     /// The index of the animation played (Model::animation); none when none was.
     std::optional<size_t> animation;
 };

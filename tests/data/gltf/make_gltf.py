@@ -586,3 +586,24 @@ a.add("nodes", {"name": "sun", "rotation": quaternion((1, 0.3, 0), -60),
 a.add("scenes", {"nodes": [0, 1, 2, 3]})
 a.j["scene"] = 0
 a.write_gltf("lamp-in-lux.gltf")
+
+# variants.gltf: a quad, red as the file has it, blue and green in its two material variants
+# (KHR_materials_variants), before the file's own camera: the web page's variant picker.
+a = Asset()
+for name, colour in (("red", [0.8, 0.1, 0.1, 1]), ("blue", [0.1, 0.2, 0.8, 1]),
+                     ("green", [0.1, 0.7, 0.2, 1])):
+    a.add("materials", {"name": name, "pbrMetallicRoughness": {"baseColorFactor": colour,
+                                                                "metallicFactor": 0}})
+quad(a, material=0)
+a.j["meshes"][0]["primitives"][0]["extensions"] = {"KHR_materials_variants": {"mappings": [
+    {"material": 1, "variants": [0]}, {"material": 2, "variants": [1]}]}}
+a.j["extensionsUsed"] = ["KHR_materials_variants"]
+a.j["extensions"] = {"KHR_materials_variants": {"variants": [{"name": "Blue"},
+                                                             {"name": "Green"}]}}
+a.add("cameras", {"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 4 / 3,
+                                                         "znear": 0.05}})
+a.add("nodes", {"name": "quad", "mesh": 0, "translation": [-0.5, -0.5, 0]})
+a.add("nodes", {"name": "camera", "camera": 0, "translation": [0, 0, 2]})
+a.add("scenes", {"nodes": [0, 1]})
+a.j["scene"] = 0
+a.write_gltf("variants.gltf")

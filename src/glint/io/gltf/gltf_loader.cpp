@@ -531,6 +531,7 @@ Model GltfDocument::pose(const ModelTime& time, std::vector<Diagnostic>& warning
         out.name = impl_->file;
         out.extensions = impl_->extensions;
         out.animations = impl_->animations;
+        out.variants = gltf::materialVariants(ctx);
         ctx.animated.clear();
         gltf::unplayPointers(ctx);  // the last pose's animated properties, as the file has them
         if (time.playing()) out.animation = gltf::playAnimation(ctx, time, out.posed);
