@@ -47,6 +47,40 @@ std::optional<size_t> chooseAnimation(const Context& ctx, const std::string& nam
     ctx.fail("no animation is named '" + name + "': " + animationList(listAnimations(ctx)));
 }
 
+/// Within JSON object `v`, the number or array of `width` numbers that `keys` lead to: read
+/// into `get` (absent: 0, or 1s for an array), written from `set`. False when the way is not
+/// objects or the value is neither.
+bool valueTarget(tinygltf::Value& v, const std::vector<std::string>& keys, size_t at, size_t width,
+                 std::vector<double>* get, const std::vector<double>* set) {
+    if (!v.IsObject() || at >= keys.size()) return false;
+    tinygltf::Value::Object object = v.Get<tinygltf::Value::Object>();
+    auto it = object.find(keys[at]);
+    if (at + 1 < keys.size()) {
+        if (it == object.end() || !valueTarget(it->second, keys, at + 1, width, get, set))
+            return false;
+    } else {
+        if (it != object.end() && !it->second.IsNumber() && !it->second.IsArray()) return false;
+        if (get) {
+            get->assign(width, width == 1 ? 0.0 : 1.0);  // absent: the usual defaults
+            if (it != object.end() && it->second.IsNumber() && width == 1)
+                (*get)[0] = it->second.GetNumberAsDouble();
+            if (it != object.end() && it->second.IsArray() && it->second.ArrayLen() == width)
+                for (size_t k = 0; k < width; ++k)
+                    (*get)[k] = it->second.Get(static_cast<int>(k)).GetNumberAsDouble();
+        }
+        if (!set) return true;
+        if (width == 1) {
+            object[keys[at]] = tinygltf::Value((*set)[0]);
+        } else {
+            tinygltf::Value::Array a;
+            for (double x : *set) a.push_back(tinygltf::Value(x));
+            object[keys[at]] = tinygltf::Value(std::move(a));
+        }
+    }
+    if (set) v = tinygltf::Value(std::move(object));
+    return true;
+}
+
 /// The property of ctx.model that JSON pointer `pointer` (KHR_animation_pointer) names, read
 /// and written as `width` numbers: `get` its value, `set` a new one. Material factors and the
 /// numbers and colours of material extensions, punctual lights' colour, intensity, range and
@@ -95,32 +129,34 @@ bool pointerTarget(Context& ctx, const std::string& pointer, size_t width, std::
         }
         if (n == 3 && part[2] == "emissiveFactor") return numbers(mat.emissiveFactor, {0, 0, 0});
         if (n == 3 && part[2] == "alphaCutoff") return number(mat.alphaCutoff);
-        if (n == 5 && part[2] == "extensions") {  // a number or colour of a material extension
-            auto ext = mat.extensions.find(part[3]);
-            if (ext == mat.extensions.end() || !ext->second.IsObject()) return false;
-            tinygltf::Value::Object object = ext->second.Get<tinygltf::Value::Object>();
-            const auto it = object.find(part[4]);
-            if (it != object.end() && !it->second.IsNumber() && !it->second.IsArray()) return false;
-            if (get) {
-                get->assign(width, width == 1 ? 0.0 : 1.0);  // absent: the usual defaults
-                if (it != object.end() && it->second.IsNumber() && width == 1)
-                    (*get)[0] = it->second.GetNumberAsDouble();
-                if (it != object.end() && it->second.IsArray() && it->second.ArrayLen() == width)
-                    for (size_t k = 0; k < width; ++k)
-                        (*get)[k] = it->second.Get(static_cast<int>(k)).GetNumberAsDouble();
-            }
-            if (set) {
-                if (width == 1) {
-                    object[part[4]] = tinygltf::Value((*set)[0]);
-                } else {
-                    tinygltf::Value::Array a;
-                    for (double x : *set) a.push_back(tinygltf::Value(x));
-                    object[part[4]] = tinygltf::Value(std::move(a));
-                }
-                ext->second = tinygltf::Value(std::move(object));
-            }
-            return true;
+        // A number or colour of a material extension, however deep (a texture's transform).
+        auto inExtensions = [&](tinygltf::ExtensionMap& map, size_t at) {
+            auto ext = map.find(part[at]);
+            if (ext == map.end()) return false;
+            return valueTarget(ext->second, part, at + 1, width, get, set);
+        };
+        if (n >= 5 && part[2] == "extensions") return inExtensions(mat.extensions, 3);
+        // The core textures: a normal map's scale, an occlusion map's strength, and each one's
+        // KHR_texture_transform (offset, scale, rotation).
+        tinygltf::ExtensionMap* textureExtensions = nullptr;
+        size_t next = 3;
+        if (part[2] == "normalTexture") {
+            if (n == 4 && part[3] == "scale") return number(mat.normalTexture.scale);
+            textureExtensions = &mat.normalTexture.extensions;
+        } else if (part[2] == "occlusionTexture") {
+            if (n == 4 && part[3] == "strength") return number(mat.occlusionTexture.strength);
+            textureExtensions = &mat.occlusionTexture.extensions;
+        } else if (part[2] == "emissiveTexture") {
+            textureExtensions = &mat.emissiveTexture.extensions;
+        } else if (part[2] == "pbrMetallicRoughness" && n >= 4) {
+            next = 4;
+            if (part[3] == "baseColorTexture")
+                textureExtensions = &mat.pbrMetallicRoughness.baseColorTexture.extensions;
+            else if (part[3] == "metallicRoughnessTexture")
+                textureExtensions = &mat.pbrMetallicRoughness.metallicRoughnessTexture.extensions;
         }
+        if (textureExtensions && n >= next + 3 && part[next] == "extensions")
+            return inExtensions(*textureExtensions, next + 1);
         return false;
     }
     if (n >= 5 && part[0] == "extensions" && part[1] == "KHR_lights_punctual" &&
@@ -221,6 +257,31 @@ KeyframeTrack trackOf(Context& ctx, const tinygltf::Animation& a,
     return track;
 }
 
+/// Whether pointer channel `ch` points at a node's translation, rotation, scale or weights:
+/// then `out` is the node's channel it stands for.
+bool nodePointer(const tinygltf::AnimationChannel& ch, tinygltf::AnimationChannel& out) {
+    const auto ext = ch.target_extensions.find("KHR_animation_pointer");
+    if (ext == ch.target_extensions.end() || !ext->second.IsObject() ||
+        !ext->second.Has("pointer") || !ext->second.Get("pointer").IsString())
+        return false;
+    const std::string pointer = ext->second.Get("pointer").Get<std::string>();
+    const std::string prefix = "/nodes/";
+    if (pointer.rfind(prefix, 0) != 0) return false;
+    const size_t slash = pointer.find('/', prefix.size());
+    if (slash == std::string::npos) return false;
+    int node = -1;
+    const char* first = pointer.data() + prefix.size();
+    auto [p, ec] = std::from_chars(first, pointer.data() + slash, node);
+    const std::string path = pointer.substr(slash + 1);
+    if (ec != std::errc() || p != pointer.data() + slash || node < 0 ||
+        (path != "translation" && path != "rotation" && path != "scale" && path != "weights"))
+        return false;
+    out = ch;
+    out.target_node = node;
+    out.target_path = path;
+    return true;
+}
+
 /// Plays channel `ch` of animation `a` at time `t` if it is a KHR_animation_pointer channel:
 /// sets its target in ctx.model, keeping what it was (Context::pointed).
 void playPointer(Context& ctx, const tinygltf::Animation& a, const tinygltf::AnimationChannel& ch,
@@ -244,8 +305,9 @@ void playPointer(Context& ctx, const tinygltf::Animation& a, const tinygltf::Ani
     if (width == 0 || !pointerTarget(ctx, pointer, width, &before, nullptr, material)) {
         ctx.warnOnce("pointer " + pointer,
                      label + ": KHR_animation_pointer target '" + pointer +
-                         "' is not played (Glint plays material factors, material extensions' "
-                         "numbers and colours, punctual lights and perspective cameras)");
+                         "' is not played (Glint plays nodes' transforms and weights, "
+                         "materials' factors, texture transforms and extensions' numbers, "
+                         "punctual lights and perspective cameras)");
         return;
     }
     const KeyframeTrack track = trackOf(ctx, a, ch, label, width);
@@ -278,12 +340,19 @@ std::optional<size_t> playAnimation(Context& ctx, const ModelTime& time, std::st
     const auto& nodes = ctx.model.nodes;
     ctx.animated.assign(nodes.size(), {});
     for (size_t c = 0; c < a.channels.size(); ++c) {
-        const tinygltf::AnimationChannel& ch = a.channels[c];
         const std::string channel = label + ", channel " + std::to_string(c);
-        if (ch.target_node == -1) {  // KHR_animation_pointer, or another extension's target
-            playPointer(ctx, a, ch, channel, t);
-            continue;
+        // A pointer to a node's translation, rotation, scale or weights is played as the
+        // channel of that node it stands for; other pointers set what they point to.
+        tinygltf::AnimationChannel asNode;
+        const tinygltf::AnimationChannel* use = &a.channels[c];
+        if (use->target_node == -1) {  // KHR_animation_pointer, or another extension's target
+            if (!nodePointer(*use, asNode)) {
+                playPointer(ctx, a, *use, channel, t);
+                continue;
+            }
+            use = &asNode;
         }
+        const tinygltf::AnimationChannel& ch = *use;
         if (ch.target_node < 0 || static_cast<size_t>(ch.target_node) >= nodes.size())
             missing(ctx, "node", ch.target_node, nodes.size(), channel);
         const size_t node = static_cast<size_t>(ch.target_node);

@@ -32,9 +32,9 @@ struct GltfExtension {
 inline constexpr std::array kGltfExtensions = {
     GltfExtension{"EXT_meshopt_compression", GltfSupport::Rendered, ""},
     GltfExtension{"KHR_animation_pointer", GltfSupport::Partly,
-                  "material factors and extension numbers, punctual lights and perspective "
-                  "cameras are played; other targets (texture transforms, node properties) are "
-                  "not, with a warning naming each"},
+                  "nodes' transforms and weights, materials' factors, texture transforms and "
+                  "extensions' numbers, punctual lights and perspective cameras are played; "
+                  "other targets are not, with a warning naming each"},
     GltfExtension{"EXT_mesh_gpu_instancing", GltfSupport::Ignored,
                   "the instances are not placed, only each node's own mesh"},
     GltfExtension{"EXT_texture_avif", GltfSupport::Ignored,

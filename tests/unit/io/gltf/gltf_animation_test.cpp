@@ -336,7 +336,8 @@ TEST(GltfAnimation, AFileParsedOncePosesAtEveryTimeAsAFreshParse) {
 }
 
 // KHR_animation_pointer: channels that animate a material's factors and an extension's number,
-// a light's intensity and a camera's field of view (JSON pointers into the file) set them at
+// a light's intensity, a camera's field of view and a node's translation (JSON pointers into
+// the file) set them at
 // the time posed; a later pose without the animation has the file's own values back; a target
 // Glint does not play is warned of once.
 TEST(GltfAnimation, PointersAnimateMaterialsLightsAndCameras) {
@@ -346,6 +347,7 @@ TEST(GltfAnimation, PointersAnimateMaterialsLightsAndCameras) {
     int strength = a.asset.floats({1, 3}, "SCALAR");
     int intensity = a.asset.floats({1, 5}, "SCALAR");
     int fov = a.asset.floats({0.5f, 1.0f}, "SCALAR");
+    int moves = a.asset.floats({0, 0, 0, 2, 0, 0}, "VEC3");
     auto pointer = [](int sampler, const std::string& to) {
         return R"({"sampler": )" + std::to_string(sampler) +
                R"(, "target": {"path": "pointer", "extensions": {"KHR_animation_pointer":
@@ -357,12 +359,13 @@ TEST(GltfAnimation, PointersAnimateMaterialsLightsAndCameras) {
             {"translation": [0, 3, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}}])",
         R"([{"name": "Glow", "samplers": [)" + sampler(times, emissive) + ", " +
             sampler(times, strength) + ", " + sampler(times, intensity) + ", " +
-            sampler(times, fov) + ", " + sampler(times, strength) + R"(], "channels": [)" +
-            pointer(0, "/materials/0/emissiveFactor") + ", " +
+            sampler(times, fov) + ", " + sampler(times, strength) + ", " + sampler(times, moves) +
+            R"(], "channels": [)" + pointer(0, "/materials/0/emissiveFactor") + ", " +
             pointer(1, "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength") +
             ", " + pointer(2, "/extensions/KHR_lights_punctual/lights/0/intensity") + ", " +
             pointer(3, "/cameras/0/perspective/yfov") + ", " +
-            pointer(4, "/materials/0/normalTexture/scale") + "]}]",
+            pointer(4, "/materials/0/alphaMode") + ", " + pointer(5, "/nodes/0/translation") +
+            "]}]",
         R"(, "materials": [{"emissiveFactor": [0, 0, 0],
               "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1}}}],
             "cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}],
@@ -386,6 +389,9 @@ TEST(GltfAnimation, PointersAnimateMaterialsLightsAndCameras) {
     expectNear(glow.emissive, Vec3(0.5, 0.25, 0) * 2.0, 1e-6);  // the factor times strength 2
     ASSERT_EQ(half.lights.size(), 1u);
     expectNear(half.lights[0].color, Vec3(3), 1e-6);
+    // A pointer to a node's translation moves it as the node's own channel would: 1 along x.
+    ASSERT_EQ(half.placements.size(), 1u);
+    expectNear(half.placements[0].worldFromObject.point(Vec3(0)), Vec3(1, 0, 0), 1e-6);
     ASSERT_TRUE(half.camera);
     EXPECT_NEAR(half.camera->spec.fovyDegrees, 0.75 * 180 / std::numbers::pi, 1e-4);
     // The one target not played, said once however often it is posed.
@@ -393,7 +399,7 @@ TEST(GltfAnimation, PointersAnimateMaterialsLightsAndCameras) {
     expectNear(again.lights[0].color, Vec3(5), 1e-6);
     size_t said = 0;
     for (const Diagnostic& w : warnings)
-        said += w.message.find("normalTexture/scale") != std::string::npos;
+        said += w.message.find("alphaMode") != std::string::npos;
     EXPECT_EQ(said, 1u);
     // Not played: the file's own values.
     Model still = at(std::nullopt);
