@@ -398,8 +398,7 @@ TEST(GltfAnimation, PointersAnimateMaterialsLightsAndCameras) {
     Model again = at(2);
     expectNear(again.lights[0].color, Vec3(5), 1e-6);
     size_t said = 0;
-    for (const Diagnostic& w : warnings)
-        said += w.message.find("alphaMode") != std::string::npos;
+    for (const Diagnostic& w : warnings) said += w.message.find("alphaMode") != std::string::npos;
     EXPECT_EQ(said, 1u);
     // Not played: the file's own values.
     Model still = at(std::nullopt);
