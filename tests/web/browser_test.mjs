@@ -181,14 +181,14 @@ try {
     g = await waitFor('done', () => true);
     const before = g.rendersDone;
     const meshes = path.join(data, 'meshes');
-    const files = ['grid.obj', 'grid.mtl', 'grid.png'].map((f) => ({
-        name: f, data: fs.readFileSync(path.join(meshes, f)).toString('base64') }));
-    await page.evaluate((files) => {
+    /// Drops the files at `paths` on the page, as a user dragging them from a file manager.
+    const dropFiles = (paths) => page.evaluate((files) => {
         const transfer = new DataTransfer();
         for (const f of files)
             transfer.items.add(new File([Uint8Array.from(atob(f.data), (c) => c.charCodeAt(0))], f.name));
         document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true }));
-    }, files);
+    }, paths.map((p) => ({ name: path.basename(p), data: fs.readFileSync(p).toString('base64') })));
+    await dropFiles(['grid.obj', 'grid.mtl', 'grid.png'].map((f) => path.join(meshes, f)));
     g = await waitFor('done', (p) => p.rendersDone > before);
     const dropped = await canvasPng('grid-canvas.png');
     const gridNative = path.join(tmp, 'grid-native.png');
@@ -210,12 +210,7 @@ try {
     // 6. A dropped GLB (its texture in a buffer view; a camera, lights), rendered as `glint
     //    scene.glb --integrator whitted` renders it: the file's camera, not the orbited view.
     const beforeGlb = (await glintPage()).rendersDone;
-    const glb = fs.readFileSync(path.join(data, 'gltf', 'scene.glb')).toString('base64');
-    await page.evaluate((data) => {
-        const transfer = new DataTransfer();
-        transfer.items.add(new File([Uint8Array.from(atob(data), (c) => c.charCodeAt(0))], 'scene.glb'));
-        document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true }));
-    }, glb);
+    await dropFiles([path.join(data, 'gltf', 'scene.glb')]);
     g = await waitFor('done', (p) => p.rendersDone > beforeGlb);
     const droppedGlb = await canvasPng('glb-canvas.png');
     const glbNative = path.join(tmp, 'glb-native.png');
@@ -281,11 +276,7 @@ try {
     check(await page.isHidden('#timeline'), 'a still scene has no time slider');
     doneBefore9 = (await glintPage()).rendersDone;
     const animated = path.join(data, 'gltf', 'animated.gltf');
-    await page.evaluate((text) => {
-        const transfer = new DataTransfer();
-        transfer.items.add(new File([text], 'animated.gltf'));
-        document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true }));
-    }, fs.readFileSync(animated, 'utf8'));
+    await dropFiles([animated]);
     g = await waitFor('done', (p) => p.rendersDone > doneBefore9);
     const listed = g.animations.map((a) => `${a.name} ${a.start} to ${a.end} s`).join(', ');
     check(g.animations.length === 1 && listed === 'Turn 0 to 4.125 s', `its animations are listed: ${listed}`);
@@ -340,11 +331,7 @@ try {
     check(await page.isHidden('#variant-label'), 'a file without variants offers none');
     let doneBefore10 = (await glintPage()).rendersDone;
     const variants = path.join(data, 'gltf', 'variants.gltf');
-    await page.evaluate((text) => {
-        const transfer = new DataTransfer();
-        transfer.items.add(new File([text], 'variants.gltf'));
-        document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true }));
-    }, fs.readFileSync(variants, 'utf8'));
+    await dropFiles([variants]);
     g = await waitFor('done', (p) => p.rendersDone > doneBefore10 && !p.last.preview);
     check(g.materialVariants.join(', ') === 'Blue, Green' && await page.isVisible('#variant'),
           `its variants are offered: ${g.materialVariants.join(', ')}`);

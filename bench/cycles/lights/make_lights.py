@@ -11,6 +11,10 @@ import os
 import struct
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                                "tests", "data", "gltf"))
+from shapes import cuboid, uv_sphere  # noqa: E402
+
 
 class Asset:
     def __init__(self):
@@ -75,37 +79,11 @@ def floor(a, material, half=4):
 
 
 def ball(a, material, r):
-    P, N, I = [], [], []
-    rings, segs = 24, 48
-    for i in range(rings + 1):
-        th = math.pi * i / rings
-        for k in range(segs + 1):
-            ph = 2 * math.pi * k / segs
-            n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
-            N.append(n)
-            P.append(tuple(r * c for c in n))
-    for i in range(rings):
-        for k in range(segs):
-            q = i * (segs + 1) + k
-            I += [q, q + segs + 1, q + 1, q + 1, q + segs + 1, q + segs + 2]
-    return a.mesh("ball", P, N, I, material)
+    return a.mesh("ball", *uv_sphere(r, 24, 48), material)
 
 
 def box(a, material, h):
-    P, N, I = [], [], []
-    for axis in range(3):
-        for sign in (-1, 1):
-            base = len(P)
-            u, v = (axis + 1) % 3, (axis + 2) % 3
-            for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-                p = [0.0, 0.0, 0.0]
-                p[axis], p[u], p[v] = sign * h, cu * h, cv * h
-                P.append(tuple(p))
-                n = [0, 0, 0]
-                n[axis] = sign
-                N.append(tuple(n))
-            I += [base + i for i in ([0, 1, 2, 0, 2, 3] if sign > 0 else [0, 2, 1, 0, 3, 2])]
-    return a.mesh("box", P, N, I, material)
+    return a.mesh("box", *cuboid((h, h, h)), material)
 
 
 def look_at(eye, center, up=(0, 1, 0)):

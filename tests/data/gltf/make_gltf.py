@@ -11,6 +11,8 @@ import math
 import struct
 import zlib
 
+from shapes import cuboid, uv_sphere  # noqa: E402  (beside this script)
+
 FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
 
 
@@ -136,6 +138,13 @@ def triangle(a):
     """One triangle, (0,0,0) (1,0,0) (0,1,0), not indexed, without normals."""
     pos = a.vec([(0, 0, 0), (1, 0, 0), (0, 1, 0)], "VEC3")
     return a.add("meshes", {"name": "triangle", "primitives": [{"attributes": {"POSITION": pos}}]})
+
+
+def smooth_mesh(a, name, P, N, I, material):
+    """A mesh of one primitive from positions, normals and indices."""
+    return a.add("meshes", {"name": name, "primitives": [{"attributes": {
+        "POSITION": a.vec(P, "VEC3"), "NORMAL": a.vec(N, "VEC3")}, "indices": a.indices(I),
+        "material": material}]})
 
 
 def quaternion(axis, degrees):
@@ -304,22 +313,7 @@ a.add("meshes", {"name": "ground", "primitives": [{"attributes": {
     "NORMAL": a.vec([(0, 1, 0)] * 4, "VEC3")}, "indices": a.indices([0, 1, 2, 0, 2, 3]),
     "material": 1}]})
 # A brass ball: a UV sphere of radius 0.35, smooth.
-P, N, I = [], [], []
-rings, segs = 12, 24
-for r in range(rings + 1):
-    th = math.pi * r / rings
-    for s_ in range(segs + 1):
-        ph = 2 * math.pi * s_ / segs
-        n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
-        N.append(n)
-        P.append(tuple(0.35 * c for c in n))
-for r in range(rings):
-    for s_ in range(segs):
-        k = r * (segs + 1) + s_
-        I += [k, k + segs + 1, k + 1, k + 1, k + segs + 1, k + segs + 2]
-a.add("meshes", {"name": "ball", "primitives": [{"attributes": {
-    "POSITION": a.vec(P, "VEC3"), "NORMAL": a.vec(N, "VEC3")}, "indices": a.indices(I),
-    "material": 2}]})
+smooth_mesh(a, "ball", *uv_sphere(0.35, 12, 24), 2)
 a.add("cameras", {"name": "view", "type": "perspective", "perspective": {
     "yfov": 0.7, "aspectRatio": 16 / 9, "znear": 0.1}})
 a.j["extensionsUsed"] = ["KHR_lights_punctual"]
@@ -461,29 +455,12 @@ a.write_gltf("closed-room.gltf")
 # that a ray through all of them refracts ten times: black where the path tracer's transmission
 # limit is shorter (the model mode's was 8 bounces in all), the board where it is not.
 a = Asset()
-slab_pos, slab_nrm, slab_idx = [], [], []
-for axis in range(3):
-    for sign in (-1, 1):
-        n = [0, 0, 0]
-        n[axis] = sign
-        u, v = [(axis + 1) % 3, (axis + 2) % 3]
-        base = len(slab_pos)
-        for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-            p = [0.0, 0.0, 0.0]
-            p[axis] = sign * 0.5
-            p[u], p[v] = cu * 0.5, cv * 0.5
-            slab_pos.append((p[0] * 1.6, p[1] * 1.6, p[2] * 0.12))
-            slab_nrm.append(tuple(n))
-        quad_idx = [0, 1, 2, 0, 2, 3] if sign > 0 else [0, 2, 1, 0, 3, 2]
-        slab_idx += [base + i for i in quad_idx]
 a.add("materials", {"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0,
                                                                "roughnessFactor": 0},
                     "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1},
                                    "KHR_materials_volume": {"thicknessFactor": 0.12}}})
 a.j["extensionsUsed"] = ["KHR_materials_transmission", "KHR_materials_volume"]
-a.add("meshes", {"name": "slab", "primitives": [{
-    "attributes": {"POSITION": a.vec(slab_pos, "VEC3"), "NORMAL": a.vec(slab_nrm, "VEC3")},
-    "indices": a.indices(slab_idx), "material": 0}]})
+smooth_mesh(a, "slab", *cuboid((0.8, 0.8, 0.06)), 0)
 a.add("samplers", {"magFilter": 9728, "minFilter": 9728})
 a.add("textures", {"source": a.image(grid()), "sampler": 0})
 a.add("materials", {"name": "board", "pbrMetallicRoughness": {
@@ -541,38 +518,8 @@ a.add("materials", {"name": "bulb", "emissiveFactor": [1, 0.85, 0.6],
                     "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1],
                                              "metallicFactor": 0},
                     "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1500}}})
-P, N, I = [], [], []
-for axis in range(3):
-    for sign in (-1, 1):
-        base = len(P)
-        u, v = (axis + 1) % 3, (axis + 2) % 3
-        for cu, cv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
-            p = [0.0, 0.0, 0.0]
-            p[axis], p[u], p[v] = sign * 0.3, cu * 0.3, cv * 0.3
-            P.append((p[0], p[1] + 0.3, p[2]))
-            n = [0, 0, 0]
-            n[axis] = sign
-            N.append(tuple(n))
-        I += [base + i for i in ([0, 1, 2, 0, 2, 3] if sign > 0 else [0, 2, 1, 0, 3, 2])]
-a.add("meshes", {"name": "cube", "primitives": [{"attributes": {
-    "POSITION": a.vec(P, "VEC3"), "NORMAL": a.vec(N, "VEC3")}, "indices": a.indices(I),
-    "material": 0}]})
-P, N, I = [], [], []
-rings, segs = 8, 16
-for r in range(rings + 1):
-    th = math.pi * r / rings
-    for s_ in range(segs + 1):
-        ph = 2 * math.pi * s_ / segs
-        n = (math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph))
-        N.append(n)
-        P.append(tuple(0.08 * c for c in n))
-for r in range(rings):
-    for s_ in range(segs):
-        k = r * (segs + 1) + s_
-        I += [k, k + segs + 1, k + 1, k + 1, k + segs + 1, k + segs + 2]
-a.add("meshes", {"name": "bulb", "primitives": [{"attributes": {
-    "POSITION": a.vec(P, "VEC3"), "NORMAL": a.vec(N, "VEC3")}, "indices": a.indices(I),
-    "material": 1}]})
+smooth_mesh(a, "cube", *cuboid((0.3, 0.3, 0.3), (0, 0.3, 0)), 0)
+smooth_mesh(a, "bulb", *uv_sphere(0.08, 8, 16), 1)
 a.j["extensionsUsed"] = ["KHR_lights_punctual", "KHR_materials_emissive_strength"]
 a.j["extensions"] = {"KHR_lights_punctual": {"lights": [
     {"name": "filament", "type": "point", "color": [1, 0.85, 0.6], "intensity": 1500},

@@ -231,19 +231,35 @@ std::vector<ModelAnimation> listAnimations(const Context& ctx) {
 
 namespace {
 
+/// The sampler of channel `ch` (named `channel`) of animation `a`; fails if there is none.
+const tinygltf::AnimationSampler& samplerOf(const Context& ctx, const tinygltf::Animation& a,
+                                            const tinygltf::AnimationChannel& ch,
+                                            const std::string& channel) {
+    if (ch.sampler < 0 || static_cast<size_t>(ch.sampler) >= a.samplers.size())
+        ctx.fail(channel + ": sampler " + std::to_string(ch.sampler) +
+                 " does not exist (the animation has " + std::to_string(a.samplers.size()) +
+                 " samplers)");
+    return a.samplers[static_cast<size_t>(ch.sampler)];
+}
+
+/// Sampler `s`'s interpolation (named `sampler` in the message when glTF has no such one).
+Interpolation interpolationOf(const Context& ctx, const tinygltf::AnimationSampler& s,
+                              const std::string& sampler) {
+    if (s.interpolation == "STEP") return Interpolation::Step;
+    if (s.interpolation == "CUBICSPLINE") return Interpolation::CubicSpline;
+    if (s.interpolation != "LINEAR" && !s.interpolation.empty())
+        ctx.fail(sampler + ": interpolation '" + s.interpolation +
+                 "' is not LINEAR, STEP or CUBICSPLINE");
+    return Interpolation::Linear;
+}
+
 /// The sampler of channel `ch` of animation `a` for `width` numbers per key.
 KeyframeTrack trackOf(Context& ctx, const tinygltf::Animation& a,
                       const tinygltf::AnimationChannel& ch, const std::string& label,
                       size_t width) {
-    if (ch.sampler < 0 || static_cast<size_t>(ch.sampler) >= a.samplers.size())
-        ctx.fail(label + ": sampler " + std::to_string(ch.sampler) +
-                 " does not exist (the animation has " + std::to_string(a.samplers.size()) +
-                 " samplers)");
-    const tinygltf::AnimationSampler& s = a.samplers[static_cast<size_t>(ch.sampler)];
+    const tinygltf::AnimationSampler& s = samplerOf(ctx, a, ch, label);
     KeyframeTrack track;
-    track.interpolation = s.interpolation == "STEP"          ? Interpolation::Step
-                          : s.interpolation == "CUBICSPLINE" ? Interpolation::CubicSpline
-                                                             : Interpolation::Linear;
+    track.interpolation = interpolationOf(ctx, s, label);
     const FloatElements input = readFloats(ctx, s.input, "input of " + label, false);
     const FloatElements output = readFloats(ctx, s.output, "output of " + label, false);
     const size_t perKey = track.interpolation == Interpolation::CubicSpline ? 3 : 1;
@@ -257,14 +273,22 @@ KeyframeTrack trackOf(Context& ctx, const tinygltf::Animation& a,
     return track;
 }
 
+/// The JSON pointer of KHR_animation_pointer channel `ch`; none for another kind of channel.
+std::optional<std::string> pointerOf(const tinygltf::AnimationChannel& ch) {
+    const auto ext = ch.target_extensions.find("KHR_animation_pointer");
+    if (ch.target_path != "pointer" || ext == ch.target_extensions.end() ||
+        !ext->second.IsObject() || !ext->second.Has("pointer") ||
+        !ext->second.Get("pointer").IsString())
+        return std::nullopt;
+    return ext->second.Get("pointer").Get<std::string>();
+}
+
 /// Whether pointer channel `ch` points at a node's translation, rotation, scale or weights:
 /// then `out` is the node's channel it stands for.
 bool nodePointer(const tinygltf::AnimationChannel& ch, tinygltf::AnimationChannel& out) {
-    const auto ext = ch.target_extensions.find("KHR_animation_pointer");
-    if (ext == ch.target_extensions.end() || !ext->second.IsObject() ||
-        !ext->second.Has("pointer") || !ext->second.Get("pointer").IsString())
-        return false;
-    const std::string pointer = ext->second.Get("pointer").Get<std::string>();
+    const std::optional<std::string> to = pointerOf(ch);
+    if (!to) return false;
+    const std::string& pointer = *to;
     const std::string prefix = "/nodes/";
     if (pointer.rfind(prefix, 0) != 0) return false;
     const size_t slash = pointer.find('/', prefix.size());
@@ -286,12 +310,9 @@ bool nodePointer(const tinygltf::AnimationChannel& ch, tinygltf::AnimationChanne
 /// sets its target in ctx.model, keeping what it was (Context::pointed).
 void playPointer(Context& ctx, const tinygltf::Animation& a, const tinygltf::AnimationChannel& ch,
                  const std::string& label, double t) {
-    const auto ext = ch.target_extensions.find("KHR_animation_pointer");
-    if (ch.target_path != "pointer" || ext == ch.target_extensions.end() ||
-        !ext->second.IsObject() || !ext->second.Has("pointer") ||
-        !ext->second.Get("pointer").IsString())
-        return;  // another extension's target: reported with the extensions
-    const std::string pointer = ext->second.Get("pointer").Get<std::string>();
+    const std::optional<std::string> to = pointerOf(ch);
+    if (!to) return;  // another extension's target: reported with the extensions
+    const std::string& pointer = *to;
     // The sampler's output type gives the width: SCALAR 1, VEC3 3, VEC4 4.
     size_t width = 0;
     if (ch.sampler >= 0 && static_cast<size_t>(ch.sampler) < a.samplers.size()) {
@@ -366,24 +387,12 @@ std::optional<size_t> playAnimation(Context& ctx, const ModelTime& time, std::st
         if (!nodes[node].matrix.empty())
             ctx.fail(channel + ": it animates " + describe("node", node, nodes[node].name) +
                      ", which has a matrix (glTF animates translation, rotation and scale only)");
-        if (ch.sampler < 0 || static_cast<size_t>(ch.sampler) >= a.samplers.size())
-            ctx.fail(channel + ": sampler " + std::to_string(ch.sampler) +
-                     " does not exist (the animation has " + std::to_string(a.samplers.size()) +
-                     " samplers)");
-        const tinygltf::AnimationSampler& s = a.samplers[static_cast<size_t>(ch.sampler)];
+        const tinygltf::AnimationSampler& s = samplerOf(ctx, a, ch, channel);
         const std::string sampler = label + ", sampler " + std::to_string(ch.sampler);
 
         KeyframeTrack track;
         track.rotation = rotation;
-        if (s.interpolation == "STEP")
-            track.interpolation = Interpolation::Step;
-        else if (s.interpolation == "CUBICSPLINE")
-            track.interpolation = Interpolation::CubicSpline;
-        else if (s.interpolation == "LINEAR" || s.interpolation.empty())
-            track.interpolation = Interpolation::Linear;
-        else
-            ctx.fail(sampler + ": interpolation '" + s.interpolation +
-                     "' is not LINEAR, STEP or CUBICSPLINE");
+        track.interpolation = interpolationOf(ctx, s, sampler);
         const FloatElements input = readFloats(ctx, s.input, "input of " + sampler, false);
         if (input.components != 1) ctx.fail(input.label + ": key times must be SCALAR");
         // Rotations and weights may be normalised integers; translations and scales are floats.

@@ -172,6 +172,10 @@ class Materials {
     /// The layers of the material extensions (clearcoat, sheen, specular, anisotropy,
     /// iridescence, diffuse transmission) into `p` (gltf_material_layers.cpp).
     void mapLayers(const tinygltf::Material& m, PbrMaterial& p, const std::string& label);
+    /// The colour `key` of extension object `ext` (three finite numbers, clamped to [0, most]),
+    /// `fallback` where it has none; fails, naming `material`, for anything else.
+    Vec3 extensionColour(const tinygltf::Value& ext, const char* key, Vec3 fallback, double most,
+                         const std::string& material) const;
 
     Context& ctx_;
     std::map<int, MeshMaterial> mapped_;

@@ -32,6 +32,21 @@ TextureSlot Materials::extensionSlot(const tinygltf::Value& ext, const char* key
     return slot(integer("index", -1), integer("texCoord", 0), own, material, key, srgb, instead);
 }
 
+Vec3 Materials::extensionColour(const tinygltf::Value& ext, const char* key, Vec3 fallback,
+                                double most, const std::string& label) const {
+    if (!ext.Has(key)) return fallback;
+    const tinygltf::Value& c = ext.Get(key);
+    if (!c.IsArray() || c.ArrayLen() != 3) ctx_.fail(label + ": " + key + " must be three numbers");
+    double rgb[3];
+    for (int k = 0; k < 3; ++k) {
+        const tinygltf::Value& x = c.Get(k);
+        rgb[k] = x.IsNumber() ? x.GetNumberAsDouble() : NAN;
+        if (!std::isfinite(rgb[k])) ctx_.fail(label + ": " + key + " must be finite numbers");
+        rgb[k] = std::clamp(rgb[k], 0.0, most);
+    }
+    return Vec3(rgb[0], rgb[1], rgb[2]);
+}
+
 void Materials::mapLayers(const tinygltf::Material& m, PbrMaterial& p, const std::string& label) {
     auto number = [&](const char* extension, const char* key, double fallback) {
         return extensionNumber(ctx_, m.extensions, extension, key, fallback, label);
@@ -41,18 +56,7 @@ void Materials::mapLayers(const tinygltf::Material& m, PbrMaterial& p, const std
     };
     // A colour of three numbers, each at least 0 (and at most `most`).
     auto colour = [&](const tinygltf::Value& ext, const char* key, Vec3 fallback, double most) {
-        if (!ext.Has(key)) return fallback;
-        const tinygltf::Value& c = ext.Get(key);
-        if (!c.IsArray() || c.ArrayLen() != 3)
-            ctx_.fail(label + ": " + key + " must be three numbers");
-        double rgb[3];
-        for (int k = 0; k < 3; ++k) {
-            const tinygltf::Value& x = c.Get(k);
-            rgb[k] = x.IsNumber() ? x.GetNumberAsDouble() : NAN;
-            if (!std::isfinite(rgb[k])) ctx_.fail(label + ": " + key + " must be finite numbers");
-            rgb[k] = std::clamp(rgb[k], 0.0, most);
-        }
-        return Vec3(rgb[0], rgb[1], rgb[2]);
+        return extensionColour(ext, key, fallback, most, label);
     };
 
     if (const tinygltf::Value* x = extensionOf(m, "KHR_materials_clearcoat")) {

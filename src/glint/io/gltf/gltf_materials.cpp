@@ -173,15 +173,9 @@ MeshMaterial Materials::map(int index) {
     if (auto it = m.extensions.find("KHR_materials_volume_scatter");
         it != m.extensions.end() && it->second.IsObject()) {
         const tinygltf::Value& scatter = it->second;
-        Vec3 multiscatter(0);
         const char* colourKey =
             scatter.Has("multiscatterColor") ? "multiscatterColor" : "multiscatterColorFactor";
-        if (scatter.Has(colourKey) && scatter.Get(colourKey).IsArray() &&
-            scatter.Get(colourKey).ArrayLen() == 3)
-            for (int k = 0; k < 3; ++k) {
-                const tinygltf::Value& x = scatter.Get(colourKey).Get(k);
-                multiscatter[k] = x.IsNumber() ? unit(x.GetNumberAsDouble()) : 0;
-            }
+        const Vec3 multiscatter = extensionColour(scatter, colourKey, Vec3(0), 1, label);
         double g = extensionNumber(ctx_, m.extensions, "KHR_materials_volume_scatter",
                                    "scatterAnisotropy", 0, label);
         g = std::clamp(g, -0.99, 0.99);

@@ -59,6 +59,8 @@ ShadowCatcherShading::ShadowCatcherShading(const Scene& scene)
       height_(scene.shadowCatcher ? scene.shadowCatcher->height : 0),
       environmentIrradiance_(upwardIrradiance(scene)) {
     for (const LightSpec& l : scene.lights) lights_.push_back(lightFromSpec(l));
+    emitters_ = std::any_of(scene.materials.begin(), scene.materials.end(),
+                            [](const Material& m) { return !(m.emission == Vec3(0)); });
     if (!scene.environment) return;
     const EnvironmentMap& map = *scene.environment;
     const int w = map.width(), h = map.height();
@@ -122,11 +124,12 @@ std::optional<double> ShadowCatcherShading::intersect(const Ray& ray) const {
     return t;
 }
 
-bool ShadowCatcherShading::enclosedByEmitter(const Ray& shadow) const {
-    Hit hit;
-    if (!scene_.intersect(shadow, hit)) return false;
+ShadowCatcherShading::Blocker ShadowCatcherShading::blocker(const Ray& shadow) const {
+    if (!emitters_) return scene_.occluded(shadow) ? Blocker::Surface : Blocker::None;
+    Hit hit;  // what blocks it, to tell an emitter: one search either way
+    if (!scene_.intersect(shadow, hit)) return Blocker::None;
     const SurfaceInteraction si = scene_.primitives.interaction(shadow, hit);
-    return !(scene_.materials[si.material].emission == Vec3(0));
+    return scene_.materials[si.material].emission == Vec3(0) ? Blocker::Surface : Blocker::Emitter;
 }
 
 Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvironment,
@@ -160,12 +163,12 @@ Vec3 ShadowCatcherShading::radiance(const Vec3& p, const Vec3& dir, Point2 uEnvi
         double end = s->distance;
         if (std::isfinite(end)) end -= spawnOffset(p + s->wi * end, offset);
         counts.shadow++;
-        const Ray shadow = spawnRay(p, s->wi, offset, end);
-        if (!scene_.occluded(shadow)) continue;
+        const Blocker b = blocker(spawnRay(p, s->wi, offset, end));
+        if (b == Blocker::None) continue;
         // A light inside an emitting surface (a bulb around a point light, as glTF files
         // have them) lights the scene through its bulb alone: it neither weighs in E nor
         // shadows the plane, where it would darken a wide halo around the bulb.
-        if (enclosedByEmitter(shadow)) {
+        if (b == Blocker::Emitter) {
             if (each) irradiance -= e;
             continue;
         }

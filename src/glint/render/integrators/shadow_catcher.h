@@ -58,11 +58,14 @@ class ShadowCatcherShading {
     std::optional<EnvironmentSample> sampleEnvironment(Point2 u) const;
 
   private:
-    /// Whether what first blocks the light's `shadow` ray emits light itself: the light's bulb.
-    bool enclosedByEmitter(const Ray& shadow) const;
+    /// What first blocks a light's `shadow` ray: nothing, a surface, or one that emits light
+    /// itself (the light's bulb).
+    enum class Blocker { None, Surface, Emitter };
+    Blocker blocker(const Ray& shadow) const;
 
     const Scene& scene_;
     std::vector<Light> lights_;  ///< The scene's own (point, spot, directional, quad).
+    bool emitters_ = false;      ///< Whether any material emits (a bulb may block a light).
     double height_;
     Vec3 environmentIrradiance_;
     /// With a map: its upper rows' texels, each weighted by the mean luminance of the bilinear
