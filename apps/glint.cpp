@@ -226,14 +226,21 @@ int run(const Options& opt, glint::AssetCache* assets = nullptr,
                      scene->height);
     if (opt.stats) printStats(*scene, parseSeconds, buildSeconds, result, writeSeconds);
     if (accel) scene->keepAccel(*accel);
-    if (gStop.load()) return 128 + gSignal;  // arrived while writing: the image is complete
-    return 0;
+    return 0;  // a signal that arrived while writing is the caller's: the image is complete
 }
 
 /// Renders the frames --frames asks for, one file each, loading model files once; or the one
 /// frame of the other options.
 int runFrames(const Options& opt) {
-    if (opt.frames.empty()) return run(opt);
+    if (opt.frames.empty()) {
+        int code = run(opt);
+        if (code == 0 && gStop.load()) {
+            std::fprintf(stderr, "glint: %s: stopped after writing the image\n",
+                         signalName(gSignal));
+            return 128 + gSignal;
+        }
+        return code;
+    }
     FrameRange range;
     parseFrameRange(opt.frames, range);  // checked with the options
     std::string pattern;

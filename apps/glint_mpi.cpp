@@ -192,8 +192,7 @@ int run(const Options& opt, const MpiOptions& mpiOpt, Job& job, glint::AssetCach
             return kExitSceneError;
         }
     }
-    if (int sig = gInterrupt.load(); sig != 0) return 128 + sig;  // arrived while writing
-    return 0;
+    return 0;  // a signal that arrived while writing is the caller's: the image is complete
 }
 
 /// Rank 0's `code` to every rank. The others wait for it sleeping: MPI's blocking collectives
@@ -213,8 +212,16 @@ void shareFromRoot(int& code) {
 /// model files it parsed for the next frame, and mpirun's start and MPI's set-up are paid once
 /// for the sequence. Or the one frame of the other options (--frame, --time-at, or none).
 int runFrames(const Options& opt, const MpiOptions& mpiOpt, Job& job) {
-    if (opt.frames.empty()) return run(opt, mpiOpt, job);
     const bool root = job.rank == 0;
+    if (opt.frames.empty()) {
+        int code = run(opt, mpiOpt, job);
+        if (int sig = gInterrupt.load(); root && code == 0 && sig != 0) {
+            std::fprintf(stderr, "glint-mpi: %s: stopped after writing the image\n",
+                         signalName(sig));
+            return 128 + sig;
+        }
+        return code;
+    }
     FrameRange range;
     parseFrameRange(opt.frames, range);  // checked with the options
     std::string pattern;

@@ -166,9 +166,21 @@ TEST(GlintMpi, RanksHoldingADifferentMeshEndTheJobBeforeRendering) {
 class Background {
   public:
     Background(const std::vector<std::string>& args, const std::string& dir) {
-        std::vector<std::string> all = {
-            MPIEXEC, "--allow-run-as-root", "--oversubscribe", "--mca", "pml", "ob1", "--mca",
-            "btl",   "self,vader"};
+        // mpirun answers SIGINT with SIGTERM to the ranks this many seconds later (1 unless
+        // set), and SIGKILL as many after that: on a loaded machine a rank may need more than
+        // a second to say why it stopped.
+        std::vector<std::string> all = {MPIEXEC,
+                                        "--allow-run-as-root",
+                                        "--oversubscribe",
+                                        "--mca",
+                                        "pml",
+                                        "ob1",
+                                        "--mca",
+                                        "btl",
+                                        "self,vader",
+                                        "--mca",
+                                        "odls_base_sigkill_timeout",
+                                        "3"};
         all.insert(all.end(), args.begin(), args.end());
         std::vector<char*> argv;
         for (auto& a : all) argv.push_back(a.data());
