@@ -29,6 +29,7 @@ __all__ = [
     "Scene",
     "SceneError",
     "SceneWarning",
+    "denoise",
     "encode",
     "load",
     "write",
@@ -193,6 +194,30 @@ def encode(
         format, np.asarray(image), {}, *_display(image, exposure, srgb, tonemap),
         getattr(image, "_frame", None),
     )
+
+
+def denoise(
+    image: np.ndarray,
+    *,
+    passes: Optional[dict] = None,
+    denoiser: str = "auto",
+    quality: str = "balanced",
+    threads: int = 0,
+) -> "Image":
+    """`image` denoised as ``render(denoise=True)`` denoises, guided by its passes (or
+    `passes`): albedo and normal as the network reads them, variance where there is one. For
+    images put together from several renders (an average of rounds, say); the result keeps
+    the image's passes and display, and its ``info["denoiser"]`` says which denoiser ran."""
+    _check_radiance(image, "denoise")
+    if passes is None:
+        passes = getattr(image, "passes", {})
+    guide = {k: v for k, v in dict(passes).items() if k in ("albedo", "normal", "variance")}
+    pixels, method = _glint.denoise(np.asarray(image), guide, denoiser, quality, int(threads))
+    out = pixels.view(Image)
+    out.passes = dict(passes)
+    out.info = dict(getattr(image, "info", {}), denoised=True, denoiser=method)
+    out.display = dict(getattr(image, "display", _PLAIN))
+    return out
 
 
 # ---- Scenes -----------------------------------------------------------------------------------

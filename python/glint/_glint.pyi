@@ -73,6 +73,10 @@ def encode(
     format: str, image: npt.NDArray[Any], passes: dict[str, npt.NDArray[Any]], exposure: float,
     srgb: bool, tonemap: str, frame: Optional[Frame] = None,
 ) -> bytes: ...
+def denoise(
+    image: npt.NDArray[Any], passes: dict[str, npt.NDArray[Any]], denoiser: str, quality: str,
+    threads: int,
+) -> tuple[npt.NDArray[np.float32], str]: ...
 def write(
     path: str, image: npt.NDArray[Any], passes: dict[str, npt.NDArray[Any]], exposure: float,
     srgb: bool, tonemap: str, frame: Optional[Frame] = None,

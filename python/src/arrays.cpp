@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "glint/denoise/film_denoise.h"
 #include "glint/io/image/image_io.h"
 #include "glint/scene/environment.h"
 #include "glint/scene/mesh.h"
@@ -331,6 +332,34 @@ void bindArrays(py::module_& m) {
         },
         py::arg("path"), py::arg("image"), py::arg("passes"), py::arg("exposure"), py::arg("srgb"),
         py::arg("tonemap"), py::arg("frame") = nullptr);
+    m.def(
+        "denoise",
+        [](const py::array& image, const py::dict& passes, const std::string& denoiser,
+           const std::string& quality, int threads) {
+            FilmDenoiseOptions options;
+            try {
+                options.denoiser = denoiserNamed(denoiser);
+                options.quality = denoiseQualityNamed(quality);
+            } catch (const std::invalid_argument& e) {
+                throw py::value_error(e.what());
+            }
+            if (threads < 0) throw py::value_error("threads: must be 0 (every core) or more");
+            Film scratch;
+            const Film& film = filmOf(image, nullptr, scratch);
+            AovSelection which;
+            RenderPasses p = passesOf(passes, film.width(), film.height(), which);
+            FilmDenoiseReport report;
+            Film out;
+            {
+                py::gil_scoped_release nogil;
+                ThreadPool pool(threads);
+                out = denoiseFilm(film, p, pool, options, &report);
+            }
+            return py::make_tuple(imageArray(out.pixels(), out.width(), out.height()),
+                                  report.method);
+        },
+        py::arg("image"), py::arg("passes"), py::arg("denoiser"), py::arg("quality"),
+        py::arg("threads"));
 }
 
 }  // namespace glint::python

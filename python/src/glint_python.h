@@ -61,4 +61,7 @@ class LoadedScene {
 void bindArrays(py::module_& m);
 void bindScene(py::module_& m);
 
+/// The film's pixels as a float32 array of rows x columns x 3 (the only copy: NumPy's).
+py::array_t<float> imageArray(const std::vector<Vec3>& pixels, int width, int height);
+
 }  // namespace glint::python

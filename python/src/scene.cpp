@@ -9,9 +9,7 @@
 #include "glint_python.h"
 
 namespace glint::python {
-namespace {
 
-/// The film's pixels as a float32 array of rows x columns x 3 (the only copy: NumPy's).
 py::array_t<float> imageArray(const std::vector<Vec3>& pixels, int width, int height) {
     py::array_t<float> a(
         {static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width), py::ssize_t{3}});
@@ -23,6 +21,8 @@ py::array_t<float> imageArray(const std::vector<Vec3>& pixels, int width, int he
     }
     return a;
 }
+
+namespace {
 
 py::array_t<float> depthArray(const std::vector<double>& depth, int width, int height) {
     py::array_t<float> a({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width)});

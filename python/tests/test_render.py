@@ -72,6 +72,30 @@ def test_the_denoiser_and_its_quality_are_chosen_as_on_the_command_line(cli, tmp
         scene.render(denoiser="optix")
 
 
+def test_denoise_of_a_rendered_image_is_the_render_denoised():
+    box = glint.load(os.path.join(SOURCE, "scenes", "cornell.test"), integrator="path",
+                     size=(48, 48))
+    noisy = box.render(spp=4, threads=2, seed=3, aov=["albedo", "normal", "variance"])
+    clean = box.render(spp=4, threads=2, seed=3, aov=["albedo", "normal", "variance"],
+                       denoise=True)
+    out = glint.denoise(noisy)
+    assert np.array_equal(out, clean)
+    assert out.info["denoiser"] == clean.info["denoiser"] and out.info["denoised"]
+    assert set(out.passes) >= {"albedo", "normal"}
+    # An average of two renders (what the Blender add-on's rounds make) denoises as well.
+    other = box.render(spp=4, threads=2, seed=4, aov=["albedo", "normal"])
+    mean = (noisy + other) / 2
+    both = glint.denoise(mean, passes={"albedo": (noisy.passes["albedo"] + other.passes["albedo"]) / 2,
+                                       "normal": noisy.passes["normal"]}, denoiser="nlm")
+    assert both.info["denoiser"] == "nlm" and both.shape == mean.shape
+    assert np.abs(both - mean).mean() < np.abs(mean).mean()
+    assert not np.array_equal(both, mean)
+    with pytest.raises(ValueError, match="denoiser"):
+        glint.denoise(noisy, denoiser="optix")
+    with pytest.raises(TypeError, match="image / 255.0"):
+        glint.denoise(np.zeros((4, 4, 3), np.uint8))
+
+
 def glint_has_oidn():
     """Whether this build embeds OIDN's weights (make weights; denoise-weights/README.md)."""
     return "denoiser: oidn" in subprocess.run([os.environ["GLINT_BIN"], "--version"],
