@@ -8,6 +8,7 @@
 #   make clean   remove the build directory
 #   make web     the library in WebAssembly and the web page, into build-web/site (docs/web.md)
 #   make serve   serve build-web/site on http://localhost:8167 with cross-origin isolation
+#   make blender deps + build + install the Blender add-on into your Blender (docs/blender.md)
 #   make bench   deps for the benchmarks (Embree, POV-Ray, Blender) + Release build in build-bench
 #                + run bench/run.sh: Glint against Embree, POV-Ray and Cycles (docs/performance.md)
 
@@ -24,10 +25,11 @@ JOBS        ?= $(shell nproc 2>/dev/null || echo 2)
 # for glint-mpi and its tests, slurm-wlm and munge for a private single-node Slurm on localhost
 # that runs contrib/slurm's scripts (tests/slurm/cluster_test.sh, about 9 s; docs/scale-out.md).
 # curl and ca-certificates fetch the denoiser's weights (make weights: 95 MB, about 2 s).
+# blender runs the Blender add-on's tests (blender/, about 580 MB with its libraries).
 DEPS := g++ cmake make pkg-config curl ca-certificates libcli11-dev libstb-dev libpng-dev libwebp-dev libopenexr-dev \
         libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev libdraco-dev libmeshoptimizer-dev \
         libopenvdb-dev libboost-iostreams-dev pybind11-dev python3-dev python3-numpy \
-        libgtest-dev libgmock-dev python3-pytest openmpi-bin libopenmpi-dev slurm-wlm munge
+        libgtest-dev libgmock-dev python3-pytest openmpi-bin libopenmpi-dev slurm-wlm munge blender
 
 # `make demo`: only what the glint program needs, and only it is built (no test libraries, no
 # MPI or Slurm, OpenVDB if it is there already): a first picture in minutes on a fresh machine.
@@ -67,7 +69,7 @@ FUZZ_DEPS := clang libclang-rt-14-dev cmake make pkg-config libcli11-dev libstb-
              libmeshoptimizer-dev libopenvdb-dev libboost-iostreams-dev
 FUZZ_SECONDS ?= 60
 
-.PHONY: deps weights build demo test test-sanitize fuzz clean bench web web-deps serve
+.PHONY: deps weights build demo test test-sanitize fuzz clean bench web web-deps serve blender
 
 deps:
 	@missing=""; \
@@ -105,6 +107,12 @@ demo:
 	@echo "glint: demo render written to $(CURDIR)/glint.png"
 
 # The web tests run too (tests/web/): the web build first, then the native build, told where it is.
+# The Blender add-on, built with the module it bundles, installed and enabled in the user's
+# Blender (its scripts/addons folder; blender/install.py).
+blender: deps
+	@$(MAKE) --no-print-directory build
+	blender -b --python-exit-code 1 --python blender/install.py -- $(BUILD_DIR)/blender/glint_blender.zip
+
 test: deps web-deps
 	@$(MAKE) --no-print-directory web
 	@$(MAKE) --no-print-directory build
