@@ -109,6 +109,7 @@ bool Scene::cutOut(const Ray& ray, const Hit& hit, bool cameraRay) const {
     if (m.pbr == 0) return false;
     const PbrMaterial& pm = pbr(m.pbr);
     if (pm.unlit && !cameraRay) return true;
+    if (cameraRay && !pm.cameraVisible) return true;
     if (cameraRay && !pm.doubleSided && dot(ray.dir, si.ng) > 0) return true;
     if (pm.alphaMode == AlphaMode::Opaque) return false;
     const double alpha = opacityAt(pm, si);

@@ -122,6 +122,13 @@ MeshMaterial Materials::map(int index) {
         ctx_.warn(label + ": alphaMode '" + m.alphaMode + "' is not one glTF defines: opaque");
     }
     p.doubleSided = m.doubleSided;
+    // Glint's own reading of a material's extras: {"glint": {"camera": false}} hides the
+    // surface from camera rays (the Blender add-on's area lights, as Cycles shows them).
+    if (m.extras.IsObject() && m.extras.Has("glint")) {
+        const tinygltf::Value& glint = m.extras.Get("glint");
+        if (glint.IsObject() && glint.Has("camera") && glint.Get("camera").IsBool())
+            p.cameraVisible = glint.Get("camera").Get<bool>();
+    }
     // KHR_materials_unlit: the base colour alone; the other properties (emission among them:
     // it would make a light nothing else sees) are to be ignored.
     p.unlit = m.extensions.count("KHR_materials_unlit") > 0;
@@ -229,6 +236,9 @@ MeshMaterial Materials::map(int index) {
     g.roughness = flatRoughness * flatRoughness;  // perceptual roughness squared is GGX's alpha
     g.shininess = kSmoothShininess;               // used only where the roughness is 0
     g.emission = emission * opacity;
+    // A single-sided surface has no back (viewers cull it): it emits from its front only, as
+    // an area light does. Closed emitters are unchanged; a single-sided panel lights one side.
+    g.frontEmissionOnly = !p.doubleSided;
     g.transmission = base * (transmission * (1 - flatMetallic) * opacity) + Vec3(1 - opacity);
     g.ior = flatIor;
     // Ambient light as for MTL materials without Ka: a dim version of the surface's colour.

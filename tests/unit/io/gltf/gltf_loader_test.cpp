@@ -232,8 +232,9 @@ TEST(GltfMaterials, MetallicRoughnessMapping) {
     const Material& plain = materialOf(model, 2).material;
     expectNear(plain.specular, Vec3(1));
     EXPECT_EQ(plain.roughness, 1);
-    // Emission times KHR_materials_emissive_strength.
+    // Emission times KHR_materials_emissive_strength; single-sided, so from the front only.
     expectNear(materialOf(model, 3).material.emission, {4, 2, 1});
+    EXPECT_TRUE(materialOf(model, 3).material.frontEmissionOnly);
     // Alpha blending, a quarter opaque: the traversal lets rays through with probability
     // 0.75 (Scene::intersect), so the flat material itself is opaque, or light would pass
     // twice.

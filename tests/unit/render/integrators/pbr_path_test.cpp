@@ -295,6 +295,32 @@ TEST(PbrPath, AnUnlitSurfaceShowsItsColourToTheCameraAndNothingElse) {
     EXPECT_NEAR(under.mean(), bare.mean(), kZ * (under.standardError() + bare.standardError()));
 }
 
+TEST(PbrPath, AnEmitterHiddenFromTheCameraStillLightsAndShadows) {
+    // The Blender add-on's area lights, as Cycles shows them: camera rays pass through the
+    // emitter; other rays see it (its light, its shadow).
+    PbrMaterial lamp;
+    lamp.baseColor = Vec3(0);
+    lamp.metallic = 0;
+    lamp.emissive = Vec3(2);
+    lamp.cameraVisible = false;
+    auto scene = std::make_unique<Scene>();
+    const uint32_t m = pbrMaterial(*scene, lamp);
+    scene->materials[m].emission = Vec3(2);
+    addQuad(*scene, m, 1);
+    PbrMaterial floor;
+    floor.baseColor = Vec3(0.5);
+    floor.metallic = 0;
+    addQuad(*scene, pbrMaterial(*scene, floor), 0);
+    scene->prepare();
+    Hit hit;
+    ASSERT_TRUE(scene->intersect(towards({0.2, 0, 3}, {0.2, 0, 0}), hit, true));
+    EXPECT_NEAR(hit.t, 3, 1e-5);  // through the lamp to the floor
+    hit = Hit{};
+    ASSERT_TRUE(scene->intersect(towards({0.2, 0, 3}, {0.2, 0, 0}), hit, false));
+    EXPECT_NEAR(hit.t, 2, 1e-5);
+    EXPECT_TRUE(scene->occluded(Ray{{0.2, 0, 1e-3}, {0, 0, 1}, 0, kInfinity}));
+}
+
 TEST(PbrPath, AlphaBlendingLetsThroughTheTransparentShareOfRays) {
     auto scene = std::make_unique<Scene>();
     PbrMaterial glassy;
