@@ -29,6 +29,10 @@ _PASSES = {
 }
 
 
+# Samples per pixel after which rounds no longer compute the passes.
+_PASS_SAMPLES = 16
+
+
 class _Stopped(Exception):
     """Raised in the progress callback when Blender asks the render to stop."""
 
@@ -38,6 +42,14 @@ def bounce_limits(s) -> str:
     return ",".join(f"{k}={min(max(v + 1, 1), 64)}" for k, v in (
         ("total", s.max_bounces), ("diffuse", s.diffuse_bounces), ("glossy", s.glossy_bounces),
         ("transmission", s.transmission_bounces), ("volume", s.volume_bounces)))
+
+
+def _arg(value) -> str:
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    if isinstance(value, tuple):
+        return "x".join(str(v) for v in value)
+    return str(value)
 
 
 def render_threads(scene) -> int:
@@ -76,7 +88,14 @@ class GlintRenderEngine(bpy.types.RenderEngine):
     def render(self, depsgraph):
         scene = depsgraph.scene
         glint = glint_module()
-        with tempfile.TemporaryDirectory(prefix="glint-blender-") as folder:
+        keep = os.environ.get("GLINT_BLENDER_KEEP", "")
+        with tempfile.TemporaryDirectory(prefix="glint-blender-") as scratch:
+            # GLINT_BLENDER_KEEP=DIR keeps the translation there (glint DIR/scene.gltf renders it).
+            folder = os.path.join(keep, f"frame{scene.frame_current:04d}") if keep else scratch
+            if keep:
+                os.makedirs(folder, exist_ok=True)
+                for name in os.listdir(folder):
+                    os.remove(os.path.join(folder, name))
             t0 = time.perf_counter()
             self.update_stats("", "Glint | translating the scene")
             exported = Exporter(depsgraph, folder, self._warn).run()
@@ -91,6 +110,9 @@ class GlintRenderEngine(bpy.types.RenderEngine):
                 if exported.environment is not None:
                     e = exported.environment
                     gs.environment(e.pixels, e.strength, e.rotation)
+                    if keep:
+                        glint.write(os.path.join(folder, "environment.exr"),
+                                    e.pixels * np.float32(e.strength))
                 if exported.lens is not None:
                     gs.camera = dict(aperture=exported.lens.aperture, focus=exported.lens.focus)
             except (glint.SceneError, glint.RenderError, ValueError) as e:
@@ -98,6 +120,10 @@ class GlintRenderEngine(bpy.types.RenderEngine):
                 print(f"glint: error: {e}", file=sys.stderr)
                 return
             translate = time.perf_counter() - t0
+            if keep:
+                with open(os.path.join(folder, "options.txt"), "w") as f:
+                    f.write(" ".join(f"--{k.replace('_', '-')} {_arg(v)}" for k, v in
+                                     options.items()) + "\n")
             print(f"glint: translated {exported.triangles} triangles, {exported.meshes} meshes "
                   f"placed {exported.instances} times in {translate:.2f} s", file=sys.stderr)
             self._render_rounds(scene, gs, glint, exported.size)
@@ -107,7 +133,10 @@ class GlintRenderEngine(bpy.types.RenderEngine):
         w, h = size
         layer_name = bpy.context.view_layer.name if bpy.context.view_layer else ""
         view_layer = scene.view_layers.get(layer_name) or scene.view_layers[0]
-        want = ["albedo", "normal", "depth", "variance"]
+        # The passes (the denoiser's guides, Depth) settle within a few samples: they are
+        # taken from the rounds up to _PASS_SAMPLES, which cost more with them.
+        want = ["albedo", "normal", "depth"]
+        pass_weight = 0.0
         threads = render_threads(scene)
         seed = s.seed + (scene.frame_current if s.use_animated_seed else 0)
         total = max(1, s.samples)
@@ -130,8 +159,11 @@ class GlintRenderEngine(bpy.types.RenderEngine):
                 self.update_progress(min((base + fraction * n) / total, 1.0))
                 self.update_stats("", f"Glint | Sample {base + int(fraction * n)}/{total}")
 
+            with_passes = done < _PASS_SAMPLES
             opts = dict(spp=n if not adaptive else total - done, seed=seed * 65537 + rounds,
-                        aov=want, denoise=False, progress=progress)
+                        denoise=False, progress=progress)
+            if with_passes:
+                opts["aov"] = want
             if threads > 0:
                 opts["threads"] = threads
             if adaptive:
@@ -146,16 +178,15 @@ class GlintRenderEngine(bpy.types.RenderEngine):
                 break
             rounds += 1
             weight = float(n)
-            if acc is None:
-                acc = np.asarray(image, np.float64) * weight
-                acc_passes = {k: np.asarray(v, np.float64) * weight for k, v in image.passes.items()}
-            else:
-                acc += np.asarray(image, np.float64) * weight
+            acc = np.asarray(image, np.float64) * weight + (0 if acc is None else acc)
+            if with_passes:
                 for k, v in image.passes.items():
-                    acc_passes[k] += np.asarray(v, np.float64) * weight
+                    acc_passes[k] = np.asarray(v, np.float64) * weight + acc_passes.get(k, 0)
+                pass_weight += weight
             done += n
             if done < total:
-                self._write(scene, result, acc / done, {k: v / done for k, v in acc_passes.items()})
+                self._write(scene, result, acc / done,
+                            {k: v / pass_weight for k, v in acc_passes.items()})
                 self.update_result(result)
             if time.perf_counter() - start >= limit:
                 break
@@ -163,7 +194,7 @@ class GlintRenderEngine(bpy.types.RenderEngine):
             self.end_result(result, cancel=False)
             return
         image = (acc / done).astype(np.float32)
-        passes = {k: (v / done).astype(np.float32) for k, v in acc_passes.items()}
+        passes = {k: (v / pass_weight).astype(np.float32) for k, v in acc_passes.items()}
         if s.use_denoising and not stopped:
             self.update_stats("", "Glint | denoising")
             denoised = glint.denoise(image, passes={k: passes[k] for k in ("albedo", "normal")},

@@ -5,7 +5,9 @@ Glint's (x, z, -y), as Glint's environment map mapping expects). Every object ke
 Blender matrix below it. Units, as Cycles reads Blender's (docs/blender.md):
   point and spot lights of P watts: P / (4 pi) W/sr (glTF's intensity, which Glint takes as
   radiant intensity); suns of S W/m^2: S; area lights of P watts and area A: emitting
-  surfaces of radiance P / (pi A), one-sided, along the light's -z.
+  surfaces of radiance P / (4 A) (measured in Cycles 3.4: pi / 4 of a Lambertian emitter of P
+  watts), one-sided (single-sided glTF emitters emit from their front
+  only), along the light's -z, hidden from the camera as Cycles hides them.
 """
 
 from __future__ import annotations
@@ -280,7 +282,7 @@ class Exporter:
         if light.type == "SUN":
             entry["type"] = "directional"
             entry["intensity"] = float(light.energy)
-            if light.angle > 0.0087:  # half a degree
+            if light.angle > 0.0175:  # a degree (Blender's default is 0.53)
                 self.warn(f"sun '{obj.name}': its angle ({math.degrees(light.angle):.3g} "
                           "degrees) is not read: a sharp shadow")
         else:
@@ -314,7 +316,7 @@ class Exporter:
         area = local_area * abs(scale[0] * scale[1])
         if area <= 0:
             return
-        radiance = float(light.energy) / (math.pi * area)
+        radiance = float(light.energy) / (4 * area)  # Cycles' (measured: docs/blender.md)
         positions = np.concatenate([np.zeros((1, 3), np.float32), ring])
         n = len(ring)
         # A fan around the centre, front faces towards the light's -z.
@@ -322,12 +324,14 @@ class Exporter:
         normals = np.tile(np.array([[0, 0, -1]], np.float32), (n + 1, 1))
         emission = [c * radiance for c in colour]
         peak = max(emission)
-        mat = {"name": f"{obj.name} (area light)",
+        mat = {"name": f"{obj.name} (area light)", "doubleSided": False,
                "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0,
                                         "roughnessFactor": 1},
                "emissiveFactor": [e / peak for e in emission] if peak > 0 else [0, 0, 0],
                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": peak},
-                              "KHR_materials_specular": {"specularFactor": 0}}}
+                              "KHR_materials_specular": {"specularFactor": 0}},
+               # Cycles does not show area lights to the camera (reflections see them).
+               "extras": {"glint": {"camera": False}}}
         self.gltf.use_extension("KHR_materials_emissive_strength")
         self.gltf.use_extension("KHR_materials_specular")
         material = self.gltf.add("materials", mat)

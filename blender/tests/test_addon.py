@@ -315,13 +315,16 @@ class Lights(unittest.TestCase):
         self.assertAlmostEqual(lights["spot"]["spot"]["innerConeAngle"],
                                math.acos(cos_inner) * 0.999, places=5)
         self.assertAlmostEqual(lights["directional"]["intensity"], 3.0)
-        # Area lights: emitting surfaces of radiance P / (pi A), A with the object's scale.
+        # Area lights: emitting surfaces of radiance P / (4 A) (Cycles'), A with the scale.
         emitters = [m for m in doc["materials"] if m["name"].endswith("(area light)")]
         strengths = sorted(m["extensions"]["KHR_materials_emissive_strength"]
                            ["emissiveStrength"] for m in emitters)
         disk_area = 0.5 * 64 * 0.25 * math.sin(2 * math.pi / 64)
-        self.assertAlmostEqual(strengths[0], 20 / (math.pi * 2.0 * 0.5 * 2), places=4)
-        self.assertAlmostEqual(strengths[1], 10 / (math.pi * disk_area), places=4)
+        for m in emitters:  # one-sided, and hidden from the camera as Cycles hides them
+            self.assertFalse(m["doubleSided"])
+            self.assertEqual(m["extras"], {"glint": {"camera": False}})
+        self.assertAlmostEqual(strengths[0], 20 / (4 * 2.0 * 0.5 * 2), places=4)
+        self.assertAlmostEqual(strengths[1], 10 / (4 * disk_area), places=4)
 
 
 class World(unittest.TestCase):
