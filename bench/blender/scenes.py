@@ -1,6 +1,6 @@
 """The validation scenes of docs/blender.md, built with Blender's Python (issue 38).
 
-    blender -b --factory-startup --python bench/blender/scenes.py -- NAME OUT.blend
+    blender -b --factory-startup --python bench/blender/scenes.py -- NAME OUT.blend [--diffuse]
 
 NAME is one of SCENES. Each scene is saved as a .blend file that Cycles and Glint both render
 (bench/blender/render.py); emitters are Blender lights, materials Principled BSDFs.
@@ -31,9 +31,21 @@ def camera(sc, location, target, lens=35.0):
     sc.camera = cam
 
 
+# With --diffuse every material is a Diffuse BSDF of its base colour: Lambert in both engines,
+# where the Principled BSDF (Cycles' v1, Disney's) and glTF's layers are different models.
+DIFFUSE = False
+
+
 def material(name, colour=(0.8, 0.8, 0.8), **inputs):
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
+    if DIFFUSE and not inputs.get("Transmission") and not inputs.get("Metallic"):
+        nodes = mat.node_tree.nodes
+        nodes.remove(nodes["Principled BSDF"])
+        diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+        diffuse.inputs["Color"].default_value = (*colour, 1)
+        mat.node_tree.links.new(diffuse.outputs[0], nodes["Material Output"].inputs["Surface"])
+        return mat
     node = mat.node_tree.nodes["Principled BSDF"]
     node.inputs["Base Color"].default_value = (*colour, 1)
     for k, v in inputs.items():
@@ -139,6 +151,8 @@ def lights():
 SCENES = {"cornell": cornell, "materials": materials, "lights": lights}
 
 if __name__ == "__main__":
-    name, out = sys.argv[sys.argv.index("--") + 1:][:2]
+    args = sys.argv[sys.argv.index("--") + 1:]
+    DIFFUSE = "--diffuse" in args
+    name, out = [a for a in args if a != "--diffuse"][:2]
     SCENES[name]()
     bpy.ops.wm.save_as_mainfile(filepath=out)

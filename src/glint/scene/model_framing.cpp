@@ -227,8 +227,12 @@ ModelScene studioScene(const Model& model, int width, int height, const ModelLoo
     } else {
         staging = "in the dark";
     }
-    if (!scene.environment && model.lights.empty()) {
-        addKeyAndFill(scene);  // something must light it
+    // Something must light it: its own lights, the environment, or its own glowing surfaces
+    // (a room lit by its lamps' emissive panels, the Blender add-on's area lights).
+    const bool glows = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                   [](const Material& m) { return !(m.emission == Vec3(0)); });
+    if (!scene.environment && model.lights.empty() && !glows) {
+        addKeyAndFill(scene);
         staging += ", lit by a key and a fill directional light,";
     }
     switch (look.groundOrDefault()) {

@@ -309,6 +309,16 @@ TEST(ModelFraming, EachStudioDefaultCanBeTurnedOff) {
     EXPECT_EQ(dark.scene->lights.size(), 2u);
     EXPECT_THAT(dark.note, HasSubstr("in the dark, lit by a key and a fill directional light, "
                                      "with a ground shadow"));
+    // A model that glows lights itself: no key and fill light is added to it in the dark.
+    MeshData glowing = triangle();
+    MeshMaterial panel;
+    panel.name = "panel";
+    panel.material.emission = Vec3(2);
+    glowing.materials = {panel};
+    glowing.triangles[0].material = 0;
+    ModelScene lamp = frameModelScene(singleMeshModel(glowing), 0, 0, look);
+    EXPECT_TRUE(lamp.scene->lights.empty());
+    EXPECT_THAT(lamp.note, HasSubstr("in the dark with a ground shadow"));
 }
 
 }  // namespace
