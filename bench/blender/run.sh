@@ -3,7 +3,7 @@
 #
 #   bench/blender/run.sh [BUILD_DIR [OUT_DIR [REF_SPP [THREADS]]]]
 #
-# For each scene of scenes.py: the .blend file; both engines at REF_SPP (default 1024) samples,
+# For each scene of scenes.py (and two with Lambert materials only): the .blend file; both engines at REF_SPP (default 1024) samples,
 # compared (mean ratio, largest block difference, compare.py); then both at 16 and 64 samples,
 # timed, with relMSE against their own REF_SPP image: the efficiency 1 / (relMSE x seconds) and
 # Glint's over Cycles'. Needs blender, the add-on built (make build: BUILD_DIR/blender), NumPy.
@@ -19,9 +19,13 @@ render() {  # scene engine spp tag -> seconds
     blender -b "$out/$1.blend" --python "$here/render.py" -- "$2" "$3" "$out/$1-$4.exr" \
         "$threads" 2>&1 | sed -n 's/^seconds //p'
 }
-for scene in cornell materials lights; do
-    blender -b --factory-startup --python "$here/scenes.py" -- "$scene" "$out/$scene.blend" \
-        >/dev/null 2>&1
+# name:flags; -diffuse: every material a Diffuse BSDF (scenes.py --diffuse), where both
+# engines' models agree (Lambert).
+for entry in cornell materials lights cornell-diffuse:--diffuse lights-diffuse:--diffuse; do
+    scene=${entry%%:*}
+    flags=$(echo "$entry" | sed -n 's/^[^:]*://p')
+    blender -b --factory-startup --python "$here/scenes.py" -- "${scene%-diffuse}" \
+        "$out/$scene.blend" $flags >/dev/null 2>&1
     tc=$(render "$scene" CYCLES "$ref" cycles-ref)
     tg=$(render "$scene" GLINT "$ref" glint-ref)
     echo "$scene: converged ($ref spp; Cycles ${tc} s, Glint ${tg} s):" \
