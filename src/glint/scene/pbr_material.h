@@ -72,8 +72,9 @@ struct PbrMaterial {
     /// it is, unshaded; every other ray passes through (no shadow, no reflection, no light
     /// from it), as Blender's glTF importer maps it for Cycles.
     bool unlit = false;
-    /// Seen by camera rays; false (Glint's `extras`, below) lets them through, as Cycles hides
-    /// Blender's area lights from the camera while reflections and shadows still see them.
+    /// Seen by camera rays; false (a glTF material's extras, gltf_materials.cpp) lets them through,
+    /// as Cycles hides Blender's area lights from the camera while reflections and shadows still
+    /// see them.
     bool cameraVisible = true;
     /// KHR_materials_transmission: the fraction of the dielectric part that is transmitted
     /// (times the red channel of transmissionTexture).
@@ -133,7 +134,7 @@ struct PbrMaterial {
 
     /// Whether some rays pass through it: alpha masked or blended, or unlit (seen by camera
     /// rays only).
-    bool cutsOut() const { return alphaMode != AlphaMode::Opaque || unlit || !cameraVisible; }
+    bool cutsOut() const { return alphaMode != AlphaMode::Opaque || unlit; }
     bool operator==(const PbrMaterial&) const = default;
 };
 

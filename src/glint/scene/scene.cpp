@@ -85,10 +85,10 @@ void Scene::prepare(const PrepareOptions& options) {
     Bounds3f b = bvh_.bounds();
     spawnOffset_ =
         sceneSpawnOffset(b.empty() ? 1.0 : static_cast<double>(maxComponent(b.diagonal())));
-    cutouts_ = cullsBackFaces_ = false;
+    cutouts_ = filtersCamera_ = false;
     for (const PbrMaterial& m : pbrMaterials) {
         cutouts_ = cutouts_ || m.cutsOut();
-        cullsBackFaces_ = cullsBackFaces_ || !m.doubleSided;
+        filtersCamera_ = filtersCamera_ || !m.doubleSided || !m.cameraVisible;
     }
     prepared_ = true;
 }

@@ -201,11 +201,12 @@ class Scene {
 
     /// The closest hit along `ray` that is not cut out: texels of alpha-masked materials below
     /// their cutoff and, with probability 1 - alpha, texels of alpha-blended ones are passed
-    /// through, and so are back faces of single-sided materials for `camera` rays (glTF's
-    /// back-face culling). Integrators search the scene through this and occluded().
+    /// through, and so are back faces of single-sided materials (glTF's back-face culling) and
+    /// surfaces hidden from the camera for `camera` rays. Integrators search the scene through this
+    /// and occluded().
     bool intersect(const Ray& ray, Hit& hit, bool cameraRay = false) const {
         if (!bvh_.intersect(ray, hit)) return false;
-        if (!cutouts_ && !(cameraRay && cullsBackFaces_)) [[likely]]
+        if (!cutouts_ && !(cameraRay && filtersCamera_)) [[likely]]
             return true;
         return filterHit(ray, hit, cameraRay);
     }
@@ -217,7 +218,7 @@ class Scene {
         return intersect(ray, hit);
     }
     /// Whether camera hits must go through filterHit(): some material cuts out or culls.
-    bool filtersCameraHits() const { return cutouts_ || cullsBackFaces_; }
+    bool filtersCameraHits() const { return cutouts_ || filtersCamera_; }
     /// Given `hit`, the closest hit along `ray`, moves it to the closest one not cut out;
     /// false if none is left.
     bool filterHit(const Ray& ray, Hit& hit, bool cameraRay) const;
@@ -239,8 +240,10 @@ class Scene {
 
     Bvh bvh_;
     double spawnOffset_ = 0;
-    bool cutouts_ = false;         ///< Some material is alpha-masked or blended.
-    bool cullsBackFaces_ = false;  ///< Some physically based material is single-sided.
+    bool cutouts_ = false;  ///< Some material is alpha-masked or blended.
+    /// Some physically based material is single-sided or hidden from the camera: camera rays
+    /// (only) are filtered; shadow and other rays keep the fast search.
+    bool filtersCamera_ = false;
     bool prepared_ = false;
 };
 
