@@ -148,9 +148,10 @@ class GlintRenderEngine(bpy.types.RenderEngine):
         done = 0
         rounds = 0
         stopped = False
-        while done < total and not stopped:
-            n = min(max(1, done), total - done) if rounds > 0 else 1
+        while done < total:
+            # Rounds double what was done; with adaptive sampling, the rest is one render.
             adaptive = s.use_adaptive_sampling and rounds > 0
+            n = total - done if adaptive else min(max(1, done), total - done)
             base = done
 
             def progress(fraction, seconds, base=base, n=n):
@@ -160,8 +161,7 @@ class GlintRenderEngine(bpy.types.RenderEngine):
                 self.update_stats("", f"Glint | Sample {base + int(fraction * n)}/{total}")
 
             with_passes = done < _PASS_SAMPLES
-            opts = dict(spp=n if not adaptive else total - done, seed=seed * 65537 + rounds,
-                        denoise=False, progress=progress)
+            opts = dict(spp=n, seed=seed * 65537 + rounds, denoise=False, progress=progress)
             if with_passes:
                 opts["aov"] = want
             if threads > 0:
@@ -170,7 +170,6 @@ class GlintRenderEngine(bpy.types.RenderEngine):
                 opts["noise_threshold"] = s.adaptive_threshold
                 if s.adaptive_min_samples > 0:
                     opts["min_spp"] = s.adaptive_min_samples
-                n = total - done
             try:
                 image = gs.render(**opts)
             except _Stopped:
@@ -197,8 +196,8 @@ class GlintRenderEngine(bpy.types.RenderEngine):
         passes = {k: (v / pass_weight).astype(np.float32) for k, v in acc_passes.items()}
         if s.use_denoising and not stopped:
             self.update_stats("", "Glint | denoising")
-            denoised = glint.denoise(image, passes={k: passes[k] for k in ("albedo", "normal")},
-                                     denoiser=s.denoiser.lower(), threads=threads)
+            denoised = glint.denoise(image, passes=passes, denoiser=s.denoiser.lower(),
+                                     threads=threads)
             image = np.asarray(denoised)
         self._write(scene, result, image, passes)
         self.update_progress(1.0)

@@ -22,7 +22,7 @@ import numpy as np
 from mathutils import Matrix, Vector
 
 from .gltf_writer import GltfWriter
-from .materials import MaterialReader, Texture, gltf_material, image_path
+from .materials import Lobe, MaterialReader, Texture, gltf_material, image_path
 
 # Blender (x, y, z) -> glTF (x, z, -y), column-major.
 _Z_UP_TO_Y_UP = [1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1]
@@ -90,6 +90,7 @@ class Exporter:
         self._default_material: Optional[int] = None
         self.triangles = 0
         self.instances = 0
+        self._lens: Optional[Lens] = None  # the camera's depth of field, if it has one
 
     def warn(self, text: str) -> None:
         if text not in self._warned:
@@ -207,18 +208,16 @@ class Exporter:
         if index is not None:
             return index
         if mat is None:
-            from .materials import Lobe
             lobe = Lobe()
             two_sided, blend, cutoff, name = True, "OPAQUE", 0.5, "default"
         else:
             name = mat.name
             if mat.use_nodes and mat.node_tree:
                 out = _active_output(mat.node_tree, "OUTPUT_MATERIAL")
-                lobe = self.materials.shader(out.inputs["Surface"] if out else None, [])
+                lobe = self.materials.shader(out.inputs["Surface"] if out else None)
                 if out is not None and out.inputs["Volume"].is_linked:
                     self.warn(f"material '{mat.name}': volume shaders are not read yet")
             else:
-                from .materials import Lobe
                 lobe = Lobe(base=tuple(mat.diffuse_color[:3]), metallic=mat.metallic,
                             roughness=mat.roughness)
             two_sided = True  # Cycles shades both faces of a mesh alike
@@ -345,8 +344,6 @@ class Exporter:
             self.warn(f"area light '{obj.name}': its spread is not read (180 degrees)")
 
     # ---- camera ---------------------------------------------------------------------------
-
-    _lens: Optional[Lens] = None
 
     def _camera(self, size: tuple) -> Optional[str]:
         cam_obj = self.scene.camera

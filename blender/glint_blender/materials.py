@@ -146,10 +146,9 @@ class MaterialReader:
 
     # ---- shader nodes ---------------------------------------------------------------------
 
-    def shader(self, socket, lobe_warnings: list) -> Lobe:
+    def shader(self, socket) -> Lobe:
         if socket is None or not socket.is_linked:
-            lobe = Lobe(base=(0.0, 0.0, 0.0), roughness=1.0, specular=0.0)
-            return lobe
+            return Lobe(base=(0.0, 0.0, 0.0), roughness=1.0, specular=0.0)
         node = socket.links[0].from_node
         t = node.type
         if t == "BSDF_PRINCIPLED":
@@ -244,12 +243,12 @@ class MaterialReader:
         if not add and node.inputs[0].is_linked:
             mixing = node.inputs[0].links[0].from_node
             if mixing.type == "LIGHT_PATH" or mixing.type == "NEW_GEOMETRY":
-                lobe = self.shader(node.inputs[1], [])
+                lobe = self.shader(node.inputs[1])
                 lobe.warnings.append(f"'{node.name}' mixes by a {mixing.bl_label} node: its "
                                      "first shader is used")
                 return lobe
-        a = self.shader(node.inputs[1 if not add else 0], [])
-        b = self.shader(node.inputs[2 if not add else 1], [])
+        a = self.shader(node.inputs[1 if not add else 0])
+        b = self.shader(node.inputs[2 if not add else 1])
         wa, wb = (1.0, 1.0) if add else (1.0 - fac, fac)
         warnings = a.warnings + b.warnings
         emit_a = a.emission != (0, 0, 0) and a.base == (0.0, 0.0, 0.0)

@@ -14,14 +14,19 @@ class _GlintPanel:
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES
 
+    def column(self):
+        """The panel's one column, labels beside their fields, as Blender's own panels."""
+        col = self.layout.column()
+        col.use_property_split = True
+        return col
+
 
 class GLINT_PT_sampling(_GlintPanel, bpy.types.Panel):
     bl_label = "Sampling"
 
     def draw(self, context):
         s = context.scene.glint
-        col = self.layout.column()
-        col.use_property_split = True
+        col = self.column()
         col.prop(s, "samples")
         col.prop(s, "time_limit")
         col.prop(s, "use_adaptive_sampling")
@@ -42,8 +47,7 @@ class GLINT_PT_light_paths(_GlintPanel, bpy.types.Panel):
 
     def draw(self, context):
         s = context.scene.glint
-        col = self.layout.column()
-        col.use_property_split = True
+        col = self.column()
         for name in ("max_bounces", "diffuse_bounces", "glossy_bounces", "transmission_bounces",
                      "volume_bounces", "clamp_indirect", "caustics"):
             col.prop(s, name)
@@ -54,8 +58,7 @@ class GLINT_PT_passes(_GlintPanel, bpy.types.Panel):
     bl_context = "view_layer"
 
     def draw(self, context):
-        col = self.layout.column()
-        col.use_property_split = True
+        col = self.column()
         col.prop(context.view_layer, "use_pass_z")
         col.prop(context.scene.glint, "denoising_passes")
 
